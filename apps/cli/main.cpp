@@ -1,0 +1,65 @@
+// `myoshell`: the command line. The only place (with the viewer) that prints to the user and exits.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <exception>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "command.h"
+#include "myoshell/core/errors.h"
+
+namespace myo::cli {
+
+namespace {
+std::vector<std::pair<std::string, CommandSetup>>& registry() {
+  static std::vector<std::pair<std::string, CommandSetup>> commands;
+  return commands;
+}
+}  // namespace
+
+CommandRegistrar::CommandRegistrar(const std::string& name, CommandSetup setup) {
+  registry().emplace_back(name, std::move(setup));
+}
+
+}  // namespace myo::cli
+
+int main(int argc, char** argv) {
+  using namespace myo::cli;
+  CLI::App app{"myoshell: muscle-driven facial animation with discrete shells and modal warping"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "myoshell 0.1.0");
+
+  // Register commands in name order so `--help` lists them alphabetically.
+  auto commands = registry();
+  std::sort(commands.begin(), commands.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::map<CLI::App*, std::function<int()>> runners;
+  for (auto& [name, setup] : commands) {
+    auto before = app.get_subcommands([](CLI::App*) { return true; });
+    auto run = setup(app);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+      if (std::find(before.begin(), before.end(), sub) == before.end()) runners[sub] = run;
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+
+  try {
+    for (CLI::App* sub : app.get_subcommands())
+      if (auto it = runners.find(sub); it != runners.end()) return it->second();
+    fmt::print(stderr, "myoshell: no command given (see --help)\n");
+    return kExitBadInput;
+  } catch (const myo::InputError& e) {
+    fmt::print(stderr, "myoshell: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "myoshell: error: {}\n", e.what());
+    return kExitFailure;
+  }
+}

@@ -1,0 +1,19 @@
+// A monotonic wall-clock stopwatch.
+#pragma once
+
+#include <chrono>
+
+namespace myo {
+
+class Stopwatch {
+ public:
+  Stopwatch() : start_(Clock::now()) {}
+  void restart() { start_ = Clock::now(); }
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point start_;
+};
+
+}  // namespace myo
