@@ -1,6 +1,8 @@
 // The thesis's Table 1 for any mesh, and more: counts, topology, bounding box, area.
 #pragma once
 
+#include <vector>
+
 #include "myoshell/core/types.h"
 #include "myoshell/mesh/tri_mesh.h"
 
@@ -23,5 +25,13 @@ struct MeshStats {
 };
 
 MeshStats meshStats(const TriMesh& mesh);
+
+// A triangle is degenerate when its area is at most this fraction of the squared bounding-box
+// diagonal (scale-free, so it means the same for a mesh in cm or in m).
+constexpr double kDegenerateAreaTolerance = 1e-12;
+
+// Indices of the degenerate triangles of (V, F), ascending. Triangles with a non-finite corner are
+// not counted (they are reported as non-finite coordinates); the bbox is over finite vertices.
+std::vector<int> degenerateTriangles(const MatX3& V, const MatX3i& F);
 
 }  // namespace myo
