@@ -1,0 +1,55 @@
+// Heads: a skin mesh with its landmarks and the vertices pinned under gravity.
+//
+// Two kinds (docs/heads.md):
+// - the default head, built into the library: MediaPipe's canonical face mesh (Apache-2.0,
+//   assets/default_head/NOTICE), mouth opened along the inner lip lines, eyes kept closed, refined
+//   by two levels of Loop subdivision with the boundary as a crease; ids 0–467 are MediaPipe's;
+// - any OBJ head with a landmark file (landmarks.h), e.g. ICT-FaceKit's in ../shared/data/ict.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "myoshell/face/face_frame.h"
+#include "myoshell/face/landmarks.h"
+#include "myoshell/mesh/tri_mesh.h"
+
+namespace myo {
+
+struct Head {
+  std::string name;              // "default", or the OBJ file's stem
+  TriMesh mesh;                  // the skin, cm, +y up, +z out of the face, +x subject's left
+  Landmarks landmarks;           // resolves every kRequiredLandmarks name (checked on load)
+  std::vector<int> gravityPins;  // sorted vertex ids held fixed under gravity
+  std::string pinsSource;        // how gravityPins were chosen ("rigid_vertices.json", "rim + …")
+  FaceFrame frame() const { return faceFrame(mesh.V, landmarks); }
+};
+
+struct DefaultHeadOptions {
+  int subdivisionLevels = 2;  // 0 gives the 468-vertex mesh with the mouth opened
+  bool openMouth = true;      // delete the triangles between the inner lip lines
+};
+
+// The default head from the data embedded at build time (no file access). About 7.2k vertices,
+// two boundary loops (outer rim, mouth). Pins: defaultGravityPins.
+Head loadDefaultHead(const DefaultHeadOptions& options = {});
+
+// The canonical mesh as embedded (468 vertices, 898 triangles, cm), before any processing.
+TriMesh defaultHeadSourceMesh();
+// The default head's landmark file as embedded (assets/default_head/landmarks_multipie68.json).
+std::string defaultHeadLandmarkJson();
+// SHA-256 (hex) of the embedded binarypb slice, checked by scripts/fetch_default_head and at configure.
+std::string defaultHeadSourceSha256();
+
+// Any OBJ head: readObj(objPath), readLandmarks(landmarkPath) with requireAll(), and pins from
+// pinPath (a vertex-set file, e.g. ICT's rigid_vertices.json) or, when pinPath is empty,
+// defaultGravityPins. Errors are InputError naming the file and the fault.
+Head loadHead(const std::string& objPath, const std::string& landmarkPath,
+              const std::string& pinPath = "");
+
+// Pins for a face without a back of the head: every vertex of the longest boundary loop (by
+// length; the outer rim of a face mask) plus the bone-backed nose-bridge landmarks nasion_approx
+// and Multi-PIE point 28 when present. Empty rim (closed mesh) gives only the landmarks.
+std::vector<int> defaultGravityPins(const TriMesh& mesh, const Landmarks& landmarks);
+
+}  // namespace myo

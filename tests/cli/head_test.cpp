@@ -1,0 +1,108 @@
+// `myoshell head`: counts, landmarks, frame and pins as JSON, from any folder; pictures; errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out;  // stdout (and stderr when merged)
+};
+
+RunResult runIn(const fs::path& dir, const std::string& args, bool mergeStderr = true) {
+  RunResult r;
+  const std::string cmd = "cd '" + dir.string() + "' && '" + test::cliPath() + "' " + args +
+                          (mergeStderr ? " 2>&1" : " 2>/dev/null");
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::path(testing::TempDir()) / ("myo_head_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+TEST(HeadCommand, DefaultHeadFromAnyFolder) {
+  const fs::path dir = scratch("default");
+  const RunResult r = runIn(dir, "head --json --render face.png --size 128", false);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["name"], "default");
+  EXPECT_EQ(j["vertices"], 7152);
+  EXPECT_EQ(j["triangles"], 14080);
+  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({144, 80}));
+  EXPECT_EQ(j["landmarks"]["multipie68"], 68);
+  EXPECT_EQ(j["landmarks"]["required"]["nose_tip"], 4);
+  EXPECT_EQ(j["landmarks"]["required"]["mouth_corner_right"], 61);
+  EXPECT_EQ(j["gravity_pins"]["count"], 146);
+  EXPECT_NEAR(j["frame"]["scale"].get<double>(), 8.88, 0.01);
+  // A PNG was written in the working folder.
+  std::ifstream png(dir / "face.png", std::ios::binary);
+  std::string sig(8, '\0');
+  png.read(sig.data(), 8);
+  EXPECT_EQ(sig, std::string("\x89PNG\r\n\x1a\n", 8));
+}
+
+TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
+  const fs::path dir = scratch("roundtrip");
+  ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj --write-landmarks lm.json").exitCode, 0);
+  const RunResult r = runIn(dir, "head h.obj --landmarks lm.json --json", false);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["vertices"], 468);
+  EXPECT_EQ(j["triangles"], 880);
+  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({36, 20}));
+  EXPECT_EQ(j["landmarks"]["required"]["chin_menton"], 152);
+}
+
+TEST(HeadCommand, IctFolder) {
+  MYO_REQUIRE_SHARED_DATA();
+  const RunResult r =
+      runIn(scratch("ict"), "head '" + (test::sharedDataDir() / "ict").string() + "' --json", false);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["vertices"], 11248);
+  EXPECT_EQ(j["gravity_pins"]["count"], 910);
+  EXPECT_EQ(j["gravity_pins"]["source"], "rigid_vertices.json");
+  EXPECT_EQ(j["landmarks"]["required"]["nose_tip"], 4857);
+}
+
+TEST(HeadCommand, LandmarkErrorsAreBadInput) {
+  const fs::path dir = scratch("errors");
+  ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj").exitCode, 0);
+  std::ofstream(dir / "lm.json") << "{\"nose_tip\": 4}";
+  RunResult r = runIn(dir, "head h.obj --landmarks lm.json");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("lm.json: missing landmark 'right_eye_outer'"));
+  r = runIn(dir, "head h.obj");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("needs --landmarks FILE"));
+  r = runIn(dir, "head h.obj --landmarks nope.json");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("nope.json: cannot open landmark file"));
+}
+
+}  // namespace
+}  // namespace myo
