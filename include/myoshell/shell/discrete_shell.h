@@ -6,6 +6,7 @@
 // weight is 3|ē|²/(Ā_1 + Ā_2) (METHOD.md §1.2). Rest quantities are precomputed once.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "myoshell/core/types.h"
@@ -13,6 +14,10 @@
 #include "myoshell/shell/shell_material.h"
 
 namespace myo {
+
+namespace detail {
+struct ShellHessianLayout;  // discrete_shell.cpp
+}
 
 // The three energies before multiplying by their stiffnesses, and the weighted total.
 struct ShellEnergy {
@@ -35,11 +40,15 @@ class DiscreteShell {
 
   // Energy at positions x (n×3, cm). When grad is non-null it receives ∂E/∂x (3n, dyn, vertex-major
   // x0,y0,z0,x1,…); when hess is non-null it receives ∂²E/∂x² (3n×3n sparse, symmetric, dyn/cm).
+  // The Hessian always has the same compressed pattern (every 3×3 block of two vertices sharing a
+  // triangle or a hinge, zeros stored), whatever x, mode and material: a solver can analyse it once.
+  // Collapsed elements (zero area or length, hinge normals |n| ≤ 1e-10|e|²) keep their energy but
+  // contribute no force and no stiffness.
   ShellEnergy energy(const MatX3& x, VecX* grad = nullptr, SparseMat* hess = nullptr,
                      HessianMode mode = HessianMode::Exact) const;
 
   // The linearized stiffness K = ∇²E(X̄) at rest (3n×3n, dyn/cm, symmetric PSD), built from rest
-  // gradients only (METHOD.md §1.5): the thesis's constant K of eq. 7.
+  // gradients only (METHOD.md §1.5): the thesis's constant K of eq. 7. Same pattern as the Hessian.
   SparseMat stiffnessAtRest() const;
 
   // Lumped mass per vertex (n): m_i = ρ·t·Σ_{t∋i} Ā_t/3, grams.
@@ -50,6 +59,11 @@ class DiscreteShell {
   const EdgeTable& edgeTable() const { return edges_; }
   const ShellMaterial& material() const { return material_; }
   int vertexCount() const { return static_cast<int>(rest_.rows()); }
+  // Rest dihedral angle θ̄ per edge of edgeTable() (rad; 0 on boundary edges), positive on a
+  // convex surface with outward normals (METHOD.md §1.1).
+  const std::vector<double>& restDihedralAngles() const { return restTheta_; }
+  // Bending weight c_e = 3|ē|²/(Ā1 + Ā2) per edge (dimensionless; 0 on boundary edges).
+  const std::vector<double>& bendingWeights() const { return bendWeight_; }
 
   // Returns a copy of this shell with another material (same mesh, same rest state).
   DiscreteShell withMaterial(const ShellMaterial& material) const;
@@ -64,6 +78,12 @@ class DiscreteShell {
   std::vector<double> restTheta_;    // per edge (0 on boundary edges), rad
   std::vector<double> bendWeight_;   // per edge: 3|ē|²/(Ā_1 + Ā_2), 0 on boundary edges
   VecX mass_;                        // per vertex, g
+  // The fixed sparsity of ∇²E and K (3×3 blocks for every vertex pair sharing an element) and each
+  // element's positions in it, so Hessians are filled in place instead of through triplets.
+  // Defined in discrete_shell.cpp; shared by copies (withMaterial).
+  std::shared_ptr<const detail::ShellHessianLayout> layout_;
+
+  void computeMass();  // mass_ from restArea_ and material_
 };
 
 }  // namespace myo
