@@ -1,0 +1,151 @@
+// Modal warping (Choi & Ko 2005; thesis eq. 10; METHOD.md §3): the linear modal system written in
+// per-vertex rotated frames,
+//
+//   q̈ + (ξ + ζΛ) q̇ + Λ q = Φᵀ R(Ψq)ᵀ F,      u = R̃(Ψq) Φq   (per vertex)
+//
+// with R(w) = exp([w]×) rotating the forces into the local frames and R̃(w) = ∫₀¹exp(s[w]×)ds
+// bending the linear displacement onto an arc (rotation_operator.h). All fields here are over the
+// basis's free vertices only ("free" f×3 fields, row i = vertex basis.freeVertices[i]); pinned
+// vertices never move.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/types.h"
+#include "myoshell/reduce/modal_basis.h"
+
+namespace myo {
+
+// ---------------------------------------------------------------------------------------------
+// Displacement maps and static solves (used by the reference comparisons of `myoshell validate`).
+
+// Linear modal displacement u = Φq, free f×3 (cm). q: d (cm·g^1/2).
+MatX3 linearDisplacement(const ModalBasis& basis, const VecX& q);
+// Warped displacement u_i = R̃(Ψ_i q)·(Φ_i q), free f×3 (cm) (METHOD.md §3.4).
+MatX3 warpedDisplacement(const ModalBasis& basis, const VecX& q);
+// Projected modal force Φᵀ R(Ψq)ᵀ F (d, dyn·g^-1/2) of a free force F (f×3, dyn); with
+// warped = false it is ΦᵀF.
+VecX modalForce(const ModalBasis& basis, const VecX& q, const MatX3& freeForce, bool warped = true);
+
+struct StaticSolveSettings {
+  int maxIterations = 100;   // Newton iterations in total (over all load steps)
+  int loadSteps = 1;         // continuation: the load is applied in this many equal increments
+  double tolerance = 1e-12;  // stop when |Λq − Φᵀ R(Ψq)ᵀ F| ≤ tolerance·|ΦᵀF|
+};
+
+struct StaticSolveResult {
+  VecX q;                    // d modal amplitudes at equilibrium
+  MatX3 u;                   // free displacement f×3 (cm): warped or linear
+  int iterations = 0;        // Newton iterations used (0 for the linear solve)
+  double residual = 0.0;     // final |Λq − Φᵀ R(Ψq)ᵀ F| / |ΦᵀF| (0 when F = 0)
+  bool converged = true;
+};
+
+// Linear static response q = Λ⁻¹ΦᵀF, u = Φq (the baseline of METHOD.md §5.1). F: free f×3 (dyn).
+// Needs a constrained basis: throws NumericalError if some λ_j ≤ 1e-9·λ_max (rigid modes).
+StaticSolveResult solveStaticLinear(const ModalBasis& basis, const MatX3& freeForce);
+
+// Static modal-warping equilibrium Λq = Φᵀ R(Ψq)ᵀ F (METHOD.md §5.3), by Newton's method with
+// the exact Jacobian Λ − Σ_i Φ_iᵀ R_iᵀ [F_i]× R̃(w_i) Ψ_i, a backtracking line search on the
+// residual, and optional load continuation; then u = R̃(Ψq)Φq. Returns converged = false (never
+// throws for non-convergence) with the last iterate. Same rigid-mode precondition as the linear solve.
+StaticSolveResult solveStaticWarped(const ModalBasis& basis, const MatX3& freeForce,
+                                    const StaticSolveSettings& settings = {});
+
+// ---------------------------------------------------------------------------------------------
+// The time integrator.
+
+enum class ModalStepper {
+  Exact,         // exact per-mode step for a force held constant over the step (METHOD.md §3.5):
+                 // unconditionally stable, no numerical damping, coefficients precomputed. Default.
+  SemiImplicit,  // the thesis's semi-implicit (symplectic) Euler: v += h(f − cv − λq); q += h v.
+                 // Stable only for h·√λ_max < 2: the constructor refuses larger steps.
+};
+
+enum class ModalPrecision {
+  Float,   // basis streamed in float (half the memory traffic); q, q̇ and the warp stay double
+  Double,  // everything in double (accuracy tests, reference comparisons)
+};
+
+struct ModalWarpingSettings {
+  double dt = 1.0 / 60.0;                     // time step h, s (> 0)
+  ModalStepper stepper = ModalStepper::Exact;
+  bool warping = true;                        // false: plain linear modal u = Φq, forces unrotated
+  double rayleighMass = 0.0;                  // ξ, 1/s   (C = ξM + ζK; per mode c_j = ξ + ζλ_j)
+  double rayleighStiffness = 0.0;             // ζ, s
+  ModalPrecision precision = ModalPrecision::Float;
+  std::string channel = "channel";            // name used in error messages
+};
+
+// Steps one channel's modal-warping system. The constructor precomputes everything (interleaved
+// per-vertex basis, per-mode step coefficients); step() allocates nothing and costs one pass over
+// the basis (Φq and Ψq as one matvec) plus a pass over the loaded vertices' Φ rows.
+class ModalWarpingIntegrator {
+ public:
+  // Throws InputError naming the channel for dt ≤ 0, negative damping, or (SemiImplicit) an
+  // unstable dt: "channel 'NAME': semi-implicit Euler is unstable at dt = H s: the highest mode has
+  // λ_max = L 1/s², so dt must be below 2/√λ_max = D s (use the exact stepper, a smaller dt or
+  // fewer modes)".
+  ModalWarpingIntegrator(std::shared_ptr<const ModalBasis> basis,
+                         const ModalWarpingSettings& settings);
+
+  // Advances one step of settings.dt under the free force F (f×3, dyn, world frame), held
+  // constant over the step and rotated with R(Ψq) at the start of the step (METHOD.md §3.3).
+  // Rows that are exactly zero are skipped. Then updates the displacement u = R̃(Ψq)Φq.
+  void step(const MatX3& freeForce);
+  // A step without force (free vibration / relaxation).
+  void step();
+
+  const VecX& q() const { return q_; }        // d, cm·g^1/2
+  const VecX& qdot() const { return v_; }     // d, cm·g^1/2/s
+  // The current displacement of the free vertices, f×3 (cm).
+  const MatX3& freeDisplacement() const { return u_; }
+  // Adds the displacement into a full-mesh field (n×3, cm); rows of pinned vertices untouched.
+  void addDisplacementTo(MatX3& full) const;
+  // The current per-vertex rotation vectors w = Ψq, free f×3 (rad) (zeros when warping is off).
+  MatX3 freeRotations() const;
+
+  // Back to rest: q = q̇ = 0, u = 0.
+  void reset();
+  // Sets the modal state (d each) and recomputes u.
+  void setState(const VecX& q, const VecX& qdot);
+  // True when every |q_j| and |q̇_j| is below tol.
+  bool isAtRest(double tol) const;
+  // Modal energy ½q̇ᵀq̇ + ½qᵀ(sΛ)q (erg): kinetic + linear elastic in the local frames.
+  double energy() const;
+
+  // Scales the stiffness: Λ ← sΛ (s > 0), damping c_j = ξ + ζ sλ_j recomputed, Φ and Ψ kept (so
+  // mode shapes do not change, frequencies scale by √s). The state is kept. Throws like the
+  // constructor if the semi-implicit stepper becomes unstable (the previous scale is kept then).
+  void setStiffnessScale(double s);
+  double stiffnessScale() const { return scale_; }
+
+  const ModalBasis& basis() const { return *basis_; }
+  const ModalWarpingSettings& settings() const { return settings_; }
+  // Largest stable semi-implicit step for this basis and scale: 2/√(sλ_max) (s); +∞ if λ_max ≤ 0.
+  double maxSemiImplicitDt() const;
+
+  ~ModalWarpingIntegrator();
+  ModalWarpingIntegrator(ModalWarpingIntegrator&&) noexcept;
+  ModalWarpingIntegrator& operator=(ModalWarpingIntegrator&&) noexcept;
+
+ private:
+  struct Kernel;  // precision-specific interleaved basis and scratch buffers
+  void computeCoefficients();
+  void updateDisplacement();
+
+  std::shared_ptr<const ModalBasis> basis_;
+  ModalWarpingSettings settings_;
+  double scale_ = 1.0;
+  VecX q_, v_, ftilde_;
+  // Per-mode step coefficients (Exact): q⁺ = a q + b v + g f, v⁺ = c q + e v + k f.
+  VecX ca_, cb_, cg_, cc_, ce_, ck_;
+  VecX lambdaEff_, damping_;  // sλ_j and c_j
+  MatX3 u_;
+  std::unique_ptr<Kernel> kernel_;
+};
+
+}  // namespace myo

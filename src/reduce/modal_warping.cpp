@@ -1,0 +1,535 @@
+#include "myoshell/reduce/modal_warping.h"
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "myoshell/core/check.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/reduce/rotation_operator.h"
+
+namespace myo {
+
+namespace {
+
+Mat3 cross(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+void checkForce(const ModalBasis& basis, const MatX3& F) {
+  MYO_CHECK_EQ(F.rows(), static_cast<Eigen::Index>(basis.freeCount()));
+}
+
+void checkConstrained(const ModalBasis& basis) {
+  const double lmax = basis.lambda.cwiseAbs().maxCoeff();
+  for (int j = 0; j < basis.modeCount(); ++j)
+    if (!(basis.lambda[j] > 1e-9 * lmax)) {
+      std::ostringstream os;
+      os << "static modal solve needs a constrained basis, but mode " << j << " has lambda = "
+         << basis.lambda[j] << " 1/s^2 (a rigid mode): pin two non-collinear rows of vertices";
+      throw NumericalError(os.str());
+    }
+}
+
+// Per-mode step coefficients for q̈ + c q̇ + λ q = f with f constant over a step h:
+//   q⁺ = a q + b v + g f,   v⁺ = cq q + e v + k f.
+struct StepCoefficients {
+  double a, b, g, cq, e, k;
+};
+
+// Exact (METHOD.md §3.5), valid for any λ (including 0 and slightly negative round-off values)
+// and any c ≥ 0, without cancellation near critical damping or λ → 0.
+StepCoefficients exactCoefficients(double lambda, double c, double h) {
+  const double alpha = 0.5 * c;
+  const double D = lambda - alpha * alpha;
+  const double z = D * h * h;
+  StepCoefficients s{};
+  if (std::abs(z) >= 1.0 && D < 0.0) {
+    // Strongly overdamped: real roots r1 = −λ/(α+ω) (small, computed without cancellation) and
+    // r2 = −α − ω; ωh ≥ 1 so r1 − r2 = 2ω is well conditioned.
+    const double w = std::sqrt(-D);
+    const double r1 = -lambda / (alpha + w), r2 = -alpha - w;
+    const double e1 = std::exp(r1 * h), e2 = std::exp(r2 * h);
+    const double SE = (e1 - e2) / (r1 - r2);  // e^{−αh} sinh(ωh)/ω
+    const double CE = 0.5 * (e1 + e2);        // e^{−αh} cosh(ωh)
+    s.a = CE + alpha * SE;
+    s.b = SE;
+    s.cq = -lambda * SE;
+    s.e = CE - alpha * SE;
+    s.k = SE;
+    const double i1 = r1 == 0.0 ? h : std::expm1(r1 * h) / r1;
+    const double i2 = std::expm1(r2 * h) / r2;
+    s.g = (i1 - i2) / (r1 - r2);  // ∫₀ʰ e^{−αs} sinh(ωs)/ω ds
+    return s;
+  }
+  double C, S;  // cos(√D h) and sin(√D h)/√D, continued analytically for D < 0
+  if (std::abs(z) < 1.0) {
+    // C = Σ (−z)^k/(2k)!, S/h = Σ (−z)^k/(2k+1)!, to k = 11 (< 1e-22 at |z| = 1).
+    double c2 = 0.0, s2 = 0.0;
+    for (int k = 11; k >= 0; --k) {
+      double f2k = 1.0, f2k1 = 1.0;
+      for (int i = 2; i <= 2 * k; ++i) f2k *= i;
+      f2k1 = f2k * (2 * k + 1);
+      c2 = 1.0 / f2k - z * c2;
+      s2 = 1.0 / f2k1 - z * s2;
+    }
+    C = c2;
+    S = s2 * h;
+  } else {  // D > 0, underdamped
+    const double w = std::sqrt(D);
+    C = std::cos(w * h);
+    S = std::sin(w * h) / w;
+  }
+  const double E = std::exp(-alpha * h);
+  s.a = E * (C + alpha * S);
+  s.b = E * S;
+  s.cq = -lambda * E * S;
+  s.e = E * (C - alpha * S);
+  s.k = E * S;
+  if (std::abs(lambda) * h * h >= 1e-3) {
+    s.g = (1.0 - s.a) / lambda;
+  } else {
+    // Step response q(h) = Σ_{k≥2} m_k h^k/k! with m_2 = 1, m_{k+2} = −c m_{k+1} − λ m_k; here
+    // |λ|h² < 1e-3 and ch < 2.1, so 40 terms reach round-off with no cancellation.
+    double mPrev = 0.0, mCur = 1.0;  // m_{k-2}, m_{k-1}, starting at k = 3
+    double hk = h * h / 2.0;         // h^k/k!
+    double sum = hk;
+    for (int k = 3; k < 64; ++k) {
+      const double mk = -c * mCur - lambda * mPrev;
+      mPrev = mCur;
+      mCur = mk;
+      hk *= h / k;
+      sum += mk * hk;
+    }
+    s.g = sum;
+  }
+  return s;
+}
+
+StepCoefficients semiImplicitCoefficients(double lambda, double c, double h) {
+  // v⁺ = v + h(f − c v − λ q);  q⁺ = q + h v⁺.
+  StepCoefficients s{};
+  s.cq = -h * lambda;
+  s.e = 1.0 - h * c;
+  s.k = h;
+  s.a = 1.0 + h * s.cq;
+  s.b = h * s.e;
+  s.g = h * h;
+  return s;
+}
+
+// g = R(w)ᵀ F = F − s (w×F) + a w×(w×F).
+inline void rotateBack(double wx, double wy, double wz, double fx, double fy, double fz, double& gx,
+                       double& gy, double& gz) {
+  const auto c = rotationCoefficients(wx * wx + wy * wy + wz * wz);
+  const double cx = wy * fz - wz * fy, cy = wz * fx - wx * fz, cz = wx * fy - wy * fx;
+  const double ccx = wy * cz - wz * cy, ccy = wz * cx - wx * cz, ccz = wx * cy - wy * cx;
+  gx = fx - c.s * cx + c.a * ccx;
+  gy = fy - c.s * cy + c.a * ccy;
+  gz = fz - c.s * cz + c.a * ccz;
+}
+
+// u = R̃(w) uL = uL + a (w×uL) + b w×(w×uL).
+inline void warp(double wx, double wy, double wz, double lx, double ly, double lz, double* u) {
+  const auto c = rotationCoefficients(wx * wx + wy * wy + wz * wz);
+  const double cx = wy * lz - wz * ly, cy = wz * lx - wx * lz, cz = wx * ly - wy * lx;
+  const double ccx = wy * cz - wz * cy, ccy = wz * cx - wx * cz, ccz = wx * cy - wy * cx;
+  u[0] = lx + c.a * cx + c.b * ccx;
+  u[1] = ly + c.a * cy + c.b * ccy;
+  u[2] = lz + c.a * cz + c.b * ccz;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Displacement maps and static solves.
+
+MatX3 linearDisplacement(const ModalBasis& basis, const VecX& q) {
+  MYO_CHECK_EQ(q.size(), static_cast<Eigen::Index>(basis.modeCount()));
+  VecX u = basis.Phi * q;
+  return rows3(u);
+}
+
+MatX3 warpedDisplacement(const ModalBasis& basis, const VecX& q) {
+  MYO_CHECK_EQ(q.size(), static_cast<Eigen::Index>(basis.modeCount()));
+  const VecX uL = basis.Phi * q;
+  const VecX w = basis.Psi * q;
+  MatX3 u(basis.freeCount(), 3);
+  for (int i = 0; i < basis.freeCount(); ++i)
+    warp(w[3 * i], w[3 * i + 1], w[3 * i + 2], uL[3 * i], uL[3 * i + 1], uL[3 * i + 2], u.row(i).data());
+  return u;
+}
+
+VecX modalForce(const ModalBasis& basis, const VecX& q, const MatX3& freeForce, bool warped) {
+  checkForce(basis, freeForce);
+  if (!warped) return basis.Phi.transpose() * flat(freeForce);
+  const VecX w = basis.Psi * q;
+  VecX g(3 * basis.freeCount());
+  for (int i = 0; i < basis.freeCount(); ++i)
+    rotateBack(w[3 * i], w[3 * i + 1], w[3 * i + 2], freeForce(i, 0), freeForce(i, 1), freeForce(i, 2),
+               g[3 * i], g[3 * i + 1], g[3 * i + 2]);
+  return basis.Phi.transpose() * g;
+}
+
+StaticSolveResult solveStaticLinear(const ModalBasis& basis, const MatX3& freeForce) {
+  checkForce(basis, freeForce);
+  checkConstrained(basis);
+  StaticSolveResult r;
+  r.q = (basis.Phi.transpose() * flat(freeForce)).cwiseQuotient(basis.lambda);
+  r.u = linearDisplacement(basis, r.q);
+  return r;
+}
+
+StaticSolveResult solveStaticWarped(const ModalBasis& basis, const MatX3& freeForce,
+                                    const StaticSolveSettings& settings) {
+  checkForce(basis, freeForce);
+  checkConstrained(basis);
+  const int d = basis.modeCount(), f = basis.freeCount();
+  StaticSolveResult r;
+  r.q = VecX::Zero(d);
+  const double ref = (basis.Phi.transpose() * flat(freeForce)).norm();
+  if (ref == 0.0) {
+    r.u = MatX3::Zero(f, 3);
+    return r;
+  }
+  const int steps = std::max(1, settings.loadSteps);
+  auto residual = [&](const VecX& q, const MatX3& F) {
+    return VecX(basis.lambda.cwiseProduct(q) - modalForce(basis, q, F, true));
+  };
+  MatX J(d, d), T(3, d);
+  bool ok = true;
+  double relRes = 0.0;
+  for (int l = 1; l <= steps; ++l) {
+    const MatX3 F = freeForce * (double(l) / steps);
+    const double refl = ref * double(l) / steps;
+    VecX res = residual(r.q, F);
+    for (;;) {
+      relRes = res.norm() / refl;
+      if (relRes <= settings.tolerance) break;
+      if (r.iterations >= settings.maxIterations) {
+        ok = false;
+        break;
+      }
+      // J = Λ − Σ_i Φ_iᵀ R_iᵀ [F_i]× R̃(w_i) Ψ_i  (∂(R(w)ᵀF)/∂w = Rᵀ[F]× R̃(w)).
+      const VecX w = basis.Psi * r.q;
+      J = basis.lambda.asDiagonal();
+      for (int i = 0; i < f; ++i) {
+        const Vec3 Fi = F.row(i).transpose();
+        if (Fi.squaredNorm() == 0.0) continue;
+        const Vec3 wi = w.segment<3>(3 * i);
+        const Mat3 A = rotationFromVector(wi).transpose() * cross(Fi) * warpMatrix(wi);
+        T.noalias() = A * basis.Psi.middleRows(3 * i, 3);
+        J.noalias() -= basis.Phi.middleRows(3 * i, 3).transpose() * T;
+      }
+      const VecX dq = -J.partialPivLu().solve(res);
+      ++r.iterations;
+      double t = 1.0;
+      const double r0 = res.norm();
+      VecX qt, rt;
+      for (;;) {
+        qt = r.q + t * dq;
+        rt = residual(qt, F);
+        if (rt.norm() <= (1.0 - 1e-4 * t) * r0 || t < 1e-6) break;
+        t *= 0.5;
+      }
+      if (!(rt.norm() < r0)) {  // no progress at all: stop here
+        ok = false;
+        relRes = r0 / refl;
+        break;
+      }
+      r.q = qt;
+      res = rt;
+    }
+    if (!ok) break;
+  }
+  r.residual = relRes;
+  r.converged = ok;
+  r.u = warpedDisplacement(basis, r.q);
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The integrator.
+
+// The per-vertex interleaved basis: rows stride·i .. stride·i+2 hold Φ_i (x, y, z) and, with warping,
+// rows stride·i+3 .. +5 hold Ψ_i; so one matvec Y = B q gives Φq and Ψq, streaming the basis once.
+struct ModalWarpingIntegrator::Kernel {
+  ModalPrecision precision;
+  int stride = 6;
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Bf;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Bd;
+  Eigen::VectorXf qf, Yf, accf, Gf;
+  Eigen::VectorXd Yd, accd, Gd;
+
+  template <class Mat, class Vec>
+  static void fill(Mat& B, Vec& Y, const ModalBasis& basis, int stride) {
+    const int f = basis.freeCount(), d = basis.modeCount();
+    B.resize(static_cast<Eigen::Index>(stride) * f, d);
+    for (int i = 0; i < f; ++i) {
+      B.middleRows(stride * i, 3) = basis.Phi.middleRows(3 * i, 3).cast<typename Mat::Scalar>();
+      if (stride == 6)
+        B.middleRows(stride * i + 3, 3) = basis.Psi.middleRows(3 * i, 3).cast<typename Mat::Scalar>();
+    }
+    Y = Vec::Zero(B.rows());
+  }
+
+  // f̃ = Σ_i Φ_iᵀ (R_iᵀ F_i) over the rows of F that are not zero; R from the cached w = Ψq.
+  // Contributions are summed in the basis's precision over blocks of kBlock loaded vertices (a
+  // loop over modes that vectorizes), and the block sums in double, which keeps the float path's
+  // error at the level of one block's sum.
+  template <class Mat, class Vec, class Acc>
+  static void project(const Mat& B, const Vec& Y, int stride, bool warped, const MatX3& F, Acc& acc,
+                      VecX& ft) {
+    using S = typename Mat::Scalar;
+    constexpr int kBlock = 64;
+    const Eigen::Index d = B.cols(), f = F.rows();
+    ft.setZero();
+    acc.setZero();
+    S* __restrict a = acc.data();
+    int inBlock = 0;
+    for (Eigen::Index i = 0; i < f; ++i) {
+      double gx = F(i, 0), gy = F(i, 1), gz = F(i, 2);
+      if (gx == 0.0 && gy == 0.0 && gz == 0.0) continue;
+      if (warped) {
+        const auto* w = Y.data() + stride * i + 3;
+        rotateBack(w[0], w[1], w[2], F(i, 0), F(i, 1), F(i, 2), gx, gy, gz);
+      }
+      const S sx = S(gx), sy = S(gy), sz = S(gz);
+      const S* __restrict px = B.data() + stride * i * d;
+      const S* __restrict py = px + d;
+      const S* __restrict pz = py + d;
+      for (Eigen::Index j = 0; j < d; ++j) a[j] += px[j] * sx + py[j] * sy + pz[j] * sz;
+      if (++inBlock == kBlock) {
+        ft += acc.template cast<double>();
+        acc.setZero();
+        inBlock = 0;
+      }
+    }
+    ft += acc.template cast<double>();
+  }
+
+  // Dense-load variant: G holds R_iᵀF_i in the Φ rows (zeros in the Ψ rows), then f̃ = BᵀG as one
+  // streaming matvec. Used when most vertices are loaded (gravity, drag).
+  template <class Mat, class Vec>
+  static void projectDense(const Mat& B, const Vec& Y, int stride, bool warped, const MatX3& F, Vec& G,
+                           VecX& ft) {
+    using S = typename Mat::Scalar;
+    const Eigen::Index f = F.rows();
+    S* g = G.data();
+    for (Eigen::Index i = 0; i < f; ++i, g += stride) {
+      double gx = F(i, 0), gy = F(i, 1), gz = F(i, 2);
+      if (warped && (gx != 0.0 || gy != 0.0 || gz != 0.0)) {
+        const auto* w = Y.data() + stride * i + 3;
+        rotateBack(w[0], w[1], w[2], F(i, 0), F(i, 1), F(i, 2), gx, gy, gz);
+      }
+      g[0] = S(gx);
+      g[1] = S(gy);
+      g[2] = S(gz);
+    }
+    ft = (B.transpose() * G).template cast<double>();
+  }
+
+  template <class Vec>
+  static void output(const Vec& Y, int stride, bool warped, MatX3& u) {
+    const Eigen::Index f = u.rows();
+    double* pu = u.data();
+    const auto* y = Y.data();
+    if (!warped) {
+      for (Eigen::Index i = 0; i < 3 * f; ++i) pu[i] = double(y[i]);
+      return;
+    }
+    for (Eigen::Index i = 0; i < f; ++i, y += stride, pu += 3)
+      warp(y[3], y[4], y[5], y[0], y[1], y[2], pu);
+  }
+};
+
+ModalWarpingIntegrator::ModalWarpingIntegrator(std::shared_ptr<const ModalBasis> basis,
+                                               const ModalWarpingSettings& settings)
+    : basis_(std::move(basis)), settings_(settings) {
+  MYO_CHECK(basis_ != nullptr, "null basis");
+  const ModalBasis& b = *basis_;
+  const std::string ch = "channel '" + settings_.channel + "': ";
+  if (!(settings_.dt > 0.0) || !std::isfinite(settings_.dt))
+    throw InputError(ch + "the time step dt must be positive");
+  if (!(settings_.rayleighMass >= 0.0) || !(settings_.rayleighStiffness >= 0.0))
+    throw InputError(ch + "Rayleigh damping coefficients must be non-negative");
+  MYO_CHECK(b.modeCount() >= 1, ch << "empty basis");
+  MYO_CHECK_EQ(b.Phi.rows(), static_cast<Eigen::Index>(3 * b.freeCount()));
+  MYO_CHECK_EQ(b.Phi.cols(), static_cast<Eigen::Index>(b.modeCount()));
+  if (settings_.warping) {
+    MYO_CHECK_EQ(b.Psi.rows(), b.Phi.rows());
+    MYO_CHECK_EQ(b.Psi.cols(), b.Phi.cols());
+  }
+  const int d = b.modeCount(), f = b.freeCount();
+  q_ = VecX::Zero(d);
+  v_ = VecX::Zero(d);
+  ftilde_ = VecX::Zero(d);
+  u_ = MatX3::Zero(f, 3);
+  kernel_ = std::make_unique<Kernel>();
+  kernel_->precision = settings_.precision;
+  kernel_->stride = settings_.warping ? 6 : 3;
+  if (settings_.precision == ModalPrecision::Float) {
+    Kernel::fill(kernel_->Bf, kernel_->Yf, b, kernel_->stride);
+    kernel_->qf = Eigen::VectorXf::Zero(d);
+    kernel_->accf = Eigen::VectorXf::Zero(d);
+    kernel_->Gf = Eigen::VectorXf::Zero(kernel_->Bf.rows());
+  } else {
+    Kernel::fill(kernel_->Bd, kernel_->Yd, b, kernel_->stride);
+    kernel_->accd = Eigen::VectorXd::Zero(d);
+    kernel_->Gd = Eigen::VectorXd::Zero(kernel_->Bd.rows());
+  }
+  computeCoefficients();
+}
+
+ModalWarpingIntegrator::~ModalWarpingIntegrator() = default;
+ModalWarpingIntegrator::ModalWarpingIntegrator(ModalWarpingIntegrator&&) noexcept = default;
+ModalWarpingIntegrator& ModalWarpingIntegrator::operator=(ModalWarpingIntegrator&&) noexcept = default;
+
+double ModalWarpingIntegrator::maxSemiImplicitDt() const {
+  const double lmax = scale_ * basis_->lambda.maxCoeff();
+  return lmax > 0.0 ? 2.0 / std::sqrt(lmax) : std::numeric_limits<double>::infinity();
+}
+
+void ModalWarpingIntegrator::computeCoefficients() {
+  const ModalBasis& b = *basis_;
+  const int d = b.modeCount();
+  const double h = settings_.dt;
+  if (settings_.stepper == ModalStepper::SemiImplicit) {
+    const double lmax = scale_ * b.lambda.maxCoeff();
+    if (lmax > 0.0 && h * std::sqrt(lmax) >= 2.0) {
+      std::ostringstream os;
+      os << "channel '" << settings_.channel << "': semi-implicit Euler is unstable at dt = " << h
+         << " s: the highest mode has lambda_max = " << lmax
+         << " 1/s^2, so dt must be below 2/sqrt(lambda_max) = " << 2.0 / std::sqrt(lmax)
+         << " s (use the exact stepper, a smaller dt or fewer modes)";
+      throw InputError(os.str());
+    }
+  }
+  lambdaEff_ = scale_ * b.lambda;
+  damping_ = (settings_.rayleighMass + settings_.rayleighStiffness * lambdaEff_.array()).matrix();
+  for (VecX* c : {&ca_, &cb_, &cg_, &cc_, &ce_, &ck_}) c->resize(d);
+  for (int j = 0; j < d; ++j) {
+    const StepCoefficients s = settings_.stepper == ModalStepper::Exact
+                                   ? exactCoefficients(lambdaEff_[j], damping_[j], h)
+                                   : semiImplicitCoefficients(lambdaEff_[j], damping_[j], h);
+    ca_[j] = s.a;
+    cb_[j] = s.b;
+    cg_[j] = s.g;
+    cc_[j] = s.cq;
+    ce_[j] = s.e;
+    ck_[j] = s.k;
+  }
+}
+
+void ModalWarpingIntegrator::setStiffnessScale(double s) {
+  if (!(s > 0.0) || !std::isfinite(s))
+    throw InputError("channel '" + settings_.channel + "': the stiffness scale must be positive");
+  const double old = scale_;
+  scale_ = s;
+  try {
+    computeCoefficients();
+  } catch (...) {
+    scale_ = old;
+    computeCoefficients();
+    throw;
+  }
+}
+
+void ModalWarpingIntegrator::updateDisplacement() {
+  Kernel& k = *kernel_;
+  if (k.precision == ModalPrecision::Float) {
+    k.qf = q_.cast<float>();
+    k.Yf.noalias() = k.Bf * k.qf;
+    Kernel::output(k.Yf, k.stride, settings_.warping, u_);
+  } else {
+    k.Yd.noalias() = k.Bd * q_;
+    Kernel::output(k.Yd, k.stride, settings_.warping, u_);
+  }
+}
+
+void ModalWarpingIntegrator::step(const MatX3& freeForce) {
+  checkForce(*basis_, freeForce);
+  Kernel& k = *kernel_;
+  // 1–3: f̃ = Φᵀ R(Ψq)ᵀ F with w = Ψq cached from the last displacement update (same q).
+  // Count loaded rows (cheap, f×3 doubles): sparse loads (a muscle's ROI) take the gather loop,
+  // dense loads (gravity) one streaming matvec.
+  Eigen::Index loaded = 0;
+  for (Eigen::Index i = 0; i < freeForce.rows(); ++i)
+    loaded += (freeForce(i, 0) != 0.0) | (freeForce(i, 1) != 0.0) | (freeForce(i, 2) != 0.0);
+  const bool dense = 4 * loaded > freeForce.rows();
+  if (k.precision == ModalPrecision::Float) {
+    if (dense)
+      Kernel::projectDense(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.Gf, ftilde_);
+    else
+      Kernel::project(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.accf, ftilde_);
+  } else {
+    if (dense)
+      Kernel::projectDense(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.Gd, ftilde_);
+    else
+      Kernel::project(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.accd, ftilde_);
+  }
+  // 4: per-mode advance.
+  const Eigen::Index d = q_.size();
+  for (Eigen::Index j = 0; j < d; ++j) {
+    const double q = q_[j], v = v_[j], f = ftilde_[j];
+    q_[j] = ca_[j] * q + cb_[j] * v + cg_[j] * f;
+    v_[j] = cc_[j] * q + ce_[j] * v + ck_[j] * f;
+  }
+  // 5: w = Ψq, u = R̃(w)Φq.
+  updateDisplacement();
+}
+
+void ModalWarpingIntegrator::step() {
+  const Eigen::Index d = q_.size();
+  for (Eigen::Index j = 0; j < d; ++j) {
+    const double q = q_[j], v = v_[j];
+    q_[j] = ca_[j] * q + cb_[j] * v;
+    v_[j] = cc_[j] * q + ce_[j] * v;
+  }
+  updateDisplacement();
+}
+
+void ModalWarpingIntegrator::addDisplacementTo(MatX3& full) const {
+  MYO_CHECK_EQ(full.rows(), static_cast<Eigen::Index>(basis_->fullVertexCount));
+  const auto& fv = basis_->freeVertices;
+  for (size_t i = 0; i < fv.size(); ++i) full.row(fv[i]) += u_.row(static_cast<Eigen::Index>(i));
+}
+
+MatX3 ModalWarpingIntegrator::freeRotations() const {
+  const Kernel& k = *kernel_;
+  const int f = basis_->freeCount();
+  MatX3 w = MatX3::Zero(f, 3);
+  if (!settings_.warping) return w;
+  for (int i = 0; i < f; ++i)
+    for (int c = 0; c < 3; ++c)
+      w(i, c) = k.precision == ModalPrecision::Float ? double(k.Yf[6 * i + 3 + c]) : k.Yd[6 * i + 3 + c];
+  return w;
+}
+
+void ModalWarpingIntegrator::reset() {
+  q_.setZero();
+  v_.setZero();
+  updateDisplacement();
+}
+
+void ModalWarpingIntegrator::setState(const VecX& q, const VecX& qdot) {
+  MYO_CHECK_EQ(q.size(), q_.size());
+  MYO_CHECK_EQ(qdot.size(), v_.size());
+  q_ = q;
+  v_ = qdot;
+  updateDisplacement();
+}
+
+bool ModalWarpingIntegrator::isAtRest(double tol) const {
+  return q_.cwiseAbs().maxCoeff() < tol && v_.cwiseAbs().maxCoeff() < tol;
+}
+
+double ModalWarpingIntegrator::energy() const {
+  return 0.5 * v_.squaredNorm() + 0.5 * q_.dot(lambdaEff_.cwiseProduct(q_));
+}
+
+}  // namespace myo

@@ -1,0 +1,167 @@
+// The file basis cache: bit-identical round trip; corrupt, truncated and foreign files rejected.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "myoshell/io/basis_cache_file.h"
+#include "myoshell/mesh/edge_table.h"
+#include "myoshell/mesh/primitives.h"
+#include "myoshell/reduce/modal_analysis.h"
+#include "myoshell/shell/discrete_shell.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() / ("myo_basis_cache_test_" + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+DiscreteShell stripShell() {
+  TriMesh m = gridMesh(6.0, 1.5, 12, 3);
+  for (Eigen::Index i = 0; i < m.V.rows(); ++i) m.V(i, 2) = 0.02 * m.V(i, 0) * m.V(i, 0);
+  return DiscreteShell(m.V, m.F, buildEdgeTable(m.F, m.vertexCount()), ShellMaterial{});
+}
+
+const std::vector<int> kPins = {0, 13, 26, 39, 1, 14, 27, 40};
+
+void expectBitIdentical(const ModalBasis& a, const ModalBasis& b) {
+  EXPECT_EQ(a.fullVertexCount, b.fullVertexCount);
+  EXPECT_EQ(a.freeVertices, b.freeVertices);
+  EXPECT_EQ(a.solver, b.solver);
+  ASSERT_EQ(a.Phi.size(), b.Phi.size());
+  ASSERT_EQ(a.Psi.size(), b.Psi.size());
+  EXPECT_EQ(std::memcmp(a.Phi.data(), b.Phi.data(), sizeof(double) * a.Phi.size()), 0);
+  EXPECT_EQ(std::memcmp(a.Psi.data(), b.Psi.data(), sizeof(double) * a.Psi.size()), 0);
+  EXPECT_EQ(std::memcmp(a.lambda.data(), b.lambda.data(), sizeof(double) * a.lambda.size()), 0);
+  EXPECT_EQ(std::memcmp(a.freeMass.data(), b.freeMass.data(), sizeof(double) * a.freeMass.size()), 0);
+}
+
+std::vector<char> readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+void writeAll(const fs::path& p, const std::vector<char>& data) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+}
+
+TEST(BasisCache, RoundTripIsBitIdenticalAndSkipsTheSolve) {
+  TempDir dir;
+  FileBasisCache cache(dir.path / "cache");
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 8;
+  const ModalBasis first = computeModalBasis(shell, kPins, s, &cache);
+  EXPECT_FALSE(first.fromCache);
+  EXPECT_EQ(cache.stats().misses, 1);
+  EXPECT_EQ(cache.stats().stores, 1);
+  const fs::path file = cache.pathFor(modalBasisKey(shell, kPins, s));
+  EXPECT_TRUE(fs::exists(file));
+  // No temporary files are left behind.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(cache.directory())) files += e.is_regular_file();
+  EXPECT_EQ(files, 1);
+
+  const ModalBasis second = computeModalBasis(shell, kPins, s, &cache);
+  EXPECT_TRUE(second.fromCache);
+  EXPECT_EQ(cache.stats().hits, 1);
+  expectBitIdentical(first, second);
+
+  // Another setting is another key: a miss, computed and stored beside the first.
+  s.modeCount = 9;
+  EXPECT_FALSE(computeModalBasis(shell, kPins, s, &cache).fromCache);
+  EXPECT_EQ(cache.stats().misses, 2);
+}
+
+TEST(BasisCache, CorruptTruncatedAndForeignFilesAreRebuilt) {
+  TempDir dir;
+  FileBasisCache cache(dir.path);
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  const ModalBasis ref = computeModalBasis(shell, kPins, s, &cache);
+  const fs::path file = cache.pathFor(key);
+  const std::vector<char> good = readAll(file);
+  ASSERT_GT(good.size(), 64u);
+
+  auto expectRebuilt = [&](const std::vector<char>& bad, const std::string& reason) {
+    writeAll(file, bad);
+    const int rejectedBefore = cache.stats().rejected;
+    const ModalBasis b = computeModalBasis(shell, kPins, s, &cache);
+    EXPECT_FALSE(b.fromCache) << reason;
+    EXPECT_EQ(cache.stats().rejected, rejectedBefore + 1) << reason;
+    EXPECT_NE(cache.lastRejection().find(reason), std::string::npos) << cache.lastRejection();
+    expectBitIdentical(ref, b);
+    // The rebuilt basis was written back, and is now trusted.
+    EXPECT_TRUE(computeModalBasis(shell, kPins, s, &cache).fromCache) << reason;
+  };
+
+  std::vector<char> flipped = good;  // one payload byte inside Φ
+  flipped[good.size() / 2] ^= 0x10;
+  expectRebuilt(flipped, "checksum mismatch");
+
+  std::vector<char> truncated(good.begin(), good.end() - 17);
+  expectRebuilt(truncated, "payload is");
+
+  expectRebuilt(std::vector<char>(good.begin(), good.begin() + 20), "truncated header");
+
+  std::vector<char> longer = good;
+  longer.push_back(0);
+  expectRebuilt(longer, "payload is");
+
+  std::vector<char> badMagic = good;
+  badMagic[0] = 'X';
+  expectRebuilt(badMagic, "bad magic");
+
+  std::vector<char> badVersion = good;
+  badVersion[8] ^= 0x7f;
+  expectRebuilt(badVersion, "format version");
+
+  // A valid file for another key placed under this key's name.
+  ModalSettings other = s;
+  other.modeCount = 7;
+  const BasisKey otherKey = modalBasisKey(shell, kPins, other);
+  writeBasisFile(file, otherKey, computeModalBasis(shell, kPins, other));
+  expectRebuilt(readAll(file), "another key");
+
+  // Direct reads report why.
+  std::string why;
+  EXPECT_FALSE(readBasisFile(dir.path / "missing.myobasis", key, &why).has_value());
+  EXPECT_EQ(why, "no file");
+  EXPECT_TRUE(readBasisFile(file, key, &why).has_value());
+}
+
+TEST(BasisCache, KeyHashIsStable) {
+  // Pinned values: the key format is part of the cache format (bump kModalBasisFormatVersion
+  // rather than changing the hash).
+  KeyHasher h;
+  h.str("abc").pod(int32_t{42});
+  const BasisKey k = h.key();
+  EXPECT_EQ(k.hex().size(), 32u);
+  KeyHasher h2;
+  h2.str("abc").pod(int32_t{42});
+  EXPECT_EQ(h2.key(), k);
+  KeyHasher h3;
+  h3.str("abd").pod(int32_t{42});
+  EXPECT_NE(h3.key().words[0], k.words[0]);
+  EXPECT_NE(h3.key().words[1], k.words[1]);
+  EXPECT_EQ(fnv1a64("", 0), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(fnv1a64("a", 1), 0xaf63dc4c8601ec8cULL);  // the FNV-1a 64 test vector
+}
+
+}  // namespace
+}  // namespace myo
