@@ -1,0 +1,49 @@
+// A scene file's plain description (DESIGN.md: parse → describe → build). Every field has the
+// default a scene gets when the file leaves it out; docs/scene_format.md documents each key.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "myoshell/anim/timeline.h"
+#include "myoshell/face/face_model.h"
+#include "myoshell/face/muscle_def.h"
+
+namespace myo {
+
+struct HeadDesc {
+  std::string builtin = "default";  // "default" (the built-in head) unless obj is set
+  std::string obj;                  // a user's head OBJ (absolute, or resolved against the scene's folder)
+  std::string landmarks;            // its landmark file (required with obj)
+  std::string gravityPins;          // its gravity pin set (vertex-set JSON); empty = rim + landmarks
+};
+
+struct DragDesc {
+  std::string name;                 // referred to by the timeline
+  std::string landmark;             // where the user grabs: a landmark name, or
+  int vertex = -1;                  // a skin vertex id
+  double radius = 1.0;              // cm
+  std::string pins;                 // vertex-set file; empty = the head's gravity pins
+};
+
+struct SceneDesc {
+  std::string path;                 // the file it was read from ("" when built in code)
+  std::string name;                 // defaults to the file's stem
+  HeadDesc head;
+  // Muscles: the built-in library (thesis's eight) or a JSON library file, optionally only some of
+  // them, plus extra definitions written in the scene.
+  std::string muscleLibrary = "builtin";
+  std::vector<std::string> muscles;  // names to use; empty = every muscle of the library
+  std::vector<MuscleDef> extraMuscles;
+  FaceModelSettings model;          // materials, modes, ROI α, springs, dt, stepper, warping, damping
+  std::vector<DragDesc> drags;
+  double duration = 1.0;            // s
+  double fps = 30.0;                // output frames per second
+  std::map<std::string, ScalarTrack> activations;  // muscle name → activation track (−1 … 1)
+  ScalarTrack gravity;              // gravity scale track (empty = constant 1 when gravity is on)
+  std::map<std::string, VectorTrack> dragForces;   // drag name → force track (dyn)
+};
+
+}  // namespace myo

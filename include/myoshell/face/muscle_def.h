@@ -1,0 +1,62 @@
+// Muscles as data: where a muscle sits on a head (in the head's face frame, so placement does not
+// depend on the head's position, orientation or units), its shape and how hard it pulls.
+// The thesis's eight muscles ship in assets/muscles/thesis_muscles.json (docs/muscles.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "myoshell/core/types.h"
+
+namespace myo {
+class DocReader;
+}
+
+namespace myo {
+
+// A point of a muscle: a landmark of the head, moved by an offset in face-frame units (fractions
+// of the outer inter-ocular distance, axes x = subject's left, y = up, z = out of the face), then
+// put onto the skin and pushed `depth` (face-frame units) under it along the skin normal.
+struct MuscleAnchor {
+  std::string landmark;          // a name Landmarks::vertex resolves ("mouth_corner_right", …)
+  Vec3 offset = Vec3::Zero();    // face-frame units
+  double depth = 0.04;           // face-frame units under the skin (> 0)
+};
+
+struct MuscleDef {
+  std::string name;              // unique, e.g. "zygomaticus_major_right"
+  std::string side;              // "right", "left" or "center" (the subject's side)
+  std::string facs;              // FACS action unit(s) it drives, e.g. "AU12" (documentation only)
+  MuscleAnchor origin;           // fixed end, on the skull side: its station ring is pinned
+  MuscleAnchor insertion;        // moving end, into the skin
+  double width = 0.10;           // face-frame units across the muscle
+  double thickness = 0.02;       // face-frame units, the flat ring's height
+  int stations = 6;              // rings along the muscle (≥ 3): 6 gives the thesis's 36 nodes
+  int ringNodes = 6;             // nodes per ring (≥ 4, even): 6 × 6 = 36 nodes, 68 triangles
+  // The insertion's displacement along the muscle at activation a = 1, as a fraction of the rest
+  // length; the maximum force is calibrated to reach it (static, linear response of the stretch mode).
+  double contraction = 0.15;
+  // Stiffness of the subcutaneous springs of this muscle (thesis eq. 14), dyn; ≤ 0 = model default.
+  double springStiffness = 0.0;
+  // ROI factor α of thesis eq. 19 (> 1); ≤ 0 = model default.
+  double roiAlpha = 0.0;
+
+  // Throws InputError naming the muscle and the field for impossible values.
+  void validate() const;
+};
+
+// Parses a muscle library (JSON or YAML): {"muscles": [{...}, ...]} with the keys of MuscleDef in
+// snake_case (name, side, facs, origin {landmark, offset, depth}, insertion {…}, width, thickness,
+// stations, ring_nodes, contraction, spring_stiffness, roi_alpha, note). Errors (InputError) name
+// `name:line:col`, the key path and the fault; unknown keys are errors.
+std::vector<MuscleDef> parseMuscleDefs(const std::string& jsonText, const std::string& name = "<string>");
+std::vector<MuscleDef> readMuscleDefs(const std::string& path);
+// One muscle definition from a mapping being read (scene files reuse this for their own muscles).
+MuscleDef readMuscleDef(DocReader& reader);
+
+// The thesis's eight muscles (zygomaticus major, corrugator supercilii, depressor labii inferioris,
+// depressor anguli oris; right and left), from the library embedded at build time.
+const std::vector<MuscleDef>& thesisMuscleDefs();
+const std::string& thesisMuscleJson();
+
+}  // namespace myo

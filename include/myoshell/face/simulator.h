@@ -1,0 +1,80 @@
+// Steps a FaceModel (DESIGN.md, "one frame"):
+//   1. each muscle: activation force on its central nodes → its stretch mode (eq. 11–13) → u_m
+//   2. springs: u_m → force on the skin nodes of that muscle's ROI (eq. 14–18)
+//   3. each skin channel f: R_fᵀF_f → modal q_f → warped u_f (eq. 10, 17)
+//   4. u_skin = Σ_f u_f (eq. 21)
+// step() allocates nothing. The step length is the model's dt (the exact per-mode integrator's
+// coefficients are precomputed for it).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/face/face_model.h"
+#include "myoshell/reduce/modal_warping.h"
+
+namespace myo {
+
+struct StepTimings {
+  double muscles = 0.0;   // s spent in step 1 of the last step
+  double springs = 0.0;   // step 2
+  double channels = 0.0;  // steps 3 and 4
+  double total = 0.0;
+};
+
+class Simulator {
+ public:
+  explicit Simulator(std::shared_ptr<const FaceModel> model);
+
+  // Activation a of a muscle: +1 full contraction (force towards the origin), −1 relaxation (away).
+  // Values outside [−1, 1] are clamped (and counted in clampedActivations()); NaN throws InputError.
+  void setActivation(int muscle, double a);
+  void setActivation(const std::string& muscle, double a);
+  double activation(int muscle) const { return activation_[static_cast<size_t>(muscle)]; }
+  // Gravity scale (0 = off, 1 = 981 cm/s²); needs the model's gravity channel unless 0.
+  void setGravity(double scale);
+  // Drag force (dyn, total, shared by the drag region) of drag channel `drag`.
+  void setDragForce(int drag, const Vec3& force);
+
+  // Advances the whole face by the model's dt.
+  void step();
+  // Steps until `seconds` of simulated time have passed (rounded to whole steps); returns the steps.
+  int advance(double seconds);
+  double time() const { return time_; }
+  long long stepCount() const { return steps_; }
+
+  // The skin's displacement (n×3, cm): Σ_f u_f, and positions rest + u.
+  const MatX3& skinDisplacement() const { return skinU_; }
+  MatX3 skinPositions() const;
+  // One channel's displacement field u_f over the full skin (n×3, cm).
+  MatX3 channelDisplacement(int channel) const;
+  // A muscle's current node positions (its mesh's n×3, cm).
+  MatX3 musclePositions(int muscle) const;
+  // The muscle's modal amplitude q_m.
+  double muscleAmplitude(int muscle) const;
+
+  const StepTimings& lastTimings() const { return timings_; }
+  int clampedActivations() const { return clamped_; }
+  const FaceModel& model() const { return *model_; }
+  // Back to the neutral face at rest (activations, gravity and drags kept).
+  void reset();
+
+ private:
+  std::shared_ptr<const FaceModel> model_;
+  std::vector<ModalWarpingIntegrator> muscleIntegrators_;
+  std::vector<ModalWarpingIntegrator> channelIntegrators_;
+  std::vector<MatX3> muscleForce_;   // per muscle, its basis's free f×3
+  std::vector<MatX3> channelForce_;  // per channel, free f×3
+  std::vector<bool> channelLoaded_;  // whether the channel's force is non-zero this step
+  std::vector<double> activation_;
+  double gravity_ = 1.0;
+  std::vector<Vec3> dragForce_;
+  MatX3 skinU_;
+  double time_ = 0.0;
+  long long steps_ = 0;
+  int clamped_ = 0;
+  StepTimings timings_;
+};
+
+}  // namespace myo

@@ -1,0 +1,328 @@
+#include "myoshell/anim/scene_parser.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <nlohmann/json.hpp>
+
+#include "myoshell/core/doc_reader.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/face/head.h"
+#include "myoshell/mesh/vertex_set.h"
+
+namespace myo {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void readMaterial(DocReader r, ShellMaterial& m) {
+  m.kA = r.number("k_a", m.kA);
+  r.requireAtLeast("k_a", m.kA, 0.0);
+  m.kL = r.number("k_l", m.kL);
+  r.requireAtLeast("k_l", m.kL, 0.0);
+  m.kB = r.number("k_b", m.kB);
+  r.requireAtLeast("k_b", m.kB, 0.0);
+  m.density = r.number("density", m.density);
+  r.requireAbove("density", m.density, 0.0);
+  m.thickness = r.number("thickness", m.thickness);
+  r.requireAbove("thickness", m.thickness, 0.0);
+}
+
+// A track: a list of keys {t, value, interp}; value is a number (or a 3-vector for drags).
+template <class Value>
+Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std::string& path, double lo, double hi) {
+  if (!list.IsSequence()) owner.failAt(list, path, "must be a list of keys {t, value, interp}");
+  std::vector<Keyframe<Value>> keys;
+  for (size_t i = 0; i < list.size(); ++i) {
+    DocReader k(list[i], owner.file(), path + "[" + std::to_string(i) + "]");
+    Keyframe<Value> key;
+    key.time = k.requiredNumber("t");
+    k.requireAtLeast("t", key.time, 0.0);
+    if constexpr (std::is_same_v<Value, double>) {
+      key.value = k.requiredNumber("value");
+      k.requireWithin("value", key.value, lo, hi);
+    } else {
+      k.node("value");
+      key.value = k.vec3("value", Vec3::Zero());
+    }
+    const std::string interp = k.string("interp", "linear");
+    try {
+      key.interpolation = interpolationFromString(interp);
+    } catch (const InputError& e) {
+      k.fail("interp", e.message());
+    }
+    k.finish();
+    if (!keys.empty() && !(key.time > keys.back().time))
+      k.fail("t", "key times must increase (" + std::to_string(key.time) + " s after " +
+                       std::to_string(keys.back().time) + " s)");
+    keys.push_back(key);
+  }
+  return Track<Value>(std::move(keys), path);
+}
+
+}  // namespace
+
+SceneDesc parseScene(const std::string& text, const std::string& path) {
+  DocReader root(loadDocument(text, path), path);
+  SceneDesc scene;
+  scene.path = path;
+  scene.name = root.string("name", fs::path(path).stem().string());
+
+  if (root.has("head")) {
+    DocReader h = root.child("head");
+    scene.head.builtin = h.string("builtin", scene.head.builtin);
+    scene.head.obj = h.string("obj", "");
+    scene.head.landmarks = h.string("landmarks", "");
+    scene.head.gravityPins = h.string("gravity_pins", "");
+    if (!scene.head.obj.empty() && scene.head.landmarks.empty())
+      h.fail("landmarks", "a head OBJ needs a landmark file");
+    if (scene.head.obj.empty() && scene.head.builtin != "default")
+      h.fail("builtin", "unknown built-in head '" + scene.head.builtin + "' (there is \"default\")");
+    h.finish();
+  }
+  if (root.has("muscles")) {
+    DocReader m = root.child("muscles");
+    scene.muscleLibrary = m.string("library", scene.muscleLibrary);
+    scene.muscles = m.strings("use");
+    if (m.has("extra")) {
+      const YAML::Node extra = m.node("extra");
+      if (!extra.IsSequence()) m.failAt(extra, m.keyPath("extra"), "must be a list of muscles");
+      for (size_t i = 0; i < extra.size(); ++i) {
+        DocReader r(extra[i], path, m.keyPath("extra") + "[" + std::to_string(i) + "]");
+        scene.extraMuscles.push_back(readMuscleDef(r));
+      }
+    }
+    m.finish();
+  }
+  FaceModelSettings& s = scene.model;
+  if (root.has("skin")) {
+    DocReader r = root.child("skin");
+    readMaterial(r, s.skin);
+    s.skinDampingMass = r.number("damping_mass", s.skinDampingMass);
+    r.requireAtLeast("damping_mass", s.skinDampingMass, 0.0);
+    s.skinDampingStiffness = r.number("damping_stiffness", s.skinDampingStiffness);
+    r.requireAtLeast("damping_stiffness", s.skinDampingStiffness, 0.0);
+    r.finish();
+  }
+  if (root.has("muscle_material")) {
+    DocReader r = root.child("muscle_material");
+    readMaterial(r, s.muscle);
+    s.muscleDampingRatio = r.number("damping_ratio", s.muscleDampingRatio);
+    r.requireAtLeast("damping_ratio", s.muscleDampingRatio, 0.0);
+    r.finish();
+  }
+  s.roiAlpha = root.number("roi_alpha", s.roiAlpha);
+  root.requireAbove("roi_alpha", s.roiAlpha, 1.0);
+  if (root.has("springs")) {
+    DocReader r = root.child("springs");
+    const std::string model = r.string("model", "thesis");
+    if (model == "thesis") s.springModel = SpringModel::Thesis;
+    else if (model == "displacement") s.springModel = SpringModel::Displacement;
+    else r.fail("model", "must be \"thesis\" or \"displacement\" (got \"" + model + "\")");
+    s.springStiffness = r.number("stiffness", s.springStiffness);
+    r.requireAbove("stiffness", s.springStiffness, 0.0);
+    r.finish();
+  }
+  if (root.has("gravity")) {
+    DocReader r = root.child("gravity");
+    s.gravity = r.boolean("enabled", s.gravity);
+    s.gravityAcceleration = r.number("acceleration", s.gravityAcceleration);
+    r.finish();
+  }
+  if (root.has("drags")) {
+    const YAML::Node list = root.node("drags");
+    if (!list.IsSequence()) root.failAt(list, "drags", "must be a list of drags");
+    for (size_t i = 0; i < list.size(); ++i) {
+      DocReader r(list[i], path, "drags[" + std::to_string(i) + "]");
+      DragDesc d;
+      d.name = r.requiredString("name");
+      d.landmark = r.string("landmark", "");
+      d.vertex = r.integer("vertex", -1);
+      if (d.landmark.empty() == (d.vertex < 0)) r.fail("landmark", "give exactly one of 'landmark' and 'vertex'");
+      d.radius = r.number("radius", d.radius);
+      r.requireAbove("radius", d.radius, 0.0);
+      d.pins = r.string("pins", "");
+      r.finish();
+      for (const DragDesc& other : scene.drags)
+        if (other.name == d.name) r.fail("name", "drag '" + d.name + "' is defined twice");
+      scene.drags.push_back(d);
+    }
+  }
+  if (root.has("numerics")) {
+    DocReader r = root.child("numerics");
+    s.dt = r.number("dt", s.dt);
+    r.requireAbove("dt", s.dt, 0.0);
+    s.skinModes = r.integer("skin_modes", s.skinModes);
+    r.requireAtLeast("skin_modes", s.skinModes, 1);
+    s.muscleModes = r.integer("muscle_modes", s.muscleModes);
+    r.requireAtLeast("muscle_modes", s.muscleModes, 1);
+    s.warping = r.boolean("warping", s.warping);
+    const std::string stepper = r.string("stepper", "exact");
+    if (stepper == "exact") s.stepper = ModalStepper::Exact;
+    else if (stepper == "semi-implicit") s.stepper = ModalStepper::SemiImplicit;
+    else r.fail("stepper", "must be \"exact\" or \"semi-implicit\" (got \"" + stepper + "\")");
+    const std::string precision = r.string("precision", "float");
+    if (precision == "float") s.precision = ModalPrecision::Float;
+    else if (precision == "double") s.precision = ModalPrecision::Double;
+    else r.fail("precision", "must be \"float\" or \"double\" (got \"" + precision + "\")");
+    r.finish();
+  }
+  scene.duration = root.number("duration", scene.duration);
+  root.requireAbove("duration", scene.duration, 0.0);
+  scene.fps = root.number("fps", scene.fps);
+  root.requireAbove("fps", scene.fps, 0.0);
+
+  if (root.has("timeline")) {
+    DocReader t = root.child("timeline");
+    if (t.has("activations")) {
+      DocReader a = t.child("activations");
+      for (auto it = a.self().begin(); it != a.self().end(); ++it) {
+        const std::string muscle = it->first.Scalar();
+        scene.activations[muscle] = readTrack<double>(a, a.node(muscle), a.keyPath(muscle), -1.0, 1.0);
+      }
+      a.finish();
+    }
+    if (t.has("gravity")) scene.gravity = readTrack<double>(t, t.node("gravity"), t.keyPath("gravity"), 0.0, 1e3);
+    if (t.has("drags")) {
+      DocReader d = t.child("drags");
+      for (auto it = d.self().begin(); it != d.self().end(); ++it) {
+        const std::string drag = it->first.Scalar();
+        bool known = false;
+        for (const DragDesc& dd : scene.drags) known |= dd.name == drag;
+        if (!known) d.failAt(it->first, d.keyPath(drag), "no drag of that name in 'drags'");
+        scene.dragForces[drag] = readTrack<Vec3>(d, d.node(drag), d.keyPath(drag), 0, 0);
+      }
+      d.finish();
+    }
+    t.finish();
+  }
+  root.finish();
+  s.validate();
+  return scene;
+}
+
+SceneDesc readScene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open scene file", path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path);
+}
+
+namespace {
+nlohmann::json materialJson(const ShellMaterial& m) {
+  return {{"k_a", m.kA}, {"k_l", m.kL}, {"k_b", m.kB}, {"density", m.density}, {"thickness", m.thickness}};
+}
+nlohmann::json anchorJson(const MuscleAnchor& a) {
+  return {{"landmark", a.landmark}, {"offset", {a.offset.x(), a.offset.y(), a.offset.z()}}, {"depth", a.depth}};
+}
+template <class Value>
+nlohmann::json trackJson(const Track<Value>& track) {
+  nlohmann::json keys = nlohmann::json::array();
+  for (const auto& k : track.keys()) {
+    nlohmann::json key = {{"t", k.time}, {"interp", toString(k.interpolation)}};
+    if constexpr (std::is_same_v<Value, double>) key["value"] = k.value;
+    else key["value"] = {k.value.x(), k.value.y(), k.value.z()};
+    keys.push_back(key);
+  }
+  return keys;
+}
+}  // namespace
+
+std::string sceneToJson(const SceneDesc& scene) {
+  using nlohmann::json;
+  const FaceModelSettings& s = scene.model;
+  json j;
+  j["name"] = scene.name;
+  j["head"] = scene.head.obj.empty()
+                  ? json{{"builtin", scene.head.builtin}}
+                  : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}, {"gravity_pins", scene.head.gravityPins}};
+  json extra = json::array();
+  for (const MuscleDef& d : scene.extraMuscles)
+    extra.push_back({{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"origin", anchorJson(d.origin)},
+                     {"insertion", anchorJson(d.insertion)}, {"width", d.width}, {"thickness", d.thickness},
+                     {"stations", d.stations}, {"ring_nodes", d.ringNodes}, {"contraction", d.contraction},
+                     {"spring_stiffness", d.springStiffness}, {"roi_alpha", d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha}});
+  j["muscles"] = {{"library", scene.muscleLibrary}, {"use", scene.muscles}, {"extra", extra}};
+  j["skin"] = materialJson(s.skin);
+  j["skin"]["damping_mass"] = s.skinDampingMass;
+  j["skin"]["damping_stiffness"] = s.skinDampingStiffness;
+  j["muscle_material"] = materialJson(s.muscle);
+  j["muscle_material"]["damping_ratio"] = s.muscleDampingRatio;
+  j["roi_alpha"] = s.roiAlpha;
+  j["springs"] = {{"model", s.springModel == SpringModel::Thesis ? "thesis" : "displacement"},
+                  {"stiffness", s.springStiffness}};
+  j["gravity"] = {{"enabled", s.gravity}, {"acceleration", s.gravityAcceleration}};
+  json drags = json::array();
+  for (const DragDesc& d : scene.drags) {
+    json dj = {{"name", d.name}, {"radius", d.radius}, {"pins", d.pins}};
+    if (d.landmark.empty()) dj["vertex"] = d.vertex;
+    else dj["landmark"] = d.landmark;
+    drags.push_back(dj);
+  }
+  j["drags"] = drags;
+  j["numerics"] = {{"dt", s.dt},
+                   {"skin_modes", s.skinModes},
+                   {"muscle_modes", s.muscleModes},
+                   {"warping", s.warping},
+                   {"stepper", s.stepper == ModalStepper::Exact ? "exact" : "semi-implicit"},
+                   {"precision", s.precision == ModalPrecision::Float ? "float" : "double"}};
+  j["duration"] = scene.duration;
+  j["fps"] = scene.fps;
+  json timeline = json::object();
+  json activations = json::object();
+  for (const auto& [name, track] : scene.activations) activations[name] = trackJson(track);
+  timeline["activations"] = activations;
+  if (!scene.gravity.empty()) timeline["gravity"] = trackJson(scene.gravity);
+  json dragTracks = json::object();
+  for (const auto& [name, track] : scene.dragForces) dragTracks[name] = trackJson(track);
+  timeline["drags"] = dragTracks;
+  j["timeline"] = timeline;
+  return j.dump(2) + "\n";
+}
+
+std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCache* cache) {
+  const fs::path base = scene.path.empty() || scene.path.front() == '<' ? fs::path() : fs::path(scene.path).parent_path();
+  auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).string(); };
+  Head head = scene.head.obj.empty()
+                  ? loadDefaultHead()
+                  : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),
+                             scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins));
+
+  std::vector<MuscleDef> library = scene.muscleLibrary == "builtin" ? thesisMuscleDefs()
+                                                                     : readMuscleDefs(resolve(scene.muscleLibrary));
+  std::vector<MuscleDef> muscles;
+  if (scene.muscles.empty()) {
+    muscles = library;
+  } else {
+    for (const std::string& name : scene.muscles) {
+      auto it = std::find_if(library.begin(), library.end(), [&](const MuscleDef& d) { return d.name == name; });
+      if (it == library.end()) {
+        std::string known;
+        for (const auto& d : library) known += (known.empty() ? "" : ", ") + d.name;
+        throw InputError("key 'muscles.use': unknown muscle '" + name + "' (the library has: " + known + ")", scene.path);
+      }
+      muscles.push_back(*it);
+    }
+  }
+  for (const MuscleDef& d : scene.extraMuscles) muscles.push_back(d);
+  for (const auto& [name, track] : scene.activations) {
+    const bool known = std::any_of(muscles.begin(), muscles.end(), [&](const MuscleDef& d) { return d.name == name; });
+    if (!known) throw InputError("key 'timeline.activations." + name + "': the scene has no muscle '" + name + "'", scene.path);
+  }
+
+  FaceModelSettings settings = scene.model;
+  for (const DragDesc& d : scene.drags) {
+    DragDef def;
+    def.name = d.name;
+    def.vertex = d.landmark.empty() ? d.vertex : head.landmarks.vertex(d.landmark);
+    def.radius = d.radius;
+    if (!d.pins.empty()) def.pins = readVertexSet(resolve(d.pins), head.mesh.vertexCount());
+    settings.drags.push_back(def);
+  }
+  return std::make_shared<const FaceModel>(std::move(head), muscles, settings, cache);
+}
+
+}  // namespace myo

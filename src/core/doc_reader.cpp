@@ -1,0 +1,151 @@
+#include "myoshell/core/doc_reader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "myoshell/core/errors.h"
+
+namespace myo {
+
+namespace {
+std::string fmtValue(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+YAML::Node loadDocument(const std::string& text, const std::string& file) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError("syntax error: " + e.msg, file, e.mark.line + 1, e.mark.column + 1);
+  }
+}
+
+YAML::Node loadDocumentFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open file", path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().empty()) throw InputError("file is empty", path);
+  return loadDocument(text.str(), path);
+}
+
+DocReader::DocReader(YAML::Node node, std::string file, std::string path)
+    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {
+  if (!node_.IsMap()) failAt(node_, path_.empty() ? "(document)" : path_, "must be an object");
+}
+
+void DocReader::failAt(const YAML::Node& at, const std::string& keyPath, const std::string& what) const {
+  const YAML::Mark m = at.Mark();
+  const bool known = m.line >= 0 && m.pos >= 0;
+  throw InputError("key '" + keyPath + "': " + what, file_, known ? m.line + 1 : 0, known ? m.column + 1 : 0);
+}
+
+void DocReader::fail(const std::string& key, const std::string& what) const {
+  if (has(key)) failAt(node_[key], keyPath(key), what);
+  failAt(node_, keyPath(key), what);
+}
+
+bool DocReader::has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
+
+YAML::Node DocReader::node(const std::string& key) {
+  used_.insert(key);
+  if (!has(key)) failAt(node_, keyPath(key), "missing required key");
+  return node_[key];
+}
+
+DocReader DocReader::child(const std::string& key) { return DocReader(node(key), file_, keyPath(key)); }
+
+double DocReader::asNumber(const YAML::Node& n, const std::string& keyPath) const {
+  // A quoted scalar ("1.0") has the non-specific tag "!": a string, not a number.
+  if (!n.IsScalar() || n.Tag() == "!") failAt(n, keyPath, "must be a number");
+  double v = 0.0;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    failAt(n, keyPath, "must be a number (got '" + n.Scalar() + "')");
+  }
+  if (!std::isfinite(v)) failAt(n, keyPath, "must be a finite number (got '" + n.Scalar() + "')");
+  return v;
+}
+
+std::string DocReader::asString(const YAML::Node& n, const std::string& keyPath) const {
+  if (!n.IsScalar()) failAt(n, keyPath, "must be a string");
+  return n.Scalar();
+}
+
+double DocReader::number(const std::string& key, double fallback) {
+  used_.insert(key);
+  return has(key) ? asNumber(node_[key], keyPath(key)) : fallback;
+}
+
+double DocReader::requiredNumber(const std::string& key) { return asNumber(node(key), keyPath(key)); }
+
+int DocReader::integer(const std::string& key, int fallback) {
+  used_.insert(key);
+  if (!has(key)) return fallback;
+  const double v = asNumber(node_[key], keyPath(key));
+  if (v != std::floor(v) || std::abs(v) > 1e9) failAt(node_[key], keyPath(key), "must be an integer (got " + fmtValue(v) + ")");
+  return static_cast<int>(v);
+}
+
+bool DocReader::boolean(const std::string& key, bool fallback) {
+  used_.insert(key);
+  if (!has(key)) return fallback;
+  const YAML::Node n = node_[key];
+  if (!n.IsScalar() || n.Tag() == "!" || (n.Scalar() != "true" && n.Scalar() != "false"))
+    failAt(n, keyPath(key), "must be true or false");
+  return n.Scalar() == "true";
+}
+
+std::string DocReader::string(const std::string& key, const std::string& fallback) {
+  used_.insert(key);
+  return has(key) ? asString(node_[key], keyPath(key)) : fallback;
+}
+
+std::string DocReader::requiredString(const std::string& key) { return asString(node(key), keyPath(key)); }
+
+std::vector<std::string> DocReader::strings(const std::string& key) {
+  used_.insert(key);
+  std::vector<std::string> out;
+  if (!has(key)) return out;
+  const YAML::Node n = node_[key];
+  if (!n.IsSequence()) failAt(n, keyPath(key), "must be a list of strings");
+  for (size_t i = 0; i < n.size(); ++i) out.push_back(asString(n[i], keyPath(key) + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+Vec3 DocReader::vec3(const std::string& key, const Vec3& fallback) {
+  used_.insert(key);
+  if (!has(key)) return fallback;
+  const YAML::Node n = node_[key];
+  if (!n.IsSequence() || n.size() != 3) failAt(n, keyPath(key), "must be a list of 3 numbers");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) v(i) = asNumber(n[i], keyPath(key) + "[" + std::to_string(i) + "]");
+  return v;
+}
+
+void DocReader::requireAbove(const std::string& key, double value, double lower) const {
+  if (!(value > lower)) fail(key, "must be > " + fmtValue(lower) + " (got " + fmtValue(value) + ")");
+}
+
+void DocReader::requireAtLeast(const std::string& key, double value, double lower) const {
+  if (!(value >= lower)) fail(key, "must be ≥ " + fmtValue(lower) + " (got " + fmtValue(value) + ")");
+}
+
+void DocReader::requireWithin(const std::string& key, double value, double lo, double hi) const {
+  if (!(value >= lo && value <= hi))
+    fail(key, "must lie in [" + fmtValue(lo) + ", " + fmtValue(hi) + "] (got " + fmtValue(value) + ")");
+}
+
+void DocReader::finish() const {
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    if (!used_.count(key)) failAt(it->first, keyPath(key), "unknown key");
+  }
+}
+
+}  // namespace myo

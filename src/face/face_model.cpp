@@ -1,0 +1,256 @@
+#include "myoshell/face/face_model.h"
+
+#include <algorithm>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/edge_table.h"
+
+#include "myoshell/reduce/modal_analysis.h"
+#include "myoshell/reduce/rotation_operator.h"
+
+namespace myo {
+
+void FaceModelSettings::validate() const {
+  skin.validate();
+  muscle.validate();
+  auto bad = [](const std::string& what) { throw InputError("face model: " + what); };
+  if (skinModes < 1) bad("skin modes must be ≥ 1 (got " + std::to_string(skinModes) + ")");
+  if (muscleModes < 1) bad("muscle modes must be ≥ 1 (got " + std::to_string(muscleModes) + ")");
+  if (!(roiAlpha > 1.0)) bad("ROI α must be > 1 (thesis eq. 19; got " + std::to_string(roiAlpha) + ")");
+  if (!(springStiffness > 0.0) || !std::isfinite(springStiffness)) bad("spring stiffness must be > 0");
+  if (!(dt > 0.0) || !std::isfinite(dt)) bad("dt must be > 0 (got " + std::to_string(dt) + ")");
+  if (!(skinDampingMass >= 0.0) || !(skinDampingStiffness >= 0.0)) bad("skin damping must be ≥ 0");
+  if (!(muscleDampingRatio >= 0.0)) bad("muscle damping ratio must be ≥ 0");
+  if (!std::isfinite(gravityAcceleration)) bad("gravity is not finite");
+}
+
+namespace {
+
+// The activation load pattern of a muscle: a unit force along the contraction direction on each
+// central node, as a free f×3 field of `basis`.
+MatX3 activationPattern(const Muscle& muscle, const std::vector<int>& fullToFree, int freeCount) {
+  MatX3 P = MatX3::Zero(freeCount, 3);
+  for (size_t c = 0; c < muscle.centralNodes.size(); ++c) {
+    const int row = fullToFree[static_cast<size_t>(muscle.centralNodes[c])];
+    if (row >= 0) P.row(row) += muscle.contractDirection.row(static_cast<Eigen::Index>(c));
+  }
+  return P;
+}
+
+// A one-column basis: mode j of `full`.
+ModalBasis singleMode(const ModalBasis& full, int j) {
+  ModalBasis one;
+  one.fullVertexCount = full.fullVertexCount;
+  one.freeVertices = full.freeVertices;
+  one.freeMass = full.freeMass;
+  one.Phi = full.Phi.col(j);
+  one.Psi = full.Psi.col(j);
+  one.lambda = VecX::Constant(1, full.lambda(j));
+  one.solver = full.solver;
+  one.fromCache = full.fromCache;
+  return one;
+}
+
+// The static-shape variant (METHOD.md §8): the muscle's one mode is its static response to the
+// activation load, K_FF⁻¹P, mass-normalized; used when none of the low modes carries the load.
+ModalBasis staticShapeMode(const ModalBasis& full, const DiscreteShell& shell, const MatX3& P) {
+  const SparseMat Kff = restrictToFree(shell.stiffnessAtRest(), full.freeVertices, shell.vertexCount());
+  Eigen::SimplicialLDLT<SparseMat> solver(Kff);
+  if (solver.info() != Eigen::Success) throw NumericalError("muscle stiffness is singular (origin not pinned?)");
+  const VecX x = solver.solve(flat(P));
+  VecX m3(x.size());
+  for (int i = 0; i < full.freeCount(); ++i) m3.segment<3>(3 * i).setConstant(full.freeMass(i));
+  const VecX phi = x / std::sqrt(x.dot(m3.cwiseProduct(x)));
+  ModalBasis one;
+  one.fullVertexCount = full.fullVertexCount;
+  one.freeVertices = full.freeVertices;
+  one.freeMass = full.freeMass;
+  one.Phi = phi;
+  one.lambda = VecX::Constant(1, phi.dot(Kff * phi));
+  one.Psi = modalRotationMatrix(shell.rest(), shell.triangles(), full.freeVertices, one.Phi);
+  one.solver = "static-shape";
+  return one;
+}
+
+ModalSettings modalSettings(int modes) {
+  ModalSettings s;
+  s.modeCount = modes;
+  return s;
+}
+
+}  // namespace
+
+FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceModelSettings& settings,
+                     BasisCache* cache)
+    : head_(std::move(head)),
+      settings_(settings),
+      skin_(head_.mesh.V, head_.mesh.F, buildEdgeTable(head_.mesh.F, head_.mesh.vertexCount()), settings.skin) {
+  settings_.validate();
+  Stopwatch clock;
+  const int n = head_.mesh.vertexCount();
+  const MatX3& skinRest = head_.mesh.V;
+  auto solve = [&](const DiscreteShell& shell, const std::vector<int>& pins, int modes) {
+    ModalBasis b = computeModalBasis(shell, pins, modalSettings(modes), cache);
+    if (b.fromCache) ++cacheHits_;
+    return b;
+  };
+  auto complement = [n](const std::vector<int>& keep) {
+    std::vector<char> in(static_cast<size_t>(n), 0);
+    for (int v : keep) in[static_cast<size_t>(v)] = 1;
+    std::vector<int> out;
+    for (int v = 0; v < n; ++v)
+      if (!in[static_cast<size_t>(v)]) out.push_back(v);
+    return out;
+  };
+
+  for (const MuscleDef& def : defs) {
+    MuscleUnit unit;
+    unit.muscle = buildMuscle(def, head_);
+    const TriMesh& mm = unit.muscle.mesh;
+    unit.shell = std::make_shared<const DiscreteShell>(mm.V, mm.F, buildEdgeTable(mm.F, mm.vertexCount()),
+                                                       settings_.muscle);
+    // Eq. 11–12: the pinned muscle's d lowest modes; keep the one that carries the activation load.
+    const int modes = std::min(settings_.muscleModes, 3 * (mm.vertexCount() - static_cast<int>(unit.muscle.originNodes.size())));
+    const ModalBasis full = solve(*unit.shell, unit.muscle.originNodes, modes);
+    const std::vector<int> toFree = full.fullToFree();
+    const MatX3 P = activationPattern(unit.muscle, toFree, full.freeCount());
+    const LoadParticipation lp = loadParticipation(full, *unit.shell, P);
+    unit.modeParticipation.assign(lp.perMode.data(), lp.perMode.data() + lp.perMode.size());
+    for (double& p : unit.modeParticipation) p /= lp.total;
+    const Vec3 axis = (unit.muscle.originPoint - unit.muscle.insertionPoint).normalized();
+    const int R = def.ringNodes;
+    // Static displacement of the insertion ring along the muscle per dyn of activation force, if
+    // the muscle moved only in basis column j of B.
+    auto insertionAlongPerDyn = [&](const ModalBasis& B, int j) {
+      const double qPerDyn = B.Phi.col(j).dot(flat(P)) / B.lambda(j);
+      double along = 0.0;
+      for (int k = 0; k < R; ++k) {
+        const int row = toFree[static_cast<size_t>(unit.muscle.insertionCentre(k))];
+        along += B.Phi.col(j).segment<3>(3 * row).dot(axis) * qPerDyn / R;
+      }
+      return along;
+    };
+    // The stretch mode: the one carrying most of the activation load's compliance among the modes
+    // that pull the insertion towards the origin (a bending mode of a curved muscle can carry load
+    // while swinging the insertion sideways or back).
+    int best = -1;
+    for (int j = 0; j < full.modeCount(); ++j)
+      if (insertionAlongPerDyn(full, j) > 0 &&
+          (best < 0 || unit.modeParticipation[static_cast<size_t>(j)] > unit.modeParticipation[static_cast<size_t>(best)]))
+        best = j;
+    ModalBasis one;
+    if (best >= 0 && unit.modeParticipation[static_cast<size_t>(best)] >= 0.5) {
+      one = singleMode(full, best);
+      unit.stretchModeIndex = best;
+      unit.stretchParticipation = unit.modeParticipation[static_cast<size_t>(best)];
+    } else {
+      one = staticShapeMode(full, *unit.shell, P);
+      unit.stretchModeIndex = -1;
+      unit.stretchParticipation = 1.0;  // the static shape carries all of the static compliance
+    }
+    // Calibrate the maximum force (eq. 13's "magnitude set manually", made reproducible): at a = 1
+    // the static linear response moves the insertion ring by contraction·length along the muscle.
+    const double alongPerDyn = insertionAlongPerDyn(one, 0);
+    const double qPerDyn = one.Phi.col(0).dot(flat(P)) / one.lambda(0);
+    if (!(alongPerDyn > 0.0))
+      throw NumericalError("muscle '" + def.name + "': its stretch mode does not move the insertion towards the origin");
+    unit.maxForce = def.contraction * unit.muscle.restLength / alongPerDyn;
+    unit.fullAmplitude = unit.maxForce * qPerDyn;
+    for (int c : unit.muscle.centralNodes) unit.centralFreeRows.push_back(toFree[static_cast<size_t>(c)]);
+    unit.basis = std::make_shared<const ModalBasis>(std::move(one));
+
+    // Springs (eq. 14–16) and ROI (eq. 19).
+    unit.springStiffness = def.springStiffness > 0 ? def.springStiffness : settings_.springStiffness;
+    unit.roiAlpha = def.roiAlpha > 0 ? def.roiAlpha : settings_.roiAlpha;
+    std::vector<char> inRoi(static_cast<size_t>(n), 0);
+    for (int i = 0; i < mm.vertexCount(); ++i) {
+      const Vec3 m = mm.V.row(i);
+      MuscleUnit::Spring s;
+      s.muscleNode = i;
+      s.muscleFreeRow = toFree[static_cast<size_t>(i)];
+      s.skinVertex = nearestVertex(skinRest, m);
+      s.restVector = m - Vec3(skinRest.row(s.skinVertex));
+      const double reach = unit.roiAlpha * s.restVector.norm();
+      if (!(s.restVector.norm() > 0))
+        throw InputError("muscle '" + def.name + "': node " + std::to_string(i) + " lies on the skin (depth must be > 0)");
+      for (int v = 0; v < n; ++v)
+        if ((Vec3(skinRest.row(v)) - m).norm() < reach) inRoi[static_cast<size_t>(v)] = 1;
+      unit.springs.push_back(s);
+    }
+    for (int v = 0; v < n; ++v)
+      if (inRoi[static_cast<size_t>(v)]) unit.roi.push_back(v);
+    muscles_.push_back(std::move(unit));
+  }
+
+  // Skin channels: one per muscle (non-ROI pinned), gravity, one per drag (eq. 20–25).
+  for (size_t m = 0; m < muscles_.size(); ++m) {
+    MuscleUnit& unit = muscles_[m];
+    SkinChannel ch;
+    ch.name = unit.muscle.def.name;
+    ch.kind = ChannelKind::Muscle;
+    ch.source = static_cast<int>(m);
+    ch.basis = std::make_shared<const ModalBasis>(solve(skin_, complement(unit.roi), settings_.skinModes));
+    const std::vector<int> toFree = ch.basis->fullToFree();
+    // The typical load: the springs' pull when the muscle sits at its a = 1 static state.
+    MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
+    for (auto& s : unit.springs) {
+      s.skinFreeRow = toFree[static_cast<size_t>(s.skinVertex)];
+      if (s.muscleFreeRow < 0 || s.skinFreeRow < 0) continue;
+      load.row(s.skinFreeRow) +=
+          (unit.fullAmplitude * unit.basis->Phi.col(0).segment<3>(3 * s.muscleFreeRow)).transpose();
+    }
+    ch.loadParticipation = load.squaredNorm() > 0 ? loadParticipation(*ch.basis, skin_, load).ratio : 0.0;
+    unit.skinChannel = static_cast<int>(channels_.size());
+    channels_.push_back(std::move(ch));
+  }
+  if (settings_.gravity) {
+    SkinChannel ch;
+    ch.name = "gravity";
+    ch.kind = ChannelKind::Gravity;
+    ch.basis = std::make_shared<const ModalBasis>(solve(skin_, head_.gravityPins, settings_.skinModes));
+    MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
+    load.col(1) = -settings_.gravityAcceleration * ch.basis->freeMass;
+    ch.loadParticipation = loadParticipation(*ch.basis, skin_, load).ratio;
+    gravityChannel_ = static_cast<int>(channels_.size());
+    channels_.push_back(std::move(ch));
+  }
+  for (size_t d = 0; d < settings_.drags.size(); ++d) {
+    const DragDef& drag = settings_.drags[d];
+    if (drag.vertex < 0 || drag.vertex >= n)
+      throw InputError("drag '" + drag.name + "': vertex " + std::to_string(drag.vertex) + " is outside [0, " +
+                       std::to_string(n) + ")");
+    SkinChannel ch;
+    ch.name = drag.name;
+    ch.kind = ChannelKind::Drag;
+    ch.source = static_cast<int>(d);
+    ch.basis = std::make_shared<const ModalBasis>(
+        solve(skin_, drag.pins.empty() ? head_.gravityPins : drag.pins, settings_.skinModes));
+    const std::vector<int> toFree = ch.basis->fullToFree();
+    const Vec3 centre = skinRest.row(drag.vertex);
+    for (int v = 0; v < n; ++v)
+      if ((Vec3(skinRest.row(v)) - centre).norm() <= drag.radius && toFree[static_cast<size_t>(v)] >= 0)
+        ch.dragRows.push_back(toFree[static_cast<size_t>(v)]);
+    if (ch.dragRows.empty())
+      throw InputError("drag '" + drag.name + "': no free skin vertex within " + std::to_string(drag.radius) +
+                       " cm of vertex " + std::to_string(drag.vertex) + " (is it pinned?)");
+    MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
+    for (int r : ch.dragRows) load.row(r) = head_.frame().axes.col(0).transpose();  // sideways pull
+    ch.loadParticipation = loadParticipation(*ch.basis, skin_, load).ratio;
+    channels_.push_back(std::move(ch));
+  }
+  buildSeconds_ = clock.seconds();
+}
+
+int FaceModel::muscleIndex(const std::string& name) const {
+  for (size_t m = 0; m < muscles_.size(); ++m)
+    if (muscles_[m].muscle.def.name == name) return static_cast<int>(m);
+  std::string known;
+  for (const auto& u : muscles_) known += (known.empty() ? "" : ", ") + u.muscle.def.name;
+  throw InputError("unknown muscle '" + name + "' (this face has: " + known + ")");
+}
+
+}  // namespace myo

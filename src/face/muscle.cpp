@@ -1,0 +1,108 @@
+#include "myoshell/face/muscle.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/geometry.h"
+
+namespace myo {
+
+int Muscle::insertionCentre(int k) const {
+  return (def.stations - 1) * def.ringNodes + k;
+}
+
+namespace {
+
+// The anchor's point on the skin: the landmark moved by the frame offset, then projected.
+SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const FaceFrame& frame,
+                          const MatX3& normals, const std::string& muscle) {
+  if (!head.landmarks.has(anchor.landmark))
+    throw InputError("muscle '" + muscle + "': the head has no landmark '" + anchor.landmark + "'",
+                     head.landmarks.sourcePath);
+  const Vec3 landmark = head.mesh.V.row(head.landmarks.vertex(anchor.landmark));
+  const Vec3 moved = landmark + frame.scale * frame.directionFromFrame(anchor.offset);
+  return closestSurfacePoint(head.mesh.V, head.mesh.F, normals, moved);
+}
+
+}  // namespace
+
+Muscle buildMuscle(const MuscleDef& def, const Head& head) {
+  def.validate();
+  Muscle muscle;
+  muscle.def = def;
+  const FaceFrame frame = head.frame();
+  const MatX3 normals = vertexNormals(head.mesh.V, head.mesh.F);
+  const SurfacePoint o = anchorOnSkin(def.origin, head, frame, normals, def.name);
+  const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, normals, def.name);
+  if ((o.point - i.point).norm() < 1e-3 * frame.scale)
+    throw InputError("muscle '" + def.name + "': origin and insertion coincide on this head");
+
+  // Centre line: stations between the two skin points, each re-projected onto the skin so the
+  // muscle follows the face's curvature, then pushed under it along the normal (thesis Fig. 10).
+  const int S = def.stations, R = def.ringNodes;
+  std::vector<Vec3> centre(S), normal(S);
+  for (int s = 0; s < S; ++s) {
+    const double t = static_cast<double>(s) / (S - 1);
+    const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals,
+                                               (1 - t) * o.point + t * i.point);
+    const double depth = frame.scale * ((1 - t) * def.origin.depth + t * def.insertion.depth);
+    normal[s] = p.normal;
+    centre[s] = p.point - depth * p.normal;
+  }
+  std::vector<Vec3> tangent(S);
+  for (int s = 0; s < S; ++s) {
+    const Vec3 d = centre[std::min(s + 1, S - 1)] - centre[std::max(s - 1, 0)];
+    tangent[s] = d.normalized();
+  }
+
+  // Rings: a flat ellipse (width across, thickness along the skin normal); node k at angle
+  // π/2 + 2π(k−1)/R, so nodes 1 and 1 + R/2 are the top and bottom middle (the central nodes).
+  TriMesh& mesh = muscle.mesh;
+  mesh.V.resize(S * R, 3);
+  const double halfWidth = 0.5 * def.width * frame.scale, halfThick = 0.5 * def.thickness * frame.scale;
+  for (int s = 0; s < S; ++s) {
+    const Vec3 across = normal[s].cross(tangent[s]).normalized();
+    const Vec3 up = tangent[s].cross(across).normalized();  // the normal made orthogonal to the axis
+    for (int k = 0; k < R; ++k) {
+      const double angle = std::numbers::pi / 2 + 2 * std::numbers::pi * (k - 1) / R;
+      mesh.V.row(s * R + k) = centre[s] + halfWidth * std::cos(angle) * across + halfThick * std::sin(angle) * up;
+    }
+  }
+  // Triangles: two per quad of the tube, fans closing both ends; 2·S·R − 4 in all.
+  std::vector<Eigen::Vector3i> tris;
+  for (int s = 0; s + 1 < S; ++s)
+    for (int k = 0; k < R; ++k) {
+      const int a = s * R + k, b = s * R + (k + 1) % R, c = a + R, d = b + R;
+      tris.emplace_back(a, b, d);
+      tris.emplace_back(a, d, c);
+    }
+  for (int k = 1; k + 1 < R; ++k) tris.emplace_back(0, k + 1, k);
+  const int last = (S - 1) * R;
+  for (int k = 1; k + 1 < R; ++k) tris.emplace_back(last, last + k, last + k + 1);
+  mesh.F.resize(static_cast<Eigen::Index>(tris.size()), 3);
+  for (size_t t = 0; t < tris.size(); ++t) mesh.F.row(static_cast<Eigen::Index>(t)) = tris[t].transpose();
+  // Orient outwards: the enclosed volume must be positive.
+  double volume = 0.0;
+  for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
+    volume += Vec3(mesh.V.row(mesh.F(t, 0))).dot(Vec3(mesh.V.row(mesh.F(t, 1))).cross(Vec3(mesh.V.row(mesh.F(t, 2)))));
+  if (volume < 0) mesh.F.col(1).swap(mesh.F.col(2));
+  mesh.sourcePath = "<muscle " + def.name + ">";
+
+  for (int k = 0; k < R; ++k) muscle.originNodes.push_back(k);
+  muscle.contractDirection.resize(2 * (S - 1), 3);
+  int row = 0;
+  for (int s = 1; s < S; ++s)
+    for (int k : {1, 1 + R / 2}) {
+      muscle.centralNodes.push_back(s * R + k);
+      muscle.contractDirection.row(row++) = -tangent[s].transpose();
+    }
+  muscle.originPoint = centre.front();
+  muscle.insertionPoint = centre.back();
+  muscle.restLength = 0.0;
+  for (int s = 0; s + 1 < S; ++s) muscle.restLength += (centre[s + 1] - centre[s]).norm();
+  return muscle;
+}
+
+}  // namespace myo

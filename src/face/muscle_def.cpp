@@ -1,0 +1,111 @@
+#include "myoshell/face/muscle_def.h"
+
+#include <cmath>
+#include <set>
+
+#include "myoshell/core/doc_reader.h"
+#include "myoshell/core/errors.h"
+#include "thesis_muscles_data.h"
+
+namespace myo {
+
+void MuscleDef::validate() const {
+  auto bad = [&](const std::string& what) { throw InputError("muscle '" + name + "': " + what); };
+  if (name.empty()) throw InputError("a muscle has an empty name");
+  if (side != "right" && side != "left" && side != "center")
+    bad("side must be \"right\", \"left\" or \"center\" (got \"" + side + "\")");
+  for (const MuscleAnchor* a : {&origin, &insertion}) {
+    if (a->landmark.empty()) bad("an anchor has no landmark");
+    if (!a->offset.allFinite()) bad("an anchor offset is not finite");
+    if (!(a->depth > 0.0) || !std::isfinite(a->depth)) bad("anchor depth must be > 0");
+  }
+  if (!(width > 0.0) || !std::isfinite(width)) bad("width must be > 0");
+  if (!(thickness > 0.0) || !std::isfinite(thickness)) bad("thickness must be > 0");
+  if (stations < 3) bad("stations must be ≥ 3 (got " + std::to_string(stations) + ")");
+  if (ringNodes < 4 || ringNodes % 2 != 0)
+    bad("ring_nodes must be even and ≥ 4 (got " + std::to_string(ringNodes) + ")");
+  if (!(contraction > 0.0 && contraction < 1.0)) bad("contraction must lie in (0, 1)");
+  if (!std::isfinite(springStiffness)) bad("spring_stiffness is not finite");
+  if (roiAlpha > 0.0 && roiAlpha <= 1.0) bad("roi_alpha must be > 1 (thesis eq. 19)");
+}
+
+namespace {
+MuscleAnchor readAnchor(DocReader r) {
+  MuscleAnchor a;
+  a.landmark = r.requiredString("landmark");
+  a.offset = r.vec3("offset", a.offset);
+  a.depth = r.number("depth", a.depth);
+  r.requireAbove("depth", a.depth, 0.0);
+  r.finish();
+  return a;
+}
+}  // namespace
+
+MuscleDef readMuscleDef(DocReader& r) {
+  MuscleDef d;
+  d.name = r.requiredString("name");
+  d.side = r.string("side", "center");
+  if (d.side != "right" && d.side != "left" && d.side != "center")
+    r.fail("side", "must be \"right\", \"left\" or \"center\" (got \"" + d.side + "\")");
+  d.facs = r.string("facs", "");
+  r.string("note", "");  // free text
+  d.origin = readAnchor(r.child("origin"));
+  d.insertion = readAnchor(r.child("insertion"));
+  d.width = r.number("width", d.width);
+  r.requireAbove("width", d.width, 0.0);
+  d.thickness = r.number("thickness", d.thickness);
+  r.requireAbove("thickness", d.thickness, 0.0);
+  d.stations = r.integer("stations", d.stations);
+  r.requireAtLeast("stations", d.stations, 3);
+  d.ringNodes = r.integer("ring_nodes", d.ringNodes);
+  r.requireAtLeast("ring_nodes", d.ringNodes, 4);
+  if (d.ringNodes % 2 != 0) r.fail("ring_nodes", "must be even (got " + std::to_string(d.ringNodes) + ")");
+  d.contraction = r.number("contraction", d.contraction);
+  if (!(d.contraction > 0.0 && d.contraction < 1.0)) r.fail("contraction", "must lie in (0, 1)");
+  d.springStiffness = r.number("spring_stiffness", d.springStiffness);
+  d.roiAlpha = r.number("roi_alpha", d.roiAlpha);
+  if (r.has("roi_alpha")) r.requireAbove("roi_alpha", d.roiAlpha, 1.0);
+  r.finish();
+  d.validate();
+  return d;
+}
+
+namespace {
+std::vector<MuscleDef> readLibrary(const YAML::Node& root, const std::string& file) {
+  DocReader top(root, file);
+  top.string("note", "");
+  const YAML::Node list = top.node("muscles");
+  if (!list.IsSequence()) top.failAt(list, "muscles", "must be a list of muscles");
+  top.finish();
+  std::vector<MuscleDef> defs;
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    DocReader r(list[i], file, "muscles[" + std::to_string(i) + "]");
+    MuscleDef d = readMuscleDef(r);
+    if (!names.insert(d.name).second) r.fail("name", "muscle '" + d.name + "' is defined twice");
+    defs.push_back(std::move(d));
+  }
+  return defs;
+}
+}  // namespace
+
+std::vector<MuscleDef> parseMuscleDefs(const std::string& text, const std::string& name) {
+  return readLibrary(loadDocument(text, name), name);
+}
+
+std::vector<MuscleDef> readMuscleDefs(const std::string& path) {
+  return readLibrary(loadDocumentFile(path), path);
+}
+
+const std::string& thesisMuscleJson() {
+  static const std::string text(detail::kThesisMusclesJson);
+  return text;
+}
+
+const std::vector<MuscleDef>& thesisMuscleDefs() {
+  static const std::vector<MuscleDef> defs =
+      parseMuscleDefs(thesisMuscleJson(), "<embedded assets/muscles/thesis_muscles.json>");
+  return defs;
+}
+
+}  // namespace myo

@@ -1,0 +1,185 @@
+#include "myoshell/face/simulator.h"
+
+#include <cmath>
+
+#include "myoshell/core/check.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+
+namespace myo {
+
+Simulator::Simulator(std::shared_ptr<const FaceModel> model) : model_(std::move(model)) {
+  MYO_CHECK(model_ != nullptr, "a simulator needs a model");
+  const FaceModelSettings& s = model_->settings();
+  for (const MuscleUnit& unit : model_->muscles()) {
+    ModalWarpingSettings ms;
+    ms.dt = s.dt;
+    ms.stepper = s.stepper;
+    ms.warping = s.warping;
+    ms.precision = ModalPrecision::Double;  // one column: precision costs nothing here
+    // One mode: its damping c = ξ = 2·ratio·ω (mass-proportional), so the ratio is exactly as set.
+    ms.rayleighMass = 2.0 * s.muscleDampingRatio * std::sqrt(std::max(unit.basis->lambda(0), 0.0));
+    ms.channel = "muscle " + unit.muscle.def.name;
+    muscleIntegrators_.emplace_back(unit.basis, ms);
+    muscleForce_.push_back(MatX3::Zero(unit.basis->freeCount(), 3));
+  }
+  for (const SkinChannel& ch : model_->channels()) {
+    ModalWarpingSettings cs;
+    cs.dt = s.dt;
+    cs.stepper = s.stepper;
+    cs.warping = s.warping;
+    cs.precision = s.precision;
+    cs.rayleighMass = s.skinDampingMass;
+    cs.rayleighStiffness = s.skinDampingStiffness;
+    cs.channel = "skin channel " + ch.name;
+    channelIntegrators_.emplace_back(ch.basis, cs);
+    channelForce_.push_back(MatX3::Zero(ch.basis->freeCount(), 3));
+  }
+  channelLoaded_.assign(model_->channels().size(), false);
+  activation_.assign(model_->muscles().size(), 0.0);
+  dragForce_.assign(s.drags.size(), Vec3::Zero());
+  skinU_ = MatX3::Zero(model_->head().mesh.vertexCount(), 3);
+  setGravity(s.gravity ? 1.0 : 0.0);
+}
+
+void Simulator::setActivation(int muscle, double a) {
+  MYO_CHECK(muscle >= 0 && muscle < static_cast<int>(activation_.size()), "muscle index " << muscle);
+  if (std::isnan(a))
+    throw InputError("activation of muscle '" + model_->muscles()[static_cast<size_t>(muscle)].muscle.def.name +
+                     "' is NaN");
+  if (a < -1.0 || a > 1.0) {
+    ++clamped_;
+    a = std::clamp(a, -1.0, 1.0);
+  }
+  activation_[static_cast<size_t>(muscle)] = a;
+}
+
+void Simulator::setActivation(const std::string& muscle, double a) { setActivation(model_->muscleIndex(muscle), a); }
+
+void Simulator::setGravity(double scale) {
+  if (!std::isfinite(scale)) throw InputError("gravity scale is not finite");
+  const int g = model_->gravityChannel();
+  if (g < 0) {
+    if (scale != 0.0) throw InputError("this face model was built without a gravity channel");
+    gravity_ = 0.0;
+    return;
+  }
+  gravity_ = scale;
+  const ModalBasis& b = *model_->channels()[static_cast<size_t>(g)].basis;
+  MatX3& F = channelForce_[static_cast<size_t>(g)];
+  F.setZero();
+  F.col(1) = -scale * model_->settings().gravityAcceleration * b.freeMass;  // f_i = m_i g (thesis Fig. 21–22)
+  channelLoaded_[static_cast<size_t>(g)] = scale != 0.0;
+}
+
+void Simulator::setDragForce(int drag, const Vec3& force) {
+  MYO_CHECK(drag >= 0 && drag < static_cast<int>(dragForce_.size()), "drag index " << drag);
+  if (!force.allFinite()) throw InputError("drag force is not finite");
+  dragForce_[static_cast<size_t>(drag)] = force;
+  const auto& channels = model_->channels();
+  for (size_t c = 0; c < channels.size(); ++c) {
+    if (channels[c].kind != ChannelKind::Drag || channels[c].source != drag) continue;
+    MatX3& F = channelForce_[c];
+    F.setZero();
+    const Vec3 share = force / static_cast<double>(channels[c].dragRows.size());
+    for (int r : channels[c].dragRows) F.row(r) = share.transpose();
+    channelLoaded_[c] = force.squaredNorm() > 0.0;
+  }
+}
+
+void Simulator::step() {
+  Stopwatch total;
+  const auto& muscles = model_->muscles();
+  const bool thesisSprings = model_->settings().springModel == SpringModel::Thesis;
+
+  // 1. Muscles: the activation force along the centre line on the central nodes (eq. 13).
+  Stopwatch phase;
+  for (size_t m = 0; m < muscles.size(); ++m) {
+    const MuscleUnit& unit = muscles[m];
+    MatX3& F = muscleForce_[m];
+    const double magnitude = activation_[m] * unit.maxForce;
+    for (size_t c = 0; c < unit.centralFreeRows.size(); ++c)
+      F.row(unit.centralFreeRows[c]) = magnitude * unit.muscle.contractDirection.row(static_cast<Eigen::Index>(c));
+    ModalWarpingIntegrator& integrator = muscleIntegrators_[m];
+    if (magnitude == 0.0 && integrator.isAtRest(1e-12)) continue;
+    integrator.step(F);
+  }
+  timings_.muscles = phase.seconds();
+
+  // 2. Springs: each muscle node's displacement pulls its skin node (eq. 14–16).
+  phase.restart();
+  for (size_t m = 0; m < muscles.size(); ++m) {
+    const MuscleUnit& unit = muscles[m];
+    const size_t c = static_cast<size_t>(unit.skinChannel);
+    MatX3& F = channelForce_[c];
+    const MatX3& um = muscleIntegrators_[m].freeDisplacement();
+    bool loaded = false;
+    for (const auto& s : unit.springs) F.row(s.skinFreeRow).setZero();
+    for (const auto& s : unit.springs) {
+      if (s.muscleFreeRow < 0) continue;  // origin nodes never move
+      const Vec3 u = um.row(s.muscleFreeRow);
+      const double moved = u.norm();
+      if (moved < 1e-14) continue;  // eq. 16's direction is undefined at rest: no force
+      const double restLength = s.restVector.norm();
+      // Thesis eq. 15: k·||S_d| − |S_init||/|S_init| with S_d = S_init + u_m (the skin node at rest);
+      // variant: k·|u_m|/|S_init|. Both along u_m (eq. 16).
+      const double magnitude = thesisSprings
+                                   ? unit.springStiffness * std::abs((s.restVector + u).norm() - restLength) / restLength
+                                   : unit.springStiffness * moved / restLength;
+      F.row(s.skinFreeRow) += (magnitude / moved) * u.transpose();
+      loaded = true;
+    }
+    channelLoaded_[c] = loaded;
+  }
+  timings_.springs = phase.seconds();
+
+  // 3–4. Every skin channel on its own (eq. 22–24), then the sum of the fields (eq. 21, 25).
+  phase.restart();
+  skinU_.setZero();
+  for (size_t c = 0; c < channelIntegrators_.size(); ++c) {
+    ModalWarpingIntegrator& integrator = channelIntegrators_[c];
+    // A channel is skipped only when it is unloaded and at rest: a relaxing channel keeps moving.
+    if (!channelLoaded_[c] && integrator.isAtRest(1e-9)) continue;
+    integrator.step(channelForce_[c]);
+    integrator.addDisplacementTo(skinU_);
+  }
+  timings_.channels = phase.seconds();
+  timings_.total = total.seconds();
+  time_ += model_->settings().dt;
+  ++steps_;
+}
+
+int Simulator::advance(double seconds) {
+  const int steps = static_cast<int>(std::lround(seconds / model_->settings().dt));
+  for (int i = 0; i < steps; ++i) step();
+  return steps;
+}
+
+MatX3 Simulator::skinPositions() const { return model_->head().mesh.V + skinU_; }
+
+MatX3 Simulator::channelDisplacement(int channel) const {
+  MatX3 u = MatX3::Zero(skinU_.rows(), 3);
+  channelIntegrators_.at(static_cast<size_t>(channel)).addDisplacementTo(u);
+  return u;
+}
+
+MatX3 Simulator::musclePositions(int muscle) const {
+  const MuscleUnit& unit = model_->muscles().at(static_cast<size_t>(muscle));
+  MatX3 x = unit.muscle.mesh.V;
+  muscleIntegrators_[static_cast<size_t>(muscle)].addDisplacementTo(x);
+  return x;
+}
+
+double Simulator::muscleAmplitude(int muscle) const {
+  return muscleIntegrators_.at(static_cast<size_t>(muscle)).q()(0);
+}
+
+void Simulator::reset() {
+  for (auto& i : muscleIntegrators_) i.reset();
+  for (auto& i : channelIntegrators_) i.reset();
+  skinU_.setZero();
+  time_ = 0.0;
+  steps_ = 0;
+}
+
+}  // namespace myo

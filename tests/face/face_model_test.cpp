@@ -1,0 +1,225 @@
+// The face model on the built-in default head: muscles as the thesis builds them, ROIs, springs,
+// channels and their sum.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/face/face_model.h"
+#include "myoshell/face/simulator.h"
+#include "myoshell/mesh/edge_table.h"
+
+namespace myo {
+namespace {
+
+FaceModelSettings testSettings() {
+  FaceModelSettings s;
+  s.skinModes = 20;
+  s.precision = ModalPrecision::Double;
+  return s;
+}
+
+// Built once for the whole file: eight muscles, their ROI channels and gravity.
+std::shared_ptr<const FaceModel> defaultFace() {
+  static const auto model =
+      std::make_shared<const FaceModel>(loadDefaultHead(), thesisMuscleDefs(), testSettings());
+  return model;
+}
+
+double signedVolume(const TriMesh& m) {
+  double v = 0.0;
+  for (Eigen::Index t = 0; t < m.F.rows(); ++t)
+    v += Vec3(m.V.row(m.F(t, 0))).dot(Vec3(m.V.row(m.F(t, 1))).cross(Vec3(m.V.row(m.F(t, 2))))) / 6.0;
+  return v;
+}
+
+TEST(Muscle, ThesisTableOneSizesClosedAndOutward) {
+  const Head head = loadDefaultHead();
+  ASSERT_EQ(thesisMuscleDefs().size(), 8u);
+  for (const MuscleDef& def : thesisMuscleDefs()) {
+    const Muscle m = buildMuscle(def, head);
+    const bool corrugator = def.name.find("corrugator") != std::string::npos;
+    const EdgeTable edges = buildEdgeTable(m.mesh.F, m.mesh.vertexCount());
+    // Table 1: 36 nodes / 68 elements / 102 edges; corrugator 30 / 56 / 84.
+    EXPECT_EQ(m.mesh.vertexCount(), corrugator ? 30 : 36) << def.name;
+    EXPECT_EQ(m.mesh.triangleCount(), corrugator ? 56 : 68) << def.name;
+    EXPECT_EQ(static_cast<int>(edges.edges.size()), corrugator ? 84 : 102) << def.name;
+    EXPECT_EQ(edges.boundaryCount, 0) << def.name;
+    EXPECT_EQ(edges.inconsistentOrientationCount, 0) << def.name;
+    EXPECT_GT(signedVolume(m.mesh), 0.0) << def.name;
+    EXPECT_EQ(m.originNodes.size(), 6u);
+    EXPECT_GT(m.restLength, 1.0) << def.name << " is implausibly short (cm)";
+  }
+}
+
+TEST(MuscleDefs, ErrorsNameTheFileLineAndKey) {
+  const std::string bad = R"({"muscles": [
+    {"name": "m", "origin": {"landmark": "nose_tip"}, "insertion": {"landmark": "chin_menton"},
+     "widht": 0.1}
+  ]})";
+  try {
+    parseMuscleDefs(bad, "lib.json");
+    FAIL() << "unknown key accepted";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "lib.json:3:6: key 'muscles[0].widht': unknown key");
+  }
+  const std::string alpha = R"({"muscles": [{"name": "m", "origin": {"landmark": "nose_tip"},
+    "insertion": {"landmark": "chin_menton"}, "roi_alpha": 0.5}]})";
+  EXPECT_THROW(
+      {
+        try {
+          parseMuscleDefs(alpha, "lib.json");
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("key 'muscles[0].roi_alpha': must be > 1 (got 0.5)"), std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      InputError);
+  const std::string landmark = R"({"muscles": [{"name": "m", "origin": {"landmark": "ear_lobe"},
+    "insertion": {"landmark": "chin_menton"}}]})";
+  const std::vector<MuscleDef> defs = parseMuscleDefs(landmark, "lib.json");
+  try {
+    buildMuscle(defs[0], loadDefaultHead());
+    FAIL() << "unknown landmark accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("muscle 'm': the head has no landmark 'ear_lobe'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FaceModel, EveryMuscleKeepsTheModeThatCarriesItsActivationLoad) {
+  const auto model = defaultFace();
+  for (const MuscleUnit& u : model->muscles()) {
+    EXPECT_GE(u.stretchParticipation, 0.5) << u.muscle.def.name;
+    EXPECT_EQ(u.basis->modeCount(), 1) << u.muscle.def.name;
+    EXPECT_GT(u.maxForce, 0.0) << u.muscle.def.name;
+    EXPECT_GT(u.roi.size(), 50u) << u.muscle.def.name;
+    // Every spring's skin node lies in the ROI (eq. 19 with α > 1 contains it).
+    for (const auto& s : u.springs) EXPECT_GE(s.skinFreeRow, 0) << u.muscle.def.name;
+  }
+}
+
+TEST(FaceModel, NonRoiSkinStaysExactlyStillAndOriginsStayPut) {
+  const auto model = defaultFace();
+  Simulator sim(model);
+  sim.setGravity(0.0);
+  const int zyg = model->muscleIndex("zygomaticus_major_right");
+  sim.setActivation(zyg, 1.0);
+  sim.advance(0.25);
+  const MuscleUnit& unit = model->muscles()[static_cast<size_t>(zyg)];
+  const MatX3 u = sim.channelDisplacement(unit.skinChannel);
+  std::vector<char> inRoi(static_cast<size_t>(u.rows()), 0);
+  for (int v : unit.roi) inRoi[static_cast<size_t>(v)] = 1;
+  double roiMax = 0.0;
+  for (Eigen::Index v = 0; v < u.rows(); ++v) {
+    if (!inRoi[static_cast<size_t>(v)]) ASSERT_EQ(u.row(v).norm(), 0.0) << "non-ROI vertex " << v << " moved";
+    else roiMax = std::max(roiMax, u.row(v).norm());
+  }
+  EXPECT_GT(roiMax, 0.05) << "the ROI did not move (cm)";
+  const MatX3 muscle = sim.musclePositions(zyg);
+  for (int o : unit.muscle.originNodes) EXPECT_EQ((muscle.row(o) - unit.muscle.mesh.V.row(o)).norm(), 0.0);
+  // The other muscles' channels never moved.
+  for (const SkinChannel& ch : model->channels())
+    if (ch.kind == ChannelKind::Muscle && ch.source != zyg)
+      EXPECT_EQ(sim.channelDisplacement(static_cast<int>(&ch - &model->channels()[0])).norm(), 0.0) << ch.name;
+}
+
+TEST(FaceModel, ContractionPullsTheInsertionTowardsTheOriginAndRelaxationPushesIt) {
+  const auto model = defaultFace();
+  const int m = model->muscleIndex("depressor_anguli_oris_left");
+  const MuscleUnit& unit = model->muscles()[static_cast<size_t>(m)];
+  const Vec3 axis = (unit.muscle.originPoint - unit.muscle.insertionPoint).normalized();
+  auto insertionShift = [&](double a) {
+    Simulator sim(model);
+    sim.setGravity(0.0);
+    sim.setActivation(m, a);
+    sim.advance(1.0);  // critically damped muscle: long settled after 1 s
+    const MatX3 x = sim.musclePositions(m);
+    double along = 0.0;
+    for (int k = 0; k < unit.muscle.def.ringNodes; ++k) {
+      const int v = unit.muscle.insertionCentre(k);
+      along += Vec3(x.row(v) - unit.muscle.mesh.V.row(v)).dot(axis) / unit.muscle.def.ringNodes;
+    }
+    return along;
+  };
+  const double target = unit.muscle.def.contraction * unit.muscle.restLength;
+  const double contract = insertionShift(1.0), relax = insertionShift(-1.0);
+  // Calibrated on the linear static response; modal warping bends it slightly.
+  EXPECT_NEAR(contract, target, 0.1 * target);
+  EXPECT_NEAR(relax, -target, 0.1 * target);
+}
+
+TEST(FaceModel, ChannelsWithEqualPinsAddUpExactlyWithoutWarping) {
+  // Thesis eq. 22: with warping off and equal pin sets, the sum of two channels equals one skin
+  // system driven by F1 + F2. Gravity and a drag (pins: the head's gravity pins) share their pins.
+  FaceModelSettings s = testSettings();
+  s.warping = false;
+  Head head = loadDefaultHead();
+  DragDef drag;
+  drag.name = "cheek";
+  drag.vertex = head.landmarks.vertex("mouth_corner_right");
+  drag.radius = 1.0;
+  s.drags.push_back(drag);
+  const auto model = std::make_shared<const FaceModel>(head, std::vector<MuscleDef>{}, s);
+  ASSERT_EQ(model->channels().size(), 2u);
+  Simulator sim(model);
+  const Vec3 pull(-2000.0, 1500.0, 500.0);
+  sim.setDragForce(0, pull);
+  // The same two loads through one integrator on the gravity channel's basis.
+  const SkinChannel& g = model->channels()[0];
+  const SkinChannel& d = model->channels()[1];
+  ASSERT_EQ(g.basis->freeVertices, d.basis->freeVertices);
+  ModalWarpingSettings ws;
+  ws.dt = s.dt;
+  ws.warping = false;
+  ws.precision = ModalPrecision::Double;
+  ws.rayleighMass = s.skinDampingMass;
+  ws.rayleighStiffness = s.skinDampingStiffness;
+  ModalWarpingIntegrator both(g.basis, ws);
+  MatX3 F = MatX3::Zero(g.basis->freeCount(), 3);
+  F.col(1) = -s.gravityAcceleration * g.basis->freeMass;
+  for (int r : d.dragRows) F.row(r) += (pull / static_cast<double>(d.dragRows.size())).transpose();
+  for (int i = 0; i < 60; ++i) {
+    sim.step();
+    both.step(F);
+  }
+  MatX3 single = MatX3::Zero(head.mesh.vertexCount(), 3);
+  both.addDisplacementTo(single);
+  const double scale = single.norm();
+  ASSERT_GT(scale, 1e-3);
+  EXPECT_LE((sim.skinDisplacement() - single).norm() / scale, 1e-10);
+}
+
+TEST(FaceModel, ANinthMuscleComesFromDataAlone) {
+  // Frontalis (brow raiser, AU1+2): written in a file, no code.
+  const std::string frontalis = R"({"muscles": [{
+    "name": "frontalis_right", "side": "right", "facs": "AU1+AU2",
+    "origin":    {"landmark": "right_brow_inner", "offset": [-0.10, 0.55, 0.0], "depth": 0.05},
+    "insertion": {"landmark": "right_brow_inner", "offset": [-0.10, 0.05, 0.0], "depth": 0.03},
+    "width": 0.14, "thickness": 0.02, "contraction": 0.15}]})";
+  FaceModelSettings s = testSettings();
+  s.gravity = false;
+  const auto model = std::make_shared<const FaceModel>(loadDefaultHead(), parseMuscleDefs(frontalis, "frontalis.json"), s);
+  Simulator sim(model);
+  sim.setActivation("frontalis_right", 1.0);
+  sim.advance(0.5);
+  const Head& head = model->head();
+  const Vec3 up = head.frame().axes.col(1);
+  const int brow = head.landmarks.vertex("right_brow_inner");
+  const int otherBrow = head.landmarks.vertex("left_brow_inner");
+  const double lift = sim.skinDisplacement().row(brow).dot(up);
+  EXPECT_GT(lift, 0.02) << "the brow did not rise (cm)";
+  EXPECT_LT(std::abs(sim.skinDisplacement().row(otherBrow).dot(up)), 0.2 * lift) << "the other brow moved";
+}
+
+TEST(Simulator, ActivationsAreClampedAndNaNRejected) {
+  Simulator sim(defaultFace());
+  sim.setActivation(0, 3.0);
+  EXPECT_EQ(sim.activation(0), 1.0);
+  EXPECT_EQ(sim.clampedActivations(), 1);
+  EXPECT_THROW(sim.setActivation(0, std::nan("")), InputError);
+  EXPECT_THROW(sim.setActivation("buccinator", 0.5), InputError);
+}
+
+}  // namespace
+}  // namespace myo
