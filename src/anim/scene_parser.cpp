@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void readMaterial(DocReader r, ShellMaterial& m) {
+void readMaterial(DocReader& r, ShellMaterial& m) {
   m.kA = r.number("k_a", m.kA);
   r.requireAtLeast("k_a", m.kA, 0.0);
   m.kL = r.number("k_l", m.kL);

@@ -1,6 +1,8 @@
 #include "myoshell/core/doc_reader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <fstream>
 #include <sstream>
 
@@ -17,6 +19,22 @@ std::string fmtValue(double v) {
 }  // namespace
 
 YAML::Node loadDocument(const std::string& text, const std::string& file) {
+  // YAML accepts much that JSON does not (a stray comma becomes an empty key): a document that looks
+  // like JSON is checked as JSON first, so its syntax errors read as such.
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && (text[first] == '{' || text[first] == '[')) {
+    try {
+      (void)nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+      const size_t at = std::min(e.byte > 0 ? e.byte - 1 : 0, text.size());
+      const size_t lineStart = text.rfind('\n', at == 0 ? 0 : at - 1);
+      const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+      const int column = static_cast<int>(at - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
+      std::string what = e.what();
+      const size_t colon = what.find("syntax error");
+      throw InputError("JSON " + (colon == std::string::npos ? what : what.substr(colon)), file, line, column);
+    }
+  }
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {

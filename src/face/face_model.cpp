@@ -186,7 +186,13 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     muscles_.push_back(std::move(unit));
   }
 
-  // Skin channels: one per muscle (non-ROI pinned), gravity, one per drag (eq. 20–25).
+  // Skin channels: one per muscle (non-ROI pinned), gravity, one per drag (eq. 20–25). The skin's
+  // K is assembled once for all the load-participation reports.
+  const SparseMat skinK = skin_.stiffnessAtRest();
+  auto participation = [&](const ModalBasis& basis, const MatX3& load) {
+    if (load.squaredNorm() == 0.0) return 0.0;
+    return loadParticipation(basis, restrictToFree(skinK, basis.freeVertices, n), load).ratio;
+  };
   for (size_t m = 0; m < muscles_.size(); ++m) {
     MuscleUnit& unit = muscles_[m];
     SkinChannel ch;
@@ -203,7 +209,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
       load.row(s.skinFreeRow) +=
           (unit.fullAmplitude * unit.basis->Phi.col(0).segment<3>(3 * s.muscleFreeRow)).transpose();
     }
-    ch.loadParticipation = load.squaredNorm() > 0 ? loadParticipation(*ch.basis, skin_, load).ratio : 0.0;
+    ch.loadParticipation = participation(*ch.basis, load);
     unit.skinChannel = static_cast<int>(channels_.size());
     channels_.push_back(std::move(ch));
   }
@@ -214,7 +220,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     ch.basis = std::make_shared<const ModalBasis>(solve(skin_, head_.gravityPins, settings_.skinModes));
     MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
     load.col(1) = -settings_.gravityAcceleration * ch.basis->freeMass;
-    ch.loadParticipation = loadParticipation(*ch.basis, skin_, load).ratio;
+    ch.loadParticipation = participation(*ch.basis, load);
     gravityChannel_ = static_cast<int>(channels_.size());
     channels_.push_back(std::move(ch));
   }
@@ -239,7 +245,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
                        " cm of vertex " + std::to_string(drag.vertex) + " (is it pinned?)");
     MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
     for (int r : ch.dragRows) load.row(r) = head_.frame().axes.col(0).transpose();  // sideways pull
-    ch.loadParticipation = loadParticipation(*ch.basis, skin_, load).ratio;
+    ch.loadParticipation = participation(*ch.basis, load);
     channels_.push_back(std::move(ch));
   }
   buildSeconds_ = clock.seconds();

@@ -316,7 +316,7 @@ struct ModalWarpingIntegrator::Kernel {
   // streaming matvec. Used when most vertices are loaded (gravity, drag).
   template <class Mat, class Vec>
   static void projectDense(const Mat& B, const Vec& Y, int stride, bool warped, const MatX3& F, Vec& G,
-                           VecX& ft) {
+                           Vec& acc, VecX& ft) {
     using S = typename Mat::Scalar;
     const Eigen::Index f = F.rows();
     S* g = G.data();
@@ -330,7 +330,8 @@ struct ModalWarpingIntegrator::Kernel {
       g[1] = S(gy);
       g[2] = S(gz);
     }
-    ft = (B.transpose() * G).template cast<double>();
+    acc.noalias() = B.transpose() * G;  // into a preallocated d-vector: no temporary
+    ft = acc.template cast<double>();
   }
 
   template <class Vec>
@@ -463,12 +464,12 @@ void ModalWarpingIntegrator::step(const MatX3& freeForce) {
   const bool dense = 4 * loaded > freeForce.rows();
   if (k.precision == ModalPrecision::Float) {
     if (dense)
-      Kernel::projectDense(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.Gf, ftilde_);
+      Kernel::projectDense(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.Gf, k.accf, ftilde_);
     else
       Kernel::project(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.accf, ftilde_);
   } else {
     if (dense)
-      Kernel::projectDense(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.Gd, ftilde_);
+      Kernel::projectDense(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.Gd, k.accd, ftilde_);
     else
       Kernel::project(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.accd, ftilde_);
   }

@@ -65,6 +65,29 @@ TEST(HeadCommand, DefaultHeadFromAnyFolder) {
   EXPECT_EQ(sig, std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
+TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
+  const fs::path dir = scratch("pictures");
+  for (const char* view : {"front", "threequarter", "side", "back"}) {
+    const RunResult r =
+        runIn(dir, std::string("head --levels 0 --wire --pins-marked --size 96 --view ") + view +
+                       " --render " + view + ".png");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    std::ifstream png(dir / (std::string(view) + ".png"), std::ios::binary);
+    std::string head(24, '\0');
+    png.read(head.data(), 24);
+    EXPECT_EQ(head.substr(12, 4), "IHDR") << view;
+    EXPECT_EQ(static_cast<unsigned char>(head[19]), 96) << view;  // width, big-endian
+    EXPECT_EQ(static_cast<unsigned char>(head[23]), 96) << view;  // height
+  }
+  fs::create_directories(dir / "folder.png");
+  RunResult r = runIn(dir, "head --levels 0 --render folder.png");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("folder.png: cannot write picture"));
+  r = runIn(dir, "head --levels 0 --view top --render x.png");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("--view must be front, threequarter, side or back"));
+}
+
 TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
   const fs::path dir = scratch("roundtrip");
   ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj --write-landmarks lm.json").exitCode, 0);

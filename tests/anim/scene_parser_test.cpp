@@ -1,0 +1,118 @@
+#include <gtest/gtest.h>
+
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/core/errors.h"
+
+namespace myo {
+namespace {
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseScene(text, "scene.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SceneParser, DefaultsFillAnEmptyScene) {
+  const SceneDesc s = parseScene("{}", "dir/empty.json");
+  EXPECT_EQ(s.name, "empty");
+  EXPECT_EQ(s.head.builtin, "default");
+  EXPECT_EQ(s.muscleLibrary, "builtin");
+  EXPECT_TRUE(s.muscles.empty());
+  EXPECT_EQ(s.model.skinModes, FaceModelSettings{}.skinModes);
+  EXPECT_DOUBLE_EQ(s.duration, 1.0);
+}
+
+TEST(SceneParser, ReadsEveryPart) {
+  const SceneDesc s = parseScene(R"({
+    "name": "fig26",
+    "muscles": {"use": ["zygomaticus_major_right"]},
+    "skin": {"k_a": 1500, "damping_mass": 4},
+    "springs": {"model": "displacement", "stiffness": 250},
+    "roi_alpha": 5,
+    "gravity": {"enabled": false},
+    "drags": [{"name": "cheek", "landmark": "mouth_corner_right", "radius": 0.8}],
+    "numerics": {"dt": 0.002, "skin_modes": 12, "stepper": "semi-implicit", "precision": "double"},
+    "duration": 3, "fps": 24,
+    "timeline": {
+      "activations": {"zygomaticus_major_right": [{"t": 0, "value": 0}, {"t": 1, "value": 1, "interp": "smooth"}]},
+      "drags": {"cheek": [{"t": 0, "value": [0, 0, 0]}, {"t": 2, "value": [100, 0, 0]}]}
+    }})", "s.json");
+  EXPECT_EQ(s.name, "fig26");
+  EXPECT_EQ(s.muscles.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.model.skin.kA, 1500);
+  EXPECT_DOUBLE_EQ(s.model.skinDampingMass, 4);
+  EXPECT_EQ(s.model.springModel, SpringModel::Displacement);
+  EXPECT_DOUBLE_EQ(s.model.springStiffness, 250);
+  EXPECT_DOUBLE_EQ(s.model.roiAlpha, 5);
+  EXPECT_FALSE(s.model.gravity);
+  ASSERT_EQ(s.drags.size(), 1u);
+  EXPECT_EQ(s.drags[0].landmark, "mouth_corner_right");
+  EXPECT_DOUBLE_EQ(s.model.dt, 0.002);
+  EXPECT_EQ(s.model.stepper, ModalStepper::SemiImplicit);
+  EXPECT_EQ(s.model.precision, ModalPrecision::Double);
+  EXPECT_DOUBLE_EQ(s.activations.at("zygomaticus_major_right").at(0.5), 0.5);
+  EXPECT_TRUE(s.dragForces.at("cheek").at(1.0).isApprox(Vec3(50, 0, 0)));
+}
+
+TEST(SceneParser, ErrorsNameFileLineColumnAndKeyPath) {
+  EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dt\": -1}\n}"), "scene.json:2:22: key 'numerics.dt': must be > 0 (got -1)");
+  EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dtt\": 0.1}\n}"), "scene.json:2:16: key 'numerics.dtt': unknown key");
+  EXPECT_EQ(errorOf("{\"duration\": \"2\"}"), "scene.json:1:14: key 'duration': must be a number");
+  EXPECT_EQ(errorOf("{\"roi_alpha\": 0.9}"), "scene.json:1:15: key 'roi_alpha': must be > 1 (got 0.9)");
+  EXPECT_EQ(errorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": 1.5}]}}}"),
+            "scene.json:1:55: key 'timeline.activations.m[0].value': must lie in [-1, 1] (got 1.5)");
+  EXPECT_EQ(errorOf("{\"springs\": {\"model\": \"hooke\"}}"),
+            "scene.json:1:23: key 'springs.model': must be \"thesis\" or \"displacement\" (got \"hooke\")");
+  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\"}]}"),
+            "scene.json:1:12: key 'drags[0].landmark': give exactly one of 'landmark' and 'vertex'");
+  EXPECT_EQ(errorOf("{\"timeline\": {\"drags\": {\"nope\": []}}}"),
+            "scene.json:1:25: key 'timeline.drags.nope': no drag of that name in 'drags'");
+  const std::string syntax = errorOf("{\n  \"duration\": 1,,\n}");
+  EXPECT_EQ(syntax.rfind("scene.json:2:", 0), 0u) << syntax;
+  EXPECT_NE(syntax.find("syntax error"), std::string::npos) << syntax;
+}
+
+TEST(SceneParser, RoundTripsThroughJson) {
+  const SceneDesc a = parseScene(R"({"name": "rt", "numerics": {"skin_modes": 7},
+    "muscles": {"extra": [{"name": "frontalis_right", "origin": {"landmark": "right_brow_inner", "offset": [0, 0.5, 0]},
+                           "insertion": {"landmark": "right_brow_inner"}}]},
+    "drags": [{"name": "d", "vertex": 12}],
+    "timeline": {"activations": {"frontalis_right": [{"t": 0, "value": 0}, {"t": 1, "value": -0.5, "interp": "step"}]},
+                 "gravity": [{"t": 0, "value": 1}, {"t": 2, "value": 0}]}})",
+                                 "rt.json");
+  const std::string once = sceneToJson(a);
+  const SceneDesc b = parseScene(once, "rt.json");
+  EXPECT_EQ(sceneToJson(b), once);
+  EXPECT_EQ(b.model.skinModes, 7);
+  ASSERT_EQ(b.extraMuscles.size(), 1u);
+  EXPECT_TRUE(b.extraMuscles[0].origin.offset.isApprox(Vec3(0, 0.5, 0)));
+  EXPECT_DOUBLE_EQ(b.activations.at("frontalis_right").at(2.0), -0.5);
+  EXPECT_DOUBLE_EQ(b.gravity.at(1.0), 0.5);
+}
+
+TEST(SceneParser, BuildRejectsUnknownMusclesByName) {
+  const SceneDesc s = parseScene(R"({"muscles": {"use": ["buccinator"]}})", "b.json");
+  try {
+    buildSceneFace(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("b.json: key 'muscles.use': unknown muscle 'buccinator'"), std::string::npos)
+        << e.what();
+  }
+  const SceneDesc t = parseScene(
+      R"({"muscles": {"use": ["zygomaticus_major_right"]}, "timeline": {"activations": {"corrugator_supercilii_left": [{"t": 0, "value": 1}]}}})",
+      "t.json");
+  try {
+    buildSceneFace(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the scene has no muscle 'corrugator_supercilii_left'"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace myo
