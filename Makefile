@@ -21,7 +21,7 @@ test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 demo: build
-	@$(BUILD_DIR)/bin/myoshell demo
+	@$(BUILD_DIR)/bin/myoshell demo --out out/demo
 
 bench: build
 	@$(BUILD_DIR)/bin/bench_shell --benchmark_min_time=0.2

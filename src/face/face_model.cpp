@@ -217,7 +217,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     SkinChannel ch;
     ch.name = "gravity";
     ch.kind = ChannelKind::Gravity;
-    ch.basis = std::make_shared<const ModalBasis>(solve(skin_, head_.gravityPins, settings_.skinModes));
+    ch.basis = std::make_shared<const ModalBasis>(solve(skin_, gravityPins(), settings_.skinModes));
     MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
     load.col(1) = -settings_.gravityAcceleration * ch.basis->freeMass;
     ch.loadParticipation = participation(*ch.basis, load);
@@ -234,7 +234,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     ch.kind = ChannelKind::Drag;
     ch.source = static_cast<int>(d);
     ch.basis = std::make_shared<const ModalBasis>(
-        solve(skin_, drag.pins.empty() ? head_.gravityPins : drag.pins, settings_.skinModes));
+        solve(skin_, drag.pins.empty() ? gravityPins() : drag.pins, settings_.skinModes));
     const std::vector<int> toFree = ch.basis->fullToFree();
     const Vec3 centre = skinRest.row(drag.vertex);
     for (int v = 0; v < n; ++v)
@@ -249,6 +249,15 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     channels_.push_back(std::move(ch));
   }
   buildSeconds_ = clock.seconds();
+}
+
+std::vector<int> FaceModel::gravityPins() const {
+  std::vector<int> pins = head_.gravityPins;
+  if (settings_.gravityPinsLandmarks)
+    for (const auto& [name, v] : head_.landmarks.resolved()) pins.push_back(v);
+  std::sort(pins.begin(), pins.end());
+  pins.erase(std::unique(pins.begin(), pins.end()), pins.end());
+  return pins;
 }
 
 int FaceModel::muscleIndex(const std::string& name) const {

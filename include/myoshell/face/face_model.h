@@ -35,7 +35,7 @@ struct DragDef {
   std::string name = "drag";
   int vertex = -1;                // skin vertex the user grabs
   double radius = 1.0;            // cm: vertices within it share the force equally
-  std::vector<int> pins;          // pinned skin vertices of this channel; empty = the head's gravity pins
+  std::vector<int> pins;          // pinned skin vertices of this channel; empty = FaceModel::gravityPins()
 };
 
 struct FaceModelSettings {
@@ -47,8 +47,8 @@ struct FaceModelSettings {
     m.kA = 2.0e3;
     m.kL = 2.0e2;
     m.kB = 3.0e2;
-    m.density = 1.1;
-    m.thickness = 0.3;
+    m.density = 1.1;     // g/cm³
+    m.thickness = 0.15;  // cm: epidermis and dermis; the tissue below is the springs' layer
     return m;
   }();
   // Muscle material: bending stiff against stretch (k_B/k_A = 100 cm²), so that, as in the thesis,
@@ -75,6 +75,9 @@ struct FaceModelSettings {
   double muscleDampingRatio = 1.0;    // of the muscle's single mode (1 = critically damped)
   bool gravity = true;                // build the gravity channel
   double gravityAcceleration = 981.0; // cm/s², along −y of the head's space
+  // The gravity channel pins the head's gravity pins and, as the thesis does (Fig. 21: "the
+  // backside of the head and feature points of the face were fixed"), every landmark vertex.
+  bool gravityPinsLandmarks = true;
   std::vector<DragDef> drags;         // drag channels
   ModalPrecision precision = ModalPrecision::Float;
 
@@ -137,6 +140,8 @@ class FaceModel {
   const std::vector<SkinChannel>& channels() const { return channels_; }
   int muscleIndex(const std::string& name) const;  // throws InputError naming the unknown muscle
   int gravityChannel() const { return gravityChannel_; }  // −1 when disabled
+  // The gravity channel's pins (and the default pins of drag channels), sorted.
+  std::vector<int> gravityPins() const;
   double buildSeconds() const { return buildSeconds_; }
   int cacheHits() const { return cacheHits_; }
 

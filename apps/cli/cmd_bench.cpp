@@ -1,0 +1,379 @@
+// `myoshell bench [--json] [--seconds S] [--runs R] [--heads default,ict] [--rows ID,…]`: the
+// thesis's performance tables (Tables 2–4) re-measured on the scenes of scenes/thesis/, on the
+// default head and the ICT head, beside the thesis's FPS; plus the full-space reference solver's
+// time for one implicit-Euler step of the whole skin (docs/PERFORMANCE.md).
+//
+// Each row: a scene file, optionally only some of its muscles, and a window [t0, t1) of its
+// timeline. The model is built once (bases from the cache), then the window is played in a loop
+// (Simulator::reset at its start, the scene's timeline applied before every step, exactly as
+// `myoshell run` does) — first once as warm-up, then in R timed runs of S/R seconds each; a row
+// reports the median of the runs' steps per second. Table 2 rows ("muscle only") count only the
+// muscle phase of the step (StepTimings::muscles, the thesis's muscle deformation without skin);
+// every other row counts whole steps (muscles + springs + skin channels).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "command.h"
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/face/simulator.h"
+#include "myoshell/io/basis_cache_file.h"
+#include "myoshell/reduce/reference_solver.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BenchOptions {
+  bool json = false;
+  int threads = 1;
+  double seconds = 1.0;    // timed seconds per row (split over `runs`)
+  int runs = 5;
+  std::string scenesDir = "scenes/thesis";
+  std::string cacheDir = ".cache/bases";
+  std::string heads = "default,ict";
+  std::string rows;        // comma-separated row ids; empty = all
+  bool reference = true;
+  int referenceSteps = 2;
+};
+
+// One row of the thesis's Tables 2–4.
+struct BenchRow {
+  std::string table;              // "2", "3", "4"
+  std::string id;                 // stable id, e.g. "t3_zygomaticus_right"
+  std::string label;              // as the thesis's column says
+  std::string scene;              // file in the scenes folder
+  std::vector<std::string> use;   // only these muscles of the scene (empty = all of them)
+  double t0 = 0.0, t1 = 1.0;      // timeline window played in a loop, s
+  bool muscleOnly = false;        // time only the muscle phase (Table 2)
+  double thesisFps = 0.0;         // the thesis's number
+};
+
+std::vector<BenchRow> thesisRows() {
+  const std::string zr = "zygomaticus_major_right", cr = "corrugator_supercilii_right",
+                    lr = "depressor_labii_inferioris_right", ar = "depressor_anguli_oris_right";
+  std::vector<BenchRow> r;
+  // Table 2: muscle deformation alone (fig17_contract, only the named muscle, or all eight).
+  r.push_back({"2", "t2_zygomaticus", "Zygomaticus major", "fig17_contract.json", {zr}, 0.0, 1.0, true, 220});
+  r.push_back({"2", "t2_corrugator", "Corrugator supercilii", "fig17_contract.json", {cr}, 0.0, 1.0, true, 210});
+  r.push_back({"2", "t2_depressor_labii", "Depressor labii inferioris", "fig17_contract.json", {lr}, 0.0, 1.0, true, 210});
+  r.push_back({"2", "t2_depressor_anguli", "Depressor anguli oris", "fig17_contract.json", {ar}, 0.0, 1.0, true, 210});
+  r.push_back({"2", "t2_all8", "All 8 muscles", "fig17_contract.json", {}, 0.0, 1.0, true, 200});
+  // Table 3: skin by each type of muscle, right side only ([0, 1) s of fig18_*: only the right is
+  // active) and both sides ([1, 2) s: both active).
+  const auto side = [&](const std::string& key, const std::string& name, const std::string& scene, double fr,
+                        double fb, std::vector<std::string> rightOnlyUse) {
+    r.push_back({"3", "t3_" + key + "_right", name + ", right side only", scene, rightOnlyUse, 0.0, 1.0, false, fr});
+    r.push_back({"3", "t3_" + key + "_both", name + ", both sides", scene, {}, 1.0, 2.0, false, fb});
+  };
+  side("zygomaticus", "Zygomaticus major", "fig18_zygomaticus.json", 95, 90, {});
+  // fig20 moves both corrugators together: the right-only row keeps only the right muscle; its
+  // contraction is [0, 1) s.
+  r.push_back({"3", "t3_corrugator_right", "Corrugator supercilii, right side only", "fig20_corrugator.json", {cr}, 0.0,
+               1.0, false, 97});
+  r.push_back({"3", "t3_corrugator_both", "Corrugator supercilii, both sides", "fig20_corrugator.json", {}, 0.0, 1.0,
+               false, 93});
+  side("depressor_labii", "Depressor labii inferioris", "fig18_depressor_labii.json", 95, 90, {});
+  side("depressor_anguli", "Depressor anguli oris", "fig18_depressor_anguli.json", 96, 96, {});
+  // Table 4.
+  r.push_back({"4", "t4_gravity", "Gravity", "fig22_gravity_sweep.json", {}, 0.0, 1.5, false, 85});
+  r.push_back({"4", "t4_multiple_muscles", "Multiple muscles (zyg. major + dep. labii inf.)", "fig23_combined.json", {},
+               0.0, 1.0, false, 82});
+  r.push_back({"4", "t4_muscle_and_drag", "Muscle and external force (zyg. major + drag)", "fig25_drag.json", {}, 0.0,
+               1.0, false, 73});
+  r.push_back({"4", "t4_transition", "Transition (t0 to t3)", "fig26_transition.json", {}, 0.0, 1.8, false, 80});
+  r.push_back({"4", "t4_scal_zygomaticus", "Scalability: zygomaticus major", "fig27_ict_head.json", {}, 0.0, 0.9, false,
+               82});
+  r.push_back({"4", "t4_scal_depressor_anguli", "Scalability: depressor anguli oris", "fig27_ict_head.json", {}, 0.9,
+               1.8, false, 85});
+  r.push_back({"4", "t4_scal_zyg_dli", "Scalability: zyg. major + dep. labii inf.", "fig27_ict_head.json", {}, 1.8, 2.4,
+               false, 73});
+  return r;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// Applies the scene's timeline at time t (s), as `myoshell run` does.
+void applyTimeline(const SceneDesc& scene, const FaceModel& model, Simulator& sim, double t) {
+  for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(t));
+  if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(t));
+  for (size_t d = 0; d < scene.drags.size(); ++d) {
+    auto it = scene.dragForces.find(scene.drags[d].name);
+    if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(t));
+  }
+}
+
+// The row's scene on the given head: the ICT head is the one fig27_ict_head.json names (its paths
+// are relative to the same folder), the default head the built-in one.
+SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::string& head) {
+  SceneDesc scene = readScene((fs::path(opt.scenesDir) / row.scene).string());
+  if (head == "default") {
+    scene.head = HeadDesc{};
+  } else {
+    scene.head = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string()).head;
+  }
+  if (!row.use.empty()) {
+    scene.muscles = row.use;
+    for (auto it = scene.activations.begin(); it != scene.activations.end();)
+      it = std::find(row.use.begin(), row.use.end(), it->first) == row.use.end() ? scene.activations.erase(it)
+                                                                                 : std::next(it);
+  }
+  return scene;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+struct RowResult {
+  nlohmann::json j;
+};
+
+// Plays the window once; returns (steps, seconds counted).
+std::pair<long long, double> playWindow(const SceneDesc& scene, const FaceModel& model, Simulator& sim,
+                                        const BenchRow& row, double budget) {
+  const double dt = model.settings().dt;
+  long long steps = 0;
+  double counted = 0.0;
+  Stopwatch total;
+  while (counted < budget) {
+    sim.reset();
+    double t = row.t0;
+    if (row.muscleOnly) {
+      while (t < row.t1 - 0.5 * dt && counted < budget) {
+        applyTimeline(scene, model, sim, t);
+        sim.step();
+        counted += sim.lastTimings().muscles;
+        t += dt;
+        ++steps;
+      }
+    } else {
+      Stopwatch sw;
+      long long n = 0;
+      while (t < row.t1 - 0.5 * dt) {
+        applyTimeline(scene, model, sim, t);
+        sim.step();
+        t += dt;
+        ++n;
+        if ((n & 15) == 0 && counted + sw.seconds() >= budget) break;
+      }
+      counted += sw.seconds();
+      steps += n;
+    }
+    if (total.seconds() > 20.0 * budget + 5.0) break;  // guard against a stalled muscle-only count
+  }
+  return {steps, counted};
+}
+
+nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std::string& head, BasisCache& cache) {
+  const SceneDesc scene = rowScene(opt, row, head);
+  Stopwatch build;
+  const auto model = buildSceneFace(scene, &cache);
+  const double buildSeconds = build.seconds();
+  Simulator sim(model);
+  // Warm-up: the window once (caches, branch predictors, page faults).
+  playWindow(scene, *model, sim, row, 0.05);
+  std::vector<double> rates, stepUs;
+  const double budget = opt.seconds / opt.runs;
+  for (int r = 0; r < opt.runs; ++r) {
+    const auto [steps, secs] = playWindow(scene, *model, sim, row, budget);
+    rates.push_back(steps / std::max(secs, 1e-12));
+    stepUs.push_back(1e6 * secs / std::max<long long>(steps, 1));
+  }
+  const double sps = median(rates);
+  nlohmann::json j;
+  j["table"] = row.table;
+  j["id"] = row.id;
+  j["label"] = row.label;
+  j["head"] = head;
+  j["scene"] = row.scene;
+  j["window_s"] = {row.t0, row.t1};
+  j["timed"] = row.muscleOnly ? "muscle phase" : "whole step";
+  j["dt"] = model->settings().dt;
+  j["skin_vertices"] = model->skin().vertexCount();
+  j["d"] = model->settings().skinModes;
+  j["muscles"] = static_cast<int>(model->muscles().size());
+  j["precompute_seconds"] = buildSeconds;
+  j["cache_hits"] = model->cacheHits();
+  j["runs_steps_per_second"] = rates;
+  j["steps_per_second"] = sps;
+  j["step_us"] = median(stepUs);
+  j["thesis_fps"] = row.thesisFps;
+  j["ratio"] = sps / row.thesisFps;
+  j["meets_10x"] = sps >= 10.0 * row.thesisFps;
+  j["realtime_factor"] = sps * model->settings().dt;  // simulated seconds per wall second
+  nlohmann::json ch = nlohmann::json::array();
+  for (const SkinChannel& c : model->channels())
+    ch.push_back({{"name", c.name},
+                  {"free_vertices", c.basis->freeCount()},
+                  {"modes", c.basis->modeCount()},
+                  {"load_participation", c.loadParticipation}});
+  j["channels"] = ch;
+  return j;
+}
+
+// One implicit-Euler step of the full skin (all free vertices, the head's gravity pins) under
+// gravity with the full-space Newton reference solver, from rest.
+nlohmann::json benchReference(const BenchOptions& opt, const std::string& head, BasisCache& cache) {
+  BenchRow row{"4", "reference", "reference", "fig22_gravity_sweep.json", {}, 0.0, 1.0, false, 0};
+  const SceneDesc scene = rowScene(opt, row, head);
+  const auto model = buildSceneFace(scene, &cache);
+  const DiscreteShell& skin = model->skin();
+  const FaceModelSettings& s = model->settings();
+  const int n = skin.vertexCount();
+  MatX3 F = MatX3::Zero(n, 3);
+  F.col(1) = -s.gravityAcceleration * skin.lumpedMass();
+  ImplicitReference ref(skin, model->head().gravityPins, s.skinDampingMass, s.skinDampingStiffness);
+  ref.setState(skin.rest(), MatX3::Zero(n, 3));
+  std::vector<double> secs;
+  int iterations = 0;
+  for (int k = 0; k < opt.referenceSteps; ++k) {
+    Stopwatch sw;
+    ref.step(s.dt, F);
+    secs.push_back(sw.seconds());
+    iterations += ref.lastNewtonIterations();
+  }
+  nlohmann::json j;
+  j["head"] = head;
+  j["skin_vertices"] = n;
+  j["free_vertices"] = n - static_cast<int>(model->head().gravityPins.size());
+  j["load"] = "gravity (981 cm/s^2), from rest";
+  j["dt"] = s.dt;
+  j["steps"] = opt.referenceSteps;
+  j["step_seconds_median"] = median(secs);
+  j["steps_per_second"] = 1.0 / std::max(median(secs), 1e-12);
+  j["newton_iterations_per_step"] = static_cast<double>(iterations) / std::max(opt.referenceSteps, 1);
+  return j;
+}
+
+std::string machineName() {
+  std::ifstream f("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto p = line.find(':');
+      return p == std::string::npos ? line : line.substr(p + 2);
+    }
+  return "unknown";
+}
+
+int runBench(const BenchOptions& opt) {
+  if (opt.seconds <= 0.0) throw InputError("--seconds must be > 0");
+  if (opt.runs < 1) throw InputError("--runs must be >= 1");
+  if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
+    throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
+  std::vector<BenchRow> rows = thesisRows();
+  if (!opt.rows.empty()) {
+    const auto want = splitList(opt.rows);
+    std::vector<BenchRow> keep;
+    for (const std::string& id : want) {
+      auto it = std::find_if(rows.begin(), rows.end(), [&](const BenchRow& r) { return r.id == id; });
+      if (it == rows.end()) throw InputError("unknown bench row '" + id + "'");
+      keep.push_back(*it);
+    }
+    rows = keep;
+  }
+  std::vector<std::string> heads = splitList(opt.heads);
+  for (const std::string& h : heads)
+    if (h != "default" && h != "ict") throw InputError("unknown head '" + h + "' (default, ict)");
+  nlohmann::json notes = nlohmann::json::array();
+  if (opt.threads != 1)
+    notes.push_back(fmt::format("--threads {}: the simulator is single-threaded; measured with 1 thread", opt.threads));
+  FileBasisCache cache(opt.cacheDir);
+
+  nlohmann::json out;
+  out["machine"] = {{"cpu", machineName()}, {"hardware_threads", std::thread::hardware_concurrency()}};
+  out["threads"] = 1;
+  out["seconds_per_row"] = opt.seconds;
+  out["runs"] = opt.runs;
+  nlohmann::json results = nlohmann::json::array();
+  nlohmann::json references = nlohmann::json::array();
+  for (const std::string& head : heads) {
+    if (head == "ict") {
+      bool present = false;
+      try {
+        const SceneDesc s = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string());
+        present = fs::exists(fs::path(opt.scenesDir) / s.head.obj) || fs::exists(s.head.obj);
+      } catch (const InputError&) {
+      }
+      if (!present) {
+        notes.push_back("ICT head skipped: ../shared/data/ict not found");
+        if (!opt.json) fmt::print("ICT head skipped: ../shared/data/ict not found\n");
+        continue;
+      }
+    }
+    for (const BenchRow& row : rows) {
+      nlohmann::json j = benchRow(opt, row, head, cache);
+      if (!opt.json)
+        fmt::print("{:7} T{} {:<48} {:>10.0f} steps/s  thesis {:>4.0f}  x{:>6.1f}{}\n", head, row.table, row.label,
+                   j["steps_per_second"].get<double>(), row.thesisFps, j["ratio"].get<double>(),
+                   j["meets_10x"].get<bool>() ? "" : "  (< 10x)");
+      results.push_back(std::move(j));
+    }
+    if (opt.reference) {
+      nlohmann::json r = benchReference(opt, head, cache);
+      if (!opt.json)
+        fmt::print("{:7} reference: one implicit-Euler step of the full skin ({} free vertices, gravity): {:.3f} s "
+                   "({:.1f} Newton iterations)\n",
+                   head, r["free_vertices"].get<int>(), r["step_seconds_median"].get<double>(),
+                   r["newton_iterations_per_step"].get<double>());
+      references.push_back(std::move(r));
+    }
+  }
+  // Reduced vs reference: how many reduced steps fit in one full-space step.
+  for (auto& j : results)
+    for (const auto& r : references)
+      if (r["head"] == j["head"] && !j["muscles"].is_null())
+        j["speedup_vs_reference"] = j["steps_per_second"].get<double>() * r["step_seconds_median"].get<double>();
+  out["rows"] = results;
+  out["reference"] = references;
+  out["notes"] = notes;
+  if (opt.json) fmt::print("{}\n", out.dump(2));
+  return kExitOk;
+}
+
+const CommandRegistrar benchRegistrar("bench", [](CLI::App& app) {
+  auto opt = std::make_shared<BenchOptions>();
+  CLI::App* sub = app.add_subcommand("bench", "Re-measure the thesis's Tables 2-4 (steps per second) on the thesis scenes");
+  sub->add_flag("--json", opt->json, "Print the results as JSON");
+  sub->add_option("--threads", opt->threads, "Threads (the simulator is single-threaded: 1 is used)")
+      ->capture_default_str();
+  sub->add_option("--seconds", opt->seconds, "Timed seconds per row (split over --runs)")->capture_default_str();
+  sub->add_option("--runs", opt->runs, "Timed runs per row (the median is reported)")->capture_default_str();
+  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes")->capture_default_str();
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_option("--heads", opt->heads, "Heads to run: default, ict (comma-separated)")->capture_default_str();
+  sub->add_option("--rows", opt->rows, "Only these row ids (comma-separated; see --json output)");
+  sub->add_option("--reference-steps", opt->referenceSteps, "Implicit-Euler steps timed for the reference solver")
+      ->capture_default_str();
+  bool noReference = false;
+  auto flag = std::make_shared<bool>(false);
+  sub->add_flag("--no-reference", *flag, "Skip the full-space reference solver");
+  (void)noReference;
+  return std::function<int()>([opt, flag] {
+    opt->reference = !*flag;
+    return runBench(*opt);
+  });
+});
+
+}  // namespace
+}  // namespace myo::cli

@@ -1,0 +1,177 @@
+#include "scene_runner.h"
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "face_picture.h"
+#include "myoshell/render/contact_sheet.h"
+#include "myoshell/render/png.h"
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/face/simulator.h"
+#include "myoshell/io/basis_cache_file.h"
+#include "myoshell/mesh/obj_reader.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+
+ViewPreset viewFromName(const std::string& name) {
+  if (name == "front") return ViewPreset::front;
+  if (name == "three-quarter") return ViewPreset::threeQuarter;
+  if (name == "profile") return ViewPreset::profile;
+  throw InputError("unknown view '" + name + "' (use front, three-quarter or profile)");
+}
+
+// Writes text to path through a temporary file renamed into place (never a half-written file).
+void writeAtomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f) throw InputError("cannot write file", tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+// Applies the scene's timeline at time t (s) to the simulator.
+void applyTimeline(const SceneDesc& scene, const FaceModel& model, Simulator& sim, double t) {
+  for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(t));
+  if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(t));
+  for (size_t d = 0; d < scene.drags.size(); ++d) {
+    auto it = scene.dragForces.find(scene.drags[d].name);
+    if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(t));
+  }
+}
+
+}  // namespace
+
+int runScene(const SceneDesc& scene, const RunOptions& opt) {
+  const fs::path out(opt.outDir);
+  if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
+  fs::create_directories(out / "obj");
+  FileBasisCache cache(opt.cacheDir);
+
+  const bool tty = !opt.json && isatty(STDOUT_FILENO);
+  Stopwatch buildClock;
+  const auto model = buildSceneFace(scene, &cache);
+  const double buildSeconds = buildClock.seconds();
+  Simulator sim(model);
+  const double dt = model->settings().dt;
+  const int frames = static_cast<int>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
+  const auto& channels = model->channels();
+
+  FacePictureOptions picture;
+  picture.width = picture.height = opt.size;
+  picture.view = viewFromName(opt.view);
+  picture.showMuscles = opt.showMuscles;
+  picture.displacementScale = opt.colorScale;
+  std::vector<Image> sheet;
+  std::vector<std::string> sheetCaptions;
+  const int sheetEvery = std::max(1, (frames - 1) / 5);  // about six frames on the sheet
+  if (opt.render) fs::create_directories(out / "png");
+  nlohmann::json frameStats = nlohmann::json::array();
+  std::vector<double> channelMax(channels.size(), 0.0);
+  double stepSeconds = 0.0;
+  long long steps = 0;
+  Stopwatch wall;
+  for (int f = 0; f < frames; ++f) {
+    const double frameTime = f / scene.fps;
+    double frameStep = 0.0;
+    int frameSteps = 0;
+    while (sim.time() < frameTime - 0.5 * dt) {
+      applyTimeline(scene, *model, sim, sim.time());
+      Stopwatch sw;
+      sim.step();
+      frameStep += sw.seconds();
+      ++frameSteps;
+    }
+    stepSeconds += frameStep;
+    steps += frameSteps;
+    const MatX3 positions = sim.skinPositions();
+    writeObj((out / "obj" / fmt::format("{}_{:04d}.obj", scene.name, f)).string(), model->head().mesh, &positions);
+    if (opt.render && (f % opt.renderEvery == 0 || f % sheetEvery == 0)) {
+      const Image image = renderFace(sim, picture);
+      if (f % opt.renderEvery == 0)
+        writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, f)).string(), image);
+      if (f % sheetEvery == 0 && sheet.size() < 6) {
+        sheet.push_back(image);
+        sheetCaptions.push_back(fmt::format("t = {:.2f} s", sim.time()));
+      }
+    }
+    nlohmann::json fs_ = {{"frame", f}, {"time", sim.time()}, {"steps", frameSteps},
+                          {"step_ms", frameSteps ? 1e3 * frameStep / frameSteps : 0.0},
+                          {"max_displacement_cm", sim.skinDisplacement().rowwise().norm().maxCoeff()}};
+    nlohmann::json perChannel = nlohmann::json::object();
+    for (size_t c = 0; c < channels.size(); ++c) {
+      const double m = sim.channelDisplacement(static_cast<int>(c)).rowwise().norm().maxCoeff();
+      channelMax[c] = std::max(channelMax[c], m);
+      perChannel[channels[c].name] = m;
+    }
+    fs_["channel_max_cm"] = perChannel;
+    frameStats.push_back(fs_);
+    if (tty) {
+      const double rate = steps / std::max(stepSeconds, 1e-12);
+      const double eta = wall.seconds() / (f + 1) * (frames - f - 1);
+      fmt::print("\r  frame {:4d}/{}  {:8.0f} steps/s  ETA {:5.1f} s", f + 1, frames, rate, eta);
+      std::fflush(stdout);
+    }
+  }
+  if (tty) fmt::print("\n");
+
+  nlohmann::json stats;
+  stats["scene"] = scene.name;
+  stats["frames"] = frames;
+  stats["steps"] = steps;
+  stats["dt"] = dt;
+  stats["precompute_seconds"] = buildSeconds;
+  stats["cache_hits"] = model->cacheHits();
+  stats["steps_per_second"] = steps / std::max(stepSeconds, 1e-12);
+  stats["step_ms_mean"] = steps ? 1e3 * stepSeconds / steps : 0.0;
+  nlohmann::json ch = nlohmann::json::array();
+  for (size_t c = 0; c < channels.size(); ++c)
+    ch.push_back({{"name", channels[c].name},
+                  {"free_vertices", channels[c].basis->freeCount()},
+                  {"modes", channels[c].basis->modeCount()},
+                  {"load_participation", channels[c].loadParticipation},
+                  {"max_displacement_cm", channelMax[c]}});
+  stats["channels"] = ch;
+  nlohmann::json mus = nlohmann::json::array();
+  for (const MuscleUnit& u : model->muscles())
+    mus.push_back({{"name", u.muscle.def.name},
+                   {"stretch_mode_index", u.stretchModeIndex},
+                   {"stretch_participation", u.stretchParticipation},
+                   {"max_force_dyn", u.maxForce},
+                   {"roi_vertices", static_cast<int>(u.roi.size())}});
+  stats["muscles"] = mus;
+  stats["per_frame"] = frameStats;
+  writeAtomically(out / "stats.json", stats.dump(2) + "\n");
+  if (!sheet.empty()) {
+    ContactSheetStyle style;
+    style.columns = std::min<int>(3, static_cast<int>(sheet.size()));
+    writePng((out / (scene.name + "_sheet.png")).string(), contactSheet(sheet, sheetCaptions, style));
+  }
+
+  if (opt.json) {
+    nlohmann::json summary = stats;
+    summary.erase("per_frame");
+    summary["out"] = out.string();
+    fmt::print("{}\n", summary.dump(2));
+  } else {
+    fmt::print("{}: {} frames, {} steps at {:.0f} steps/s (precompute {:.2f} s, {} cached bases)\n", scene.name,
+               frames, steps, steps / std::max(stepSeconds, 1e-12), buildSeconds, model->cacheHits());
+    fmt::print("wrote {}/obj/{}_NNNN.obj and {}/stats.json\n", out.string(), scene.name, out.string());
+  }
+  return kExitOk;
+}
+
+}  // namespace myo::cli

@@ -1,0 +1,28 @@
+// Running a scene: simulate, write the OBJ sequence, stats.json and (optionally) pictures. Shared
+// by `myoshell run` and `myoshell demo`.
+#pragma once
+
+#include <string>
+
+#include "myoshell/anim/scene.h"
+
+namespace myo::cli {
+
+struct RunOptions {
+  std::string scene;                     // scene file (`run`); unused by runScene itself
+  std::string outDir;
+  std::string cacheDir = ".cache/bases";
+  bool json = false;
+  // Pictures: every `renderEvery`-th frame to DIR/png/, and a contact sheet of a few frames.
+  bool render = false;
+  int renderEvery = 1;
+  int size = 480;
+  std::string view = "front";
+  bool showMuscles = false;
+  double colorScale = 0.0;  // > 0: colour the skin by |u| on [0, colorScale] cm
+};
+
+// Simulates `scene` and writes its outputs under options.outDir; returns the exit code.
+int runScene(const SceneDesc& scene, const RunOptions& options);
+
+}  // namespace myo::cli
