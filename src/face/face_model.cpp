@@ -260,6 +260,25 @@ std::vector<int> FaceModel::gravityPins() const {
   return pins;
 }
 
+bool addSpringForces(const MuscleUnit& unit, const MatX3& muscleU, SpringModel model, MatX3& channelForce) {
+  bool loaded = false;
+  for (const auto& s : unit.springs) {
+    if (s.muscleFreeRow < 0 || s.skinFreeRow < 0) continue;  // origin nodes never move
+    const Vec3 u = muscleU.row(s.muscleFreeRow);
+    const double moved = u.norm();
+    if (moved < 1e-14) continue;  // eq. 16's direction is undefined at rest: no force
+    const double restLength = s.restVector.norm();
+    // Thesis eq. 15: k·||S_d| − |S_init||/|S_init| with S_d = S_init + u_m (the skin node at rest);
+    // the named variant: k·|u_m|/|S_init|. Both along u_m (eq. 16).
+    const double magnitude = model == SpringModel::Thesis
+                                 ? unit.springStiffness * std::abs((s.restVector + u).norm() - restLength) / restLength
+                                 : unit.springStiffness * moved / restLength;
+    channelForce.row(s.skinFreeRow) += (magnitude / moved) * u.transpose();
+    loaded = true;
+  }
+  return loaded;
+}
+
 int FaceModel::muscleIndex(const std::string& name) const {
   for (size_t m = 0; m < muscles_.size(); ++m)
     if (muscles_[m].muscle.def.name == name) return static_cast<int>(m);

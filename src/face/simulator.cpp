@@ -90,7 +90,6 @@ void Simulator::setDragForce(int drag, const Vec3& force) {
 void Simulator::step() {
   Stopwatch total;
   const auto& muscles = model_->muscles();
-  const bool thesisSprings = model_->settings().springModel == SpringModel::Thesis;
 
   // 1. Muscles: the activation force along the centre line on the central nodes (eq. 13).
   Stopwatch phase;
@@ -112,23 +111,9 @@ void Simulator::step() {
     const MuscleUnit& unit = muscles[m];
     const size_t c = static_cast<size_t>(unit.skinChannel);
     MatX3& F = channelForce_[c];
-    const MatX3& um = muscleIntegrators_[m].freeDisplacement();
-    bool loaded = false;
-    for (const auto& s : unit.springs) F.row(s.skinFreeRow).setZero();
-    for (const auto& s : unit.springs) {
-      if (s.muscleFreeRow < 0) continue;  // origin nodes never move
-      const Vec3 u = um.row(s.muscleFreeRow);
-      const double moved = u.norm();
-      if (moved < 1e-14) continue;  // eq. 16's direction is undefined at rest: no force
-      const double restLength = s.restVector.norm();
-      // Thesis eq. 15: k·||S_d| − |S_init||/|S_init| with S_d = S_init + u_m (the skin node at rest);
-      // variant: k·|u_m|/|S_init|. Both along u_m (eq. 16).
-      const double magnitude = thesisSprings
-                                   ? unit.springStiffness * std::abs((s.restVector + u).norm() - restLength) / restLength
-                                   : unit.springStiffness * moved / restLength;
-      F.row(s.skinFreeRow) += (magnitude / moved) * u.transpose();
-      loaded = true;
-    }
+    for (const auto& s : unit.springs)
+      if (s.skinFreeRow >= 0) F.row(s.skinFreeRow).setZero();
+    const bool loaded = addSpringForces(unit, muscleIntegrators_[m].freeDisplacement(), model_->settings().springModel, F);
     channelLoaded_[c] = loaded;
   }
   timings_.springs = phase.seconds();

@@ -67,6 +67,7 @@ TEST(IctFace, EachPairIsMirrorSymmetric) {
       diff += (Vec3(right.row(v)) - mirrored).squaredNorm();
       norm += right.row(v).squaredNorm();
     }
+    RecordProperty(base + "_asymmetry", std::to_string(std::sqrt(diff / norm)));
     EXPECT_LE(std::sqrt(diff / norm), 0.05) << base << ": RMS asymmetry over the ROI";
   }
 }
@@ -81,12 +82,16 @@ TEST(IctFace, ZygomaticusAndDepressorAnguliMoveTheMouthCornerLikeTheExpressions)
 
   const MatX3 smileShape = readObjLike((dir / "expression_mouthSmile_L.obj").string(), head.mesh).V - head.mesh.V;
   const MatX3 smile = settledField(model, {{"zygomaticus_major_left", 1.0}});
+  RecordProperty("smile_corner_cm", std::to_string(smile.row(corner).norm()));
+  RecordProperty("smile_corner_cosine", std::to_string(cosine(smile.row(corner), smileShape.row(corner))));
   EXPECT_GE(smile.row(corner).norm(), 0.3) << "mouth corner moved less than 3 mm (cm)";
   EXPECT_GE(cosine(smile.row(corner), smileShape.row(corner)), 0.7);
   EXPECT_GT(smile.row(corner).dot(up), 0.0) << "a smile lifts the corner";
 
   const MatX3 frownShape = readObjLike((dir / "expression_mouthFrown_L.obj").string(), head.mesh).V - head.mesh.V;
   const MatX3 frown = settledField(model, {{"depressor_anguli_oris_left", 1.0}});
+  RecordProperty("frown_corner_down_cm", std::to_string(-frown.row(corner).dot(up)));
+  RecordProperty("frown_corner_cosine", std::to_string(cosine(frown.row(corner), frownShape.row(corner))));
   EXPECT_LT(frown.row(corner).dot(up), -0.1) << "depressor anguli oris pulls the corner down (cm)";
   EXPECT_GE(cosine(frown.row(corner), frownShape.row(corner)), 0.7);
 
@@ -116,10 +121,13 @@ TEST(IctFace, DepressorLabiiLowersTheLowerLipAndCorrugatorPullsTheBrowDownAndIn)
   const FaceFrame frame = head.frame();
   const Vec3 up = frame.axes.col(1), left = frame.axes.col(0);
   const MatX3 lip = settledField(model, {{"depressor_labii_inferioris_right", 1.0}, {"depressor_labii_inferioris_left", 1.0}});
+  RecordProperty("lower_lip_down_cm", std::to_string(-lip.row(head.landmarks.vertex("lower_lip_bottom")).dot(up)));
   EXPECT_LT(lip.row(head.landmarks.vertex("lower_lip_bottom")).dot(up), -0.1) << "lower lip not lowered (cm)";
   const MatX3 brow = settledField(model, {{"corrugator_supercilii_right", 1.0}, {"corrugator_supercilii_left", 1.0}});
   const Vec3 r = brow.row(head.landmarks.vertex("right_brow_inner"));
   const Vec3 l = brow.row(head.landmarks.vertex("left_brow_inner"));
+  RecordProperty("brow_down_cm", std::to_string(-r.dot(up)));
+  RecordProperty("brow_in_cm", std::to_string(r.dot(left)));
   EXPECT_LT(r.dot(up), -0.02) << "right inner brow not pulled down";
   EXPECT_LT(l.dot(up), -0.02) << "left inner brow not pulled down";
   EXPECT_GT(r.dot(left), 0.02) << "right inner brow not pulled in (towards the midline)";
@@ -163,6 +171,7 @@ TEST(IctFace, MusclesAndFieldsMoveWithTheHeadAndItsUnits) {
   const MatX3& ub = sb.skinDisplacement();
   double err = 0.0;
   for (Eigen::Index v = 0; v < ua.rows(); ++v) err = std::max(err, (s * R * Vec3(ua.row(v)) - Vec3(ub.row(v))).norm());
+  RecordProperty("invariance_relative_error", std::to_string(err / (s * ua.rowwise().norm().maxCoeff())));
   EXPECT_LE(err / (s * ua.rowwise().norm().maxCoeff()), 1e-6);
 }
 

@@ -113,6 +113,12 @@ struct MuscleUnit {
   int skinChannel = -1;          // index into FaceModel::channels()
 };
 
+// The subcutaneous springs' pull (thesis eq. 14–16) of one muscle on its skin channel: adds, for each
+// spring, the force on its skin node to `channelForce` (the channel's free f×3 field, dyn), given
+// the muscle's free displacement `muscleU` (its basis's f×3, cm). Returns whether any force was
+// added. Allocates nothing.
+bool addSpringForces(const MuscleUnit& unit, const MatX3& muscleU, SpringModel model, MatX3& channelForce);
+
 enum class ChannelKind { Muscle, Gravity, Drag };
 
 // One independent skin system of the force decomposition (thesis eq. 20–25).
