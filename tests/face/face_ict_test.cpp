@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <sstream>
 
 #include "myoshell/face/face_model.h"
 #include "myoshell/face/simulator.h"
@@ -171,7 +172,9 @@ TEST(IctFace, MusclesAndFieldsMoveWithTheHeadAndItsUnits) {
   const MatX3& ub = sb.skinDisplacement();
   double err = 0.0;
   for (Eigen::Index v = 0; v < ua.rows(); ++v) err = std::max(err, (s * R * Vec3(ua.row(v)) - Vec3(ub.row(v))).norm());
-  RecordProperty("invariance_relative_error", std::to_string(err / (s * ua.rowwise().norm().maxCoeff())));
+  std::ostringstream relative;
+  relative << err / (s * ua.rowwise().norm().maxCoeff());
+  RecordProperty("invariance_relative_error", relative.str());
   EXPECT_LE(err / (s * ua.rowwise().norm().maxCoeff()), 1e-6);
 }
 
