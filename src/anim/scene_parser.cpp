@@ -240,11 +240,19 @@ std::string sceneToJson(const SceneDesc& scene) {
                   ? json{{"builtin", scene.head.builtin}}
                   : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}, {"gravity_pins", scene.head.gravityPins}};
   json extra = json::array();
-  for (const MuscleDef& d : scene.extraMuscles)
+  for (const MuscleDef& d : scene.extraMuscles) {
+    if (d.imported()) {
+      json m = {{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"obj", d.obj}, {"origin_nodes", d.originNodes},
+                {"central_nodes", d.centralNodes}, {"insertion_nodes", d.insertionNodes}, {"contraction", d.contraction},
+                {"spring_stiffness", d.springStiffness}, {"roi_alpha", d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha}};
+      extra.push_back(m);
+      continue;
+    }
     extra.push_back({{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"origin", anchorJson(d.origin)},
                      {"insertion", anchorJson(d.insertion)}, {"width", d.width}, {"thickness", d.thickness},
                      {"stations", d.stations}, {"ring_nodes", d.ringNodes}, {"contraction", d.contraction},
                      {"spring_stiffness", d.springStiffness}, {"roi_alpha", d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha}});
+  }
   j["muscles"] = {{"library", scene.muscleLibrary}, {"use", scene.muscles}, {"extra", extra}};
   j["skin"] = materialJson(s.skin);
   j["skin"]["damping_mass"] = s.skinDampingMass;

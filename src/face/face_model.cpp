@@ -122,15 +122,15 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     unit.modeParticipation.assign(lp.perMode.data(), lp.perMode.data() + lp.perMode.size());
     for (double& p : unit.modeParticipation) p /= lp.total;
     const Vec3 axis = (unit.muscle.originPoint - unit.muscle.insertionPoint).normalized();
-    const int R = def.ringNodes;
+    const auto& insertion = unit.muscle.insertionNodes;
     // Static displacement of the insertion ring along the muscle per dyn of activation force, if
     // the muscle moved only in basis column j of B.
     auto insertionAlongPerDyn = [&](const ModalBasis& B, int j) {
       const double qPerDyn = B.Phi.col(j).dot(flat(P)) / B.lambda(j);
       double along = 0.0;
-      for (int k = 0; k < R; ++k) {
-        const int row = toFree[static_cast<size_t>(unit.muscle.insertionCentre(k))];
-        along += B.Phi.col(j).segment<3>(3 * row).dot(axis) * qPerDyn / R;
+      for (int v : insertion) {
+        const int row = toFree[static_cast<size_t>(v)];
+        if (row >= 0) along += B.Phi.col(j).segment<3>(3 * row).dot(axis) * qPerDyn / static_cast<double>(insertion.size());
       }
       return along;
     };

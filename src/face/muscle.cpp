@@ -6,6 +6,9 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/mesh/obj_reader.h"
+
+#include <algorithm>
 
 namespace myo {
 
@@ -28,8 +31,56 @@ SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const Fa
 
 }  // namespace
 
+namespace {
+
+Muscle importMuscle(const MuscleDef& def) {
+  Muscle muscle;
+  muscle.def = def;
+  muscle.mesh = readObj(def.obj);
+  const int n = muscle.mesh.vertexCount();
+  auto check = [&](const std::vector<int>& ids, const char* what) {
+    for (int v : ids)
+      if (v < 0 || v >= n)
+        throw InputError("muscle '" + def.name + "': " + what + " vertex " + std::to_string(v) + " is outside [0, " +
+                         std::to_string(n) + ")", def.obj);
+  };
+  check(def.originNodes, "origin");
+  check(def.centralNodes, "central");
+  check(def.insertionNodes, "insertion");
+  muscle.originNodes = def.originNodes;
+  muscle.centralNodes = def.centralNodes;
+  auto centroid = [&](const std::vector<int>& ids) {
+    Vec3 c = Vec3::Zero();
+    for (int v : ids) c += muscle.mesh.V.row(v).transpose();
+    return Vec3(c / static_cast<double>(ids.size()));
+  };
+  muscle.originPoint = centroid(muscle.originNodes);
+  muscle.insertionNodes = def.insertionNodes;
+  if (muscle.insertionNodes.empty()) {
+    // The quarter of the central nodes farthest from the origin.
+    std::vector<int> byDistance = muscle.centralNodes;
+    std::sort(byDistance.begin(), byDistance.end(), [&](int a, int b) {
+      return (Vec3(muscle.mesh.V.row(a)) - muscle.originPoint).norm() > (Vec3(muscle.mesh.V.row(b)) - muscle.originPoint).norm();
+    });
+    byDistance.resize(std::max<size_t>(1, byDistance.size() / 4));
+    muscle.insertionNodes = byDistance;
+  }
+  muscle.insertionPoint = centroid(muscle.insertionNodes);
+  muscle.restLength = (muscle.insertionPoint - muscle.originPoint).norm();
+  if (muscle.restLength <= 0.0) throw InputError("muscle '" + def.name + "': insertion and origin coincide", def.obj);
+  muscle.contractDirection.resize(static_cast<Eigen::Index>(muscle.centralNodes.size()), 3);
+  for (size_t c = 0; c < muscle.centralNodes.size(); ++c) {
+    const Vec3 d = muscle.originPoint - Vec3(muscle.mesh.V.row(muscle.centralNodes[c]));
+    muscle.contractDirection.row(static_cast<Eigen::Index>(c)) = (d.norm() > 0 ? d.normalized() : Vec3::Zero()).transpose();
+  }
+  return muscle;
+}
+
+}  // namespace
+
 Muscle buildMuscle(const MuscleDef& def, const Head& head) {
   def.validate();
+  if (def.imported()) return importMuscle(def);
   Muscle muscle;
   muscle.def = def;
   const FaceFrame frame = head.frame();
@@ -98,6 +149,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head) {
       muscle.centralNodes.push_back(s * R + k);
       muscle.contractDirection.row(row++) = -tangent[s].transpose();
     }
+  for (int k = 0; k < R; ++k) muscle.insertionNodes.push_back((S - 1) * R + k);
   muscle.originPoint = centre.front();
   muscle.insertionPoint = centre.back();
   muscle.restLength = 0.0;

@@ -1,6 +1,7 @@
 #include "myoshell/face/muscle_def.h"
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 
 #include "myoshell/core/doc_reader.h"
@@ -14,7 +15,12 @@ void MuscleDef::validate() const {
   if (name.empty()) throw InputError("a muscle has an empty name");
   if (side != "right" && side != "left" && side != "center")
     bad("side must be \"right\", \"left\" or \"center\" (got \"" + side + "\")");
+  if (imported()) {
+    if (originNodes.size() < 3) bad("an imported muscle needs at least 3 origin_nodes");
+    if (centralNodes.empty()) bad("an imported muscle needs central_nodes");
+  }
   for (const MuscleAnchor* a : {&origin, &insertion}) {
+    if (imported()) break;
     if (a->landmark.empty()) bad("an anchor has no landmark");
     if (!a->offset.allFinite()) bad("an anchor offset is not finite");
     if (!(a->depth > 0.0) || !std::isfinite(a->depth)) bad("anchor depth must be > 0");
@@ -49,8 +55,36 @@ MuscleDef readMuscleDef(DocReader& r) {
     r.fail("side", "must be \"right\", \"left\" or \"center\" (got \"" + d.side + "\")");
   d.facs = r.string("facs", "");
   r.string("note", "");  // free text
-  d.origin = readAnchor(r.child("origin"));
-  d.insertion = readAnchor(r.child("insertion"));
+  d.obj = r.string("obj", "");
+  if (d.imported()) {
+    // Relative to the file that defines the muscle (a library or a scene).
+    const std::filesystem::path file(r.file());
+    if (std::filesystem::path(d.obj).is_relative() && !r.file().empty() && r.file().front() != '<')
+      d.obj = (file.parent_path() / d.obj).string();
+    auto ids = [&](const char* key) {
+      std::vector<int> out;
+      if (!r.has(key)) {
+        r.integer(key, 0);  // marks the key as read
+        return out;
+      }
+      const YAML::Node list = r.node(key);
+      if (!list.IsSequence()) r.failAt(list, r.keyPath(key), "must be a list of vertex ids");
+      for (size_t i = 0; i < list.size(); ++i) {
+        const double v = r.asNumber(list[i], r.keyPath(key) + "[" + std::to_string(i) + "]");
+        if (v < 0 || v != std::floor(v)) r.failAt(list[i], r.keyPath(key), "vertex ids must be integers ≥ 0");
+        out.push_back(static_cast<int>(v));
+      }
+      return out;
+    };
+    d.originNodes = ids("origin_nodes");
+    d.centralNodes = ids("central_nodes");
+    d.insertionNodes = ids("insertion_nodes");
+    if (d.originNodes.size() < 3) r.fail("origin_nodes", "an imported muscle needs at least 3 origin nodes");
+    if (d.centralNodes.empty()) r.fail("central_nodes", "an imported muscle needs central nodes");
+  } else {
+    d.origin = readAnchor(r.child("origin"));
+    d.insertion = readAnchor(r.child("insertion"));
+  }
   d.width = r.number("width", d.width);
   r.requireAbove("width", d.width, 0.0);
   d.thickness = r.number("thickness", d.thickness);

@@ -8,6 +8,11 @@
 #include "myoshell/face/face_model.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/mesh/edge_table.h"
+#include "myoshell/mesh/obj_reader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include "myoshell/reduce/modal_warping.h"
 #include "myoshell/reduce/reference_solver.h"
 
@@ -275,6 +280,54 @@ TEST(FaceModel, ANinthMuscleComesFromDataAlone) {
   const double lift = sim.skinDisplacement().row(brow).dot(up);
   EXPECT_GT(lift, 0.02) << "the brow did not rise (cm)";
   EXPECT_LT(std::abs(sim.skinDisplacement().row(otherBrow).dot(up)), 0.2 * lift) << "the other brow moved";
+}
+
+TEST(FaceModel, AnImportedMuscleObjActsLikeTheGeneratedOne) {
+  // The zygomaticus major written out as an OBJ, then imported with its node sets.
+  const Head head = loadDefaultHead();
+  const MuscleDef generatedDef = thesisMuscleDefs()[1];  // zygomaticus_major_left
+  const Muscle generated = buildMuscle(generatedDef, head);
+  const auto dir = std::filesystem::temp_directory_path() / ("myo_import_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  writeObj((dir / "zyg.obj").string(), generated.mesh);
+  auto list = [](const std::vector<int>& ids) {
+    std::string s = "[";
+    for (size_t i = 0; i < ids.size(); ++i) s += (i ? ", " : "") + std::to_string(ids[i]);
+    return s + "]";
+  };
+  const std::string library = "{\"muscles\": [{\"name\": \"imported_zygomaticus\", \"side\": \"left\", \"obj\": \"zyg.obj\", "
+                              "\"origin_nodes\": " + list(generated.originNodes) + ", \"central_nodes\": " +
+                              list(generated.centralNodes) + ", \"insertion_nodes\": " + list(generated.insertionNodes) +
+                              ", \"contraction\": 0.18}]}";
+  std::ofstream((dir / "lib.json")) << library;
+  const std::vector<MuscleDef> imported = readMuscleDefs((dir / "lib.json").string());
+  ASSERT_TRUE(imported[0].imported());
+  FaceModelSettings s = testSettings();
+  s.gravity = false;
+  const auto a = std::make_shared<const FaceModel>(head, std::vector<MuscleDef>{generatedDef}, s);
+  const auto b = std::make_shared<const FaceModel>(head, imported, s);
+  EXPECT_EQ(b->muscles()[0].roi, a->muscles()[0].roi);
+  Simulator sa(a), sb(b);
+  sa.setActivation(0, 1.0);
+  sb.setActivation(0, 1.0);
+  sa.advance(1.0);
+  sb.advance(1.0);
+  const int corner = head.landmarks.vertex("mouth_corner_left");
+  const Vec3 ua = sa.skinDisplacement().row(corner), ub = sb.skinDisplacement().row(corner);
+  EXPECT_GT(ua.dot(ub) / (ua.norm() * ub.norm()), 0.95);
+  EXPECT_NEAR(ub.norm(), ua.norm(), 0.15 * ua.norm());
+
+  // Bad node ids name the muscle, the OBJ and the set.
+  MuscleDef bad = imported[0];
+  bad.centralNodes.push_back(999);
+  try {
+    buildMuscle(bad, head);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("muscle 'imported_zygomaticus': central vertex 999 is outside [0, 36)"),
+              std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Simulator, ActivationsAreClampedAndNaNRejected) {

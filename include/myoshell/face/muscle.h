@@ -18,6 +18,7 @@ struct Muscle {
   TriMesh mesh;
   std::vector<int> originNodes;   // pinned: the whole origin ring (two non-collinear rows, top and bottom)
   std::vector<int> centralNodes;  // where the activation force acts: the ring's top and bottom middle nodes
+  std::vector<int> insertionNodes;  // the moving end (the last ring), whose motion calibrates the force
   // Per central node, the unit direction of a contracting force (along the muscle's centre line,
   // towards the origin), cm-free; relaxation pushes the other way.
   MatX3 contractDirection;
@@ -27,7 +28,9 @@ struct Muscle {
   int insertionCentre(int k = 0) const;  // a vertex of the insertion ring (k in [0, ringNodes))
 };
 
-// Builds a muscle on a head from its definition: the centre line runs from the origin anchor to the
+// Builds a muscle on a head from its definition. An imported muscle (def.obj) is read as it is, with
+// its node sets; the contraction direction of a central node points to the origin nodes' centroid.
+// A generated muscle: the centre line runs from the origin anchor to the
 // insertion anchor, each station is pushed under the skin along the skin normal at an interpolated
 // depth, and a flat elliptic ring (width × thickness) is placed across it; the ends are closed
 // with fans. Throws InputError naming the muscle when a landmark is missing or the anchors coincide.

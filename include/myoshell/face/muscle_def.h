@@ -41,6 +41,16 @@ struct MuscleDef {
   // ROI factor α of thesis eq. 19 (> 1); ≤ 0 = model default.
   double roiAlpha = 0.0;
 
+  // Imported muscle (instead of a generated one): an OBJ of the closed muscle shell in the head's
+  // space (cm), with its node sets as vertex ids of that OBJ. origin/insertion anchors, width,
+  // thickness, stations and ring_nodes are then not used.
+  std::string obj;                  // path (resolved against the file that defined the muscle)
+  std::vector<int> originNodes;     // pinned to the skull (≥ 3, not collinear)
+  std::vector<int> centralNodes;    // where the activation force acts
+  std::vector<int> insertionNodes;  // the moving end used for calibration; empty = the quarter of
+                                    // the central nodes farthest from the origin
+  bool imported() const { return !obj.empty(); }
+
   // Throws InputError naming the muscle and the field for impossible values.
   void validate() const;
 };
