@@ -9,6 +9,7 @@
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/head.h"
+#include "myoshell/mesh/obj_reader.h"
 #include "myoshell/mesh/vertex_set.h"
 
 namespace myo {
@@ -76,6 +77,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     scene.head.obj = h.string("obj", "");
     scene.head.landmarks = h.string("landmarks", "");
     scene.head.gravityPins = h.string("gravity_pins", "");
+    scene.head.skull = h.string("skull", "");
     if (!scene.head.obj.empty() && scene.head.landmarks.empty())
       h.fail("landmarks", "a head OBJ needs a landmark file");
     if (scene.head.obj.empty() && scene.head.builtin != "default")
@@ -239,6 +241,7 @@ std::string sceneToJson(const SceneDesc& scene) {
   j["head"] = scene.head.obj.empty()
                   ? json{{"builtin", scene.head.builtin}}
                   : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}, {"gravity_pins", scene.head.gravityPins}};
+  if (!scene.head.skull.empty()) j["head"]["skull"] = scene.head.skull;
   json extra = json::array();
   for (const MuscleDef& d : scene.extraMuscles) {
     if (d.imported()) {
@@ -298,6 +301,7 @@ std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCac
                   ? loadDefaultHead()
                   : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),
                              scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins));
+  if (!scene.head.skull.empty()) head.skull = readObj(resolve(scene.head.skull));
 
   std::vector<MuscleDef> library = scene.muscleLibrary == "builtin" ? thesisMuscleDefs()
                                                                      : readMuscleDefs(resolve(scene.muscleLibrary));

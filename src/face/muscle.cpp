@@ -94,11 +94,19 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head) {
   // muscle follows the face's curvature, then pushed under it along the normal (thesis Fig. 10).
   const int S = def.stations, R = def.ringNodes;
   std::vector<Vec3> centre(S), normal(S);
+  // With a skull, the origin sits on the bone: its depth is the skin-to-skull distance under the
+  // origin's skin point (never less than the definition's own depth).
+  double originDepth = frame.scale * def.origin.depth;
+  if (head.hasSkull()) {
+    const MatX3 skullNormals = vertexNormals(head.skull.V, head.skull.F);
+    const SurfacePoint bone = closestSurfacePoint(head.skull.V, head.skull.F, skullNormals, o.point);
+    originDepth = std::max(originDepth, bone.distance);
+  }
   for (int s = 0; s < S; ++s) {
     const double t = static_cast<double>(s) / (S - 1);
     const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals,
                                                (1 - t) * o.point + t * i.point);
-    const double depth = frame.scale * ((1 - t) * def.origin.depth + t * def.insertion.depth);
+    const double depth = (1 - t) * originDepth + t * frame.scale * def.insertion.depth;
     normal[s] = p.normal;
     centre[s] = p.point - depth * p.normal;
   }

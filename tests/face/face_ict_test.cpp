@@ -9,6 +9,8 @@
 
 #include "myoshell/face/face_model.h"
 #include "myoshell/face/simulator.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/geometry.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/test_data.h"
 
@@ -133,6 +135,26 @@ TEST(IctFace, DepressorLabiiLowersTheLowerLipAndCorrugatorPullsTheBrowDownAndIn)
   EXPECT_LT(l.dot(up), -0.02) << "left inner brow not pulled down";
   EXPECT_GT(r.dot(left), 0.02) << "right inner brow not pulled in (towards the midline)";
   EXPECT_LT(l.dot(left), -0.02) << "left inner brow not pulled in (towards the midline)";
+}
+
+TEST(IctFace, WithTheSkullMuscleOriginsSitOnTheBone) {
+  MYO_REQUIRE_SHARED_DATA();
+  Head head = ictHead();
+  head.skull = readObj((test::sharedDataDir() / "skull" / "skull_in_ict_head.obj").string());
+  const MatX3 skullNormals = vertexNormals(head.skull.V, head.skull.F);
+  for (const MuscleDef& def : thesisMuscleDefs()) {
+    const Muscle withSkull = buildMuscle(def, head);
+    const SurfacePoint bone = closestSurfacePoint(head.skull.V, head.skull.F, skullNormals, withSkull.originPoint);
+    RecordProperty(def.name + "_origin_to_skull_cm", std::to_string(bone.distance));
+    EXPECT_LT(bone.distance, 0.35) << def.name << ": origin centre is not on the skull (cm)";
+  }
+  // The face still works with skull-anchored origins.
+  const auto model = std::make_shared<const FaceModel>(head, std::vector<MuscleDef>{thesisMuscleDefs()[1]}, ictSettings());
+  const MatX3 smile = settledField(model, {{"zygomaticus_major_left", 1.0}});
+  const int corner = head.landmarks.vertex("mouth_corner_left");
+  RecordProperty("skull_smile_corner_cm", std::to_string(smile.row(corner).norm()));
+  EXPECT_GE(smile.row(corner).norm(), 0.3);
+  EXPECT_GT(smile.row(corner).dot(head.frame().axes.col(1)), 0.0);
 }
 
 TEST(IctFace, MusclesAndFieldsMoveWithTheHeadAndItsUnits) {

@@ -18,6 +18,7 @@ struct HeadDesc {
   std::string obj;                  // a user's head OBJ (absolute, or resolved against the scene's folder)
   std::string landmarks;            // its landmark file (required with obj)
   std::string gravityPins;          // its gravity pin set (vertex-set JSON); empty = rim + landmarks
+  std::string skull;                // a skull OBJ in the head's space (optional): muscle origins sit on it
 };
 
 struct DragDesc {

@@ -22,6 +22,10 @@ struct Head {
   Landmarks landmarks;           // resolves every kRequiredLandmarks name (checked on load)
   std::vector<int> gravityPins;  // sorted vertex ids held fixed under gravity
   std::string pinsSource;        // how gravityPins were chosen ("rigid_vertices.json", "rim + …")
+  // The skull under the skin, cm, same space as `mesh`; empty (0 vertices) when the head has none.
+  // When present, muscle origins sit on it (docs/muscles.md).
+  TriMesh skull;
+  bool hasSkull() const { return skull.vertexCount() > 0; }
   FaceFrame frame() const { return faceFrame(mesh.V, landmarks); }
 };
 
