@@ -15,24 +15,13 @@
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/shell/discrete_shell.h"
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 class EnergyCli : public ::testing::Test {
  protected:
@@ -50,16 +39,7 @@ class EnergyCli : public ::testing::Test {
     return p;
   }
 
-  CliRun run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = "'" + test::cliPath() + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
+  test::CliResult run(const std::string& args) { return test::runCli(args); }
 
   fs::path dir_;
 };
@@ -89,7 +69,7 @@ std::string gridObj(bool deformed) {
 TEST_F(EnergyCli, JsonMatchesTheLibrary) {
   const fs::path rest = write("rest.obj", gridObj(false));
   const fs::path pose = write("pose.obj", gridObj(true));
-  const CliRun r = run("energy '" + rest.string() + "' '" + pose.string() + "' --ka 12.5 --kl 3 --kb 0.25 --json");
+  const test::CliResult r = run("energy '" + rest.string() + "' '" + pose.string() + "' --ka 12.5 --kl 3 --kb 0.25 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   std::set<std::string> keys;
@@ -118,7 +98,7 @@ TEST_F(EnergyCli, JsonMatchesTheLibrary) {
 
 TEST_F(EnergyCli, DefaultStiffnessesAreTheMaterialDefaults) {
   const fs::path rest = write("rest.obj", gridObj(false));
-  const CliRun r = run("energy '" + rest.string() + "' '" + rest.string() + "' --json");
+  const test::CliResult r = run("energy '" + rest.string() + "' '" + rest.string() + "' --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   const ShellMaterial defaults;
@@ -136,21 +116,21 @@ TEST_F(EnergyCli, TopologyMismatchExitsWithBadInput) {
   ASSERT_NE(at, std::string::npos);
   other.replace(at, 9, "f 1 2 7 6");
   const fs::path pose = write("pose.obj", other);
-  const CliRun r = run("energy '" + rest.string() + "' '" + pose.string() + "' --json");
+  const test::CliResult r = run("energy '" + rest.string() + "' '" + pose.string() + "' --json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("differs from the rest mesh"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("pose.obj"), std::string::npos) << r.err;
 
   // Fewer vertices.
   const fs::path small = write("small.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const CliRun r2 = run("energy '" + rest.string() + "' '" + small.string() + "'");
+  const test::CliResult r2 = run("energy '" + rest.string() + "' '" + small.string() + "'");
   EXPECT_EQ(r2.exitCode, 2);
   EXPECT_NE(r2.err.find("vertices but the rest mesh"), std::string::npos) << r2.err;
 }
 
 TEST_F(EnergyCli, NegativeStiffnessIsBadInput) {
   const fs::path rest = write("rest.obj", gridObj(false));
-  const CliRun r = run("energy '" + rest.string() + "' '" + rest.string() + "' --kb -1");
+  const test::CliResult r = run("energy '" + rest.string() + "' '" + rest.string() + "' --kb -1");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("k_B must be ≥ 0 (got -1)"), std::string::npos) << r.err;
 }

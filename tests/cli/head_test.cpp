@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
@@ -18,22 +18,10 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;  // stdout (and stderr when merged)
-};
-
-RunResult runIn(const fs::path& dir, const std::string& args, bool mergeStderr = true) {
-  RunResult r;
-  const std::string cmd = "cd '" + dir.string() + "' && '" + test::cliPath() + "' " + args +
-                          (mergeStderr ? " 2>&1" : " 2>/dev/null");
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// The CLI run in `dir`: stdout, and stderr too when mergeStderr.
+test::CliResult runIn(const fs::path& dir, const std::string& args, bool mergeStderr = true) {
+  test::CliResult r = test::runCli(args, dir);
+  if (mergeStderr) r.out = r.merged;
   return r;
 }
 
@@ -46,7 +34,7 @@ fs::path scratch(const std::string& name) {
 
 TEST(HeadCommand, DefaultHeadFromAnyFolder) {
   const fs::path dir = scratch("default");
-  const RunResult r = runIn(dir, "head --json --render face.png --size 128", false);
+  const test::CliResult r = runIn(dir, "head --json --render face.png --size 128", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["name"], "default");
@@ -68,7 +56,7 @@ TEST(HeadCommand, DefaultHeadFromAnyFolder) {
 TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
   const fs::path dir = scratch("pictures");
   for (const char* view : {"front", "threequarter", "side", "back"}) {
-    const RunResult r =
+    const test::CliResult r =
         runIn(dir, std::string("head --levels 0 --wire --pins-marked --size 96 --view ") + view +
                        " --render " + view + ".png");
     ASSERT_EQ(r.exitCode, 0) << r.out;
@@ -80,7 +68,7 @@ TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
     EXPECT_EQ(static_cast<unsigned char>(head[23]), 96) << view;  // height
   }
   fs::create_directories(dir / "folder.png");
-  RunResult r = runIn(dir, "head --levels 0 --render folder.png");
+  test::CliResult r = runIn(dir, "head --levels 0 --render folder.png");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("folder.png: cannot write picture"));
   r = runIn(dir, "head --levels 0 --view top --render x.png");
@@ -91,7 +79,7 @@ TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
 TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
   const fs::path dir = scratch("roundtrip");
   ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj --write-landmarks lm.json").exitCode, 0);
-  const RunResult r = runIn(dir, "head h.obj --landmarks lm.json --json", false);
+  const test::CliResult r = runIn(dir, "head h.obj --landmarks lm.json --json", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["vertices"], 468);
@@ -102,7 +90,7 @@ TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
 
 TEST(HeadCommand, IctFolder) {
   MYO_REQUIRE_SHARED_DATA();
-  const RunResult r =
+  const test::CliResult r =
       runIn(scratch("ict"), "head '" + (test::sharedDataDir() / "ict").string() + "' --json", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
@@ -116,7 +104,7 @@ TEST(HeadCommand, LandmarkErrorsAreBadInput) {
   const fs::path dir = scratch("errors");
   ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj").exitCode, 0);
   std::ofstream(dir / "lm.json") << "{\"nose_tip\": 4}";
-  RunResult r = runIn(dir, "head h.obj --landmarks lm.json");
+  test::CliResult r = runIn(dir, "head h.obj --landmarks lm.json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("lm.json: missing landmark 'right_eye_outer'"));
   r = runIn(dir, "head h.obj");

@@ -13,7 +13,7 @@
 
 #include "myoshell/mesh/mesh_stats.h"
 #include "myoshell/mesh/obj_reader.h"
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
@@ -21,21 +21,10 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;  // stdout and stderr together
-};
-
-RunResult runCli(const std::string& args) {
-  RunResult r;
-  const std::string cmd = "'" + test::cliPath() + "' " + args + " 2>&1";
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// The CLI's stdout and stderr together.
+test::CliResult runCli(const std::string& args) {
+  test::CliResult r = test::runCli(args);
+  r.out = r.merged;
   return r;
 }
 
@@ -56,7 +45,7 @@ TEST(InfoCommand, IctHeadLibraryNumbers) {
 
 TEST(InfoCommand, IctHeadJson) {
   MYO_REQUIRE_SHARED_DATA();
-  const RunResult r = runCli("info --json '" + ictHead() + "'");
+  const test::CliResult r = runCli("info --json '" + ictHead() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"vertices", "triangles", "edges", "interior_edges", "boundary_edges",
@@ -79,7 +68,7 @@ TEST(InfoCommand, IctHeadJson) {
 
 TEST(InfoCommand, IctHeadTable) {
   MYO_REQUIRE_SHARED_DATA();
-  const RunResult r = runCli("info '" + ictHead() + "'");
+  const test::CliResult r = runCli("info '" + ictHead() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("11248"));
   EXPECT_THAT(r.out, HasSubstr("22288"));
@@ -90,7 +79,7 @@ TEST(InfoCommand, FaultyMeshReportsEveryFaultAndExitsThree) {
   const fs::path path = fs::temp_directory_path() / ("myo_info_faulty_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 1 zz 0\n"
                          "f 1 2 3\nf 1 2 4\nf 1 2 9\nf 2 1 3\n";
-  const RunResult r = runCli("info --json '" + path.string() + "'");
+  const test::CliResult r = runCli("info --json '" + path.string() + "'");
   fs::remove(path);
   ASSERT_EQ(r.exitCode, 3) << r.out;
   const auto j = nlohmann::json::parse(r.out);
@@ -106,7 +95,7 @@ TEST(InfoCommand, FaultyMeshReportsEveryFaultAndExitsThree) {
 }
 
 TEST(InfoCommand, MissingFileExitsTwoWithMessage) {
-  const RunResult r = runCli("info /nonexistent/head.obj");
+  const test::CliResult r = runCli("info /nonexistent/head.obj");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("myoshell: error: /nonexistent/head.obj: cannot open"));
 }

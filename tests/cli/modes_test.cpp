@@ -16,24 +16,13 @@
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/shell/discrete_shell.h"
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ModesRun {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-std::string slurpFile(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 class ModesCli : public ::testing::Test {
  protected:
@@ -52,17 +41,7 @@ class ModesCli : public ::testing::Test {
     return p;
   }
 
-  ModesRun run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd =
-        "'" + test::cliPath() + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    ModesRun r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurpFile(out);
-    r.err = slurpFile(err);
-    return r;
-  }
+  test::CliResult run(const std::string& args) { return test::runCli(args); }
 
   // A curved 8×2-quad strip: 9×3 vertices, vertex (i, j) at index 9j + i.
   static std::string stripObj() {
@@ -84,7 +63,7 @@ class ModesCli : public ::testing::Test {
 };
 
 TEST_F(ModesCli, JsonMatchesTheLibrary) {
-  const ModesRun r = run("modes " + quoted(mesh_) + " --pin " + quoted(pins_) + " --count 6 --kb 2.5 --json");
+  const test::CliResult r = run("modes " + quoted(mesh_) + " --pin " + quoted(pins_) + " --count 6 --kb 2.5 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"eigenvalues", "solve_seconds", "free_vertices", "modes"})
@@ -108,8 +87,8 @@ TEST_F(ModesCli, JsonMatchesTheLibrary) {
 }
 
 TEST_F(ModesCli, DensityScalesEigenvaluesInversely) {
-  const ModesRun a = run("modes " + quoted(mesh_) + " --pin " + quoted(pins_) + " --count 4 --json");
-  const ModesRun b = run("modes " + quoted(mesh_) + " --pin " + quoted(pins_) + " --count 4 --density 2 --json");
+  const test::CliResult a = run("modes " + quoted(mesh_) + " --pin " + quoted(pins_) + " --count 4 --json");
+  const test::CliResult b = run("modes " + quoted(mesh_) + " --pin " + quoted(pins_) + " --count 4 --density 2 --json");
   ASSERT_EQ(a.exitCode, 0) << a.err;
   ASSERT_EQ(b.exitCode, 0) << b.err;
   const auto ea = nlohmann::json::parse(a.out)["eigenvalues"].get<std::vector<double>>();
@@ -118,14 +97,14 @@ TEST_F(ModesCli, DensityScalesEigenvaluesInversely) {
 }
 
 TEST_F(ModesCli, FreeShellShowsRigidModesAndTextOutputWorks) {
-  const ModesRun r = run("modes " + quoted(mesh_) + " --count 8 --solver shift-invert --json");
+  const test::CliResult r = run("modes " + quoted(mesh_) + " --count 8 --solver shift-invert --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   const auto ev = j["eigenvalues"].get<std::vector<double>>();
   EXPECT_EQ(j["free_vertices"].get<int>(), 27);
   for (int k = 0; k < 6; ++k) EXPECT_LT(std::abs(ev[k]), 1e-8 * ev[7]) << "mode " << k;
   EXPECT_GT(ev[6], 1e-4 * ev[7]);
-  const ModesRun t = run("modes " + quoted(mesh_) + " --count 3");
+  const test::CliResult t = run("modes " + quoted(mesh_) + " --count 3");
   ASSERT_EQ(t.exitCode, 0) << t.err;
   EXPECT_NE(t.out.find("lambda"), std::string::npos) << t.out;
 }
@@ -133,16 +112,16 @@ TEST_F(ModesCli, FreeShellShowsRigidModesAndTextOutputWorks) {
 TEST_F(ModesCli, BadInputExitsWithCode2) {
   EXPECT_EQ(run("modes " + quoted(mesh_) + " --count 0").exitCode, 2);
   const fs::path bad = write("bad_pins.json", "[0, 99]");
-  const ModesRun r = run("modes " + quoted(mesh_) + " --pin " + quoted(bad));
+  const test::CliResult r = run("modes " + quoted(mesh_) + " --pin " + quoted(bad));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("bad_pins.json"), std::string::npos) << r.err;
-  const ModesRun s = run("modes " + quoted(mesh_) + " --solver lanczos");
+  const test::CliResult s = run("modes " + quoted(mesh_) + " --solver lanczos");
   EXPECT_EQ(s.exitCode, 2);
   EXPECT_NE(s.err.find("--solver"), std::string::npos) << s.err;
-  const ModesRun m = run("modes " + quoted(dir_ / "missing.obj"));
+  const test::CliResult m = run("modes " + quoted(dir_ / "missing.obj"));
   EXPECT_EQ(m.exitCode, 2);
   // More modes than free DOFs.
-  const ModesRun c = run("modes " + quoted(mesh_) + " --count 1000");
+  const test::CliResult c = run("modes " + quoted(mesh_) + " --count 1000");
   EXPECT_EQ(c.exitCode, 2);
   EXPECT_NE(c.err.find("1000 modes requested"), std::string::npos) << c.err;
 }

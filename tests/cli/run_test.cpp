@@ -67,14 +67,14 @@ TEST_F(RunCommand, WritesObjFramesStatsAndPictures) {
   EXPECT_GT((last.V - first.V).rowwise().norm().maxCoeff(), 0.01);
 
   // A second run loads every basis from the cache.
-  const auto again = test::runCli("run '" + scene + "' --out '" + (dir_ / "out2").string() + "' --json" + cacheArg(), false);
+  const auto again = test::runCli("run '" + scene + "' --out '" + (dir_ / "out2").string() + "' --json" + cacheArg());
   ASSERT_EQ(again.exitCode, 0) << again.out;
   EXPECT_EQ(nlohmann::json::parse(again.out)["cache_hits"], 2);
 }
 
 TEST_F(RunCommand, CheckPrintsTheSceneWithDefaults) {
   const std::string scene = write("small.json", kSmallScene);
-  const auto r = test::runCli("check '" + scene + "'", false);
+  const auto r = test::runCli("check '" + scene + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["name"], "small");
@@ -87,17 +87,17 @@ TEST_F(RunCommand, BadScenesExitTwoNamingFileLineAndKey) {
   const std::string scene = write("bad.json", "{\n  \"fps\": 30,\n  \"numerics\": {\"skin_mode\": 8}\n}\n");
   const auto r = test::runCli("check '" + scene + "'");
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_NE(r.out.find(scene + ":3:16: key 'numerics.skin_mode': unknown key"), std::string::npos) << r.out;
+  EXPECT_NE(r.merged.find(scene + ":3:16: key 'numerics.skin_mode': unknown key"), std::string::npos) << r.merged;
 
   const auto missing = test::runCli("run '" + (dir_ / "nope.json").string() + "' --out '" + (dir_ / "o").string() + "'");
   EXPECT_EQ(missing.exitCode, 2);
-  EXPECT_NE(missing.out.find("nope.json: cannot open scene file"), std::string::npos) << missing.out;
+  EXPECT_NE(missing.merged.find("nope.json: cannot open scene file"), std::string::npos) << missing.merged;
 
   const std::string file = write("not_a_folder", "x");
   const std::string good = write("small.json", kSmallScene);
   const auto notDir = test::runCli("run '" + good + "' --out '" + file + "'" + cacheArg());
   EXPECT_EQ(notDir.exitCode, 2);
-  EXPECT_NE(notDir.out.find("output path exists and is not a folder"), std::string::npos) << notDir.out;
+  EXPECT_NE(notDir.merged.find("output path exists and is not a folder"), std::string::npos) << notDir.merged;
 }
 
 }  // namespace

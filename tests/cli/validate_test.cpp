@@ -9,28 +9,12 @@
 #include <set>
 #include <string>
 
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out;  // stdout only (stderr is left on the terminal)
-};
-
-CliRun runCli(const std::string& args) {
-  CliRun r;
-  const std::string cmd = "'" + test::cliPath() + "' " + args;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using test::runCli;
 
 const nlohmann::json& findCase(const nlohmann::json& j, const std::string& name) {
   for (const auto& c : j["cases"])
@@ -41,7 +25,7 @@ const nlohmann::json& findCase(const nlohmann::json& j, const std::string& name)
 }
 
 TEST(ValidateCommand, JsonStructureAndBounds) {
-  const CliRun r = runCli("validate --json");
+  const test::CliResult r = runCli("validate --json");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_TRUE(j.contains("cases"));
@@ -81,7 +65,7 @@ TEST(ValidateCommand, JsonStructureAndBounds) {
 }
 
 TEST(ValidateCommand, RejectsBadModeCount) {
-  const CliRun r = runCli("validate --modes 0 2>/dev/null");
+  const test::CliResult r = runCli("validate --modes 0");
   EXPECT_EQ(r.exitCode, 2);
 }
 

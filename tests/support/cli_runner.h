@@ -1,10 +1,14 @@
-// Running the `myoshell` CLI from tests: exit code and everything it printed.
+// Running the `myoshell` CLI from tests: its exit code, and what it printed on stdout and stderr.
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
-#include <array>
-#include <cstdio>
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "support/test_data.h"
@@ -13,21 +17,35 @@ namespace myo::test {
 
 struct CliResult {
   int exitCode = -1;
-  std::string out;  // stdout, and stderr unless the caller redirected it
+  std::string out;     // stdout
+  std::string err;     // stderr
+  std::string merged;  // stdout followed by stderr
 };
 
-// Runs `myoshell ARGS` through the shell (ARGS is shell syntax: quote paths with spaces) with stderr
-// merged into stdout unless mergeStderr is false.
-inline CliResult runCli(const std::string& args, bool mergeStderr = true) {
+// Runs `myoshell ARGS` through the shell (ARGS is shell syntax: quote paths with spaces), in
+// `workDir` when given.
+inline CliResult runCli(const std::string& args, const std::filesystem::path& workDir = {}) {
+  namespace fs = std::filesystem;
+  static std::atomic<int> counter{0};
+  const fs::path base = fs::temp_directory_path() /
+                        ("myo_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const fs::path outFile = base.string() + ".out", errFile = base.string() + ".err";
+  std::string cmd = "'" + cliPath() + "' " + args + " >'" + outFile.string() + "' 2>'" + errFile.string() + "'";
+  if (!workDir.empty()) cmd = "cd '" + workDir.string() + "' && " + cmd;
+  const int status = std::system(cmd.c_str());
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
   CliResult r;
-  const std::string cmd = "'" + cliPath() + "' " + args + (mergeStderr ? " 2>&1" : "");
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(outFile);
+  r.err = slurp(errFile);
+  r.merged = r.out + r.err;
+  fs::remove(outFile);
+  fs::remove(errFile);
   return r;
 }
 
