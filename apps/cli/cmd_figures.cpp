@@ -1,0 +1,487 @@
+// `myoshell figures --out DIR [--scenes DIR] [--cache DIR] [--only fig18,fig26] [--size PX]`:
+// renders the thesis's Figures 17–27 from the scenes of scenes/thesis/ (docs/thesis_experiments.md)
+// with the render layer's software rasterizer: one contact sheet per figure, each captioned with
+// the thesis's figure number. Deformed skin is coloured by displacement magnitude (viridis, the
+// range written on the colour bar); ROI and pin pictures use the thesis's colours (red free,
+// blue pinned, yellow fixed feature points).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "command.h"
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/face/simulator.h"
+#include "myoshell/io/basis_cache_file.h"
+#include "myoshell/render/camera.h"
+#include "myoshell/render/colormap.h"
+#include "myoshell/render/contact_sheet.h"
+#include "myoshell/render/image.h"
+#include "myoshell/render/markers.h"
+#include "myoshell/render/png.h"
+#include "myoshell/render/render_mesh.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FigureOptions {
+  std::string outDir = "docs/figures";
+  std::string scenesDir = "scenes/thesis";
+  std::string cacheDir = ".cache/bases";
+  std::string only;  // comma-separated figure keys (fig17, fig18, …); empty = all
+  int size = 360;    // tile width and height, pixels
+};
+
+const Rgb kBackground(0.16, 0.17, 0.20);
+const Rgb kSkin(0.93, 0.78, 0.68);
+const Rgb kMuscle(0.80, 0.18, 0.16);
+const Rgb kFree(0.85, 0.15, 0.12);    // thesis: red = free (deformed) vertices
+const Rgb kPinned(0.20, 0.35, 0.85);  // thesis: blue = statically constrained
+const Rgb kFeature(0.98, 0.85, 0.10); // thesis: yellow = fixed feature points
+
+struct Loaded {
+  SceneDesc scene;
+  std::shared_ptr<const FaceModel> model;
+};
+
+class Figures {
+ public:
+  explicit Figures(const FigureOptions& opt) : opt_(opt), cache_(opt.cacheDir) {}
+
+  Loaded load(const std::string& name, const std::function<void(SceneDesc&)>& edit = {}) {
+    Loaded l;
+    l.scene = readScene((fs::path(opt_.scenesDir) / (name + ".json")).string());
+    if (edit) edit(l.scene);
+    l.model = buildSceneFace(l.scene, &cache_);
+    return l;
+  }
+
+  // Plays the scene's timeline on `sim` up to time t (s), as `myoshell run` does.
+  static void playTo(const SceneDesc& scene, Simulator& sim, double t) {
+    const FaceModel& model = sim.model();
+    const double dt = model.settings().dt;
+    while (sim.time() < t - 0.5 * dt) {
+      const double now = sim.time();
+      for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(now));
+      if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(now));
+      for (size_t d = 0; d < scene.drags.size(); ++d) {
+        auto it = scene.dragForces.find(scene.drags[d].name);
+        if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(now));
+      }
+      sim.step();
+    }
+  }
+
+  Camera camera(const FaceModel& model, ViewPreset preset, double yaw = 0.0) const {
+    const FaceFrame f = model.head().frame();
+    const ViewFrame vf{f.origin, f.axes, f.scale};
+    Camera c = yaw != 0.0 ? orbitCamera(vf, yaw, 0.0) : presetCamera(vf, preset);
+    if (model.head().name == "default") {
+      fitToBounds(c, model.head().mesh.V, W(), W(), 0.04);
+    } else {
+      // A whole head (ICT): frame the face — its landmarks, with room above the brows.
+      const auto named = model.head().landmarks.resolved();
+      MatX3 P(static_cast<int>(named.size()), 3);
+      int i = 0;
+      for (const auto& [name, v] : named) P.row(i++) = model.head().mesh.V.row(v);
+      fitToBounds(c, P, W(), W(), 0.22);
+    }
+    return c;
+  }
+
+  int W() const { return opt_.size * kSuper; }
+
+  // One tile: the skin at positions V (colours per vertex, or skin tone), optionally the muscles
+  // (drawn first, the skin over them at `skinOpacity`), markers, and a colour bar.
+  Image tile(const FaceModel& model, const Camera& cam, const MatX3& V, const MatX3& colors,
+             const std::vector<MatX3>* muscles = nullptr, double skinOpacity = 1.0,
+             const std::vector<Marker>& markers = {}, const ColorBar* bar = nullptr) const {
+    Image image(W(), W(), kBackground);
+    DepthBuffer depth(W(), W());
+    if (muscles) {
+      RenderStyle ms;
+      ms.color = kMuscle;
+      for (size_t m = 0; m < muscles->size(); ++m)
+        renderMesh(image, depth, cam, (*muscles)[m], model.muscles()[m].muscle.mesh.F, ms);
+    }
+    RenderStyle style;
+    style.color = kSkin;
+    style.backColor = Rgb(0.55, 0.60, 0.75);
+    if (colors.rows() == V.rows()) style.vertexColors = colors;
+    style.opacity = skinOpacity;
+    renderMesh(image, depth, cam, V, model.head().mesh.F, style);
+    if (!markers.empty()) {
+      MarkerStyle mst;
+      mst.depthTolerance = 0.02 * cam.orthoHeight;
+      mst.outlineWidth = 0.8 * kSuper;
+      drawMarkers(image, &depth, cam, markers, mst);
+    }
+    Image out = downsample(image, kSuper);
+    if (bar) drawColorBar(out, *bar);
+    return out;
+  }
+
+  // Displacement-magnitude colours over [0, maxU] cm, and the matching colour bar.
+  static MatX3 displacementColors(const MatX3& U, double maxU) {
+    return scalarColors(U.rowwise().norm(), 0.0, std::max(maxU, 1e-9), ColorMap::viridis);
+  }
+  ColorBar bar(double maxU) const {
+    ColorBar b;
+    b.x = 10;
+    b.y = opt_.size - 34;
+    b.width = opt_.size / 2;
+    b.height = 8;
+    b.max = maxU;
+    b.label = "displacement, cm";
+    b.textColor = Rgb(0.95, 0.95, 0.95);
+    return b;
+  }
+
+  // Pinned / free colouring of a vertex set.
+  static MatX3 roiColors(int n, const std::vector<int>& freeVertices) {
+    MatX3 C(n, 3);
+    for (int i = 0; i < n; ++i) C.row(i) = kPinned.transpose();
+    for (int v : freeVertices) C.row(v) = kFree.transpose();
+    return C;
+  }
+
+  void save(const std::string& file, const std::vector<Image>& tiles, const std::vector<std::string>& captions,
+            int columns, const std::string& title) {
+    ContactSheetStyle st;
+    st.columns = columns;
+    st.captionScale = 1;
+    st.background = Rgb(1, 1, 1);
+    Image sheet = contactSheet(tiles, captions, st);
+    sheet = withCaption(sheet, title, 2);
+    const fs::path path = fs::path(opt_.outDir) / file;
+    writePng(path.string(), sheet);
+    written_.push_back(path.string());
+    fmt::print("wrote {}\n", path.string());
+  }
+
+  const std::vector<std::string>& written() const { return written_; }
+
+  static constexpr int kSuper = 2;
+
+ private:
+  FigureOptions opt_;
+  FileBasisCache cache_;
+  std::vector<std::string> written_;
+};
+
+std::vector<MatX3> musclesOf(const Simulator& sim) {
+  std::vector<MatX3> out;
+  for (size_t m = 0; m < sim.model().muscles().size(); ++m) out.push_back(sim.musclePositions(static_cast<int>(m)));
+  return out;
+}
+
+std::string fmtTime(double t) { return fmt::format("t = {:.2f} s", t); }
+
+// Fig. 17: the eight muscles alone, contraction (a) and relaxation (b), skin translucent over them.
+void fig17(Figures& F) {
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  for (const char* name : {"fig17_contract", "fig17_relax"}) {
+    const Loaded l = F.load(name);
+    const Camera cam = F.camera(*l.model, ViewPreset::front);
+    Simulator sim(l.model);
+    for (double t : {0.0, 0.15, 0.6}) {
+      Figures::playTo(l.scene, sim, t);
+      const auto mus = musclesOf(sim);
+      tiles.push_back(F.tile(*l.model, cam, l.model->head().mesh.V, {}, &mus, 0.25));
+      caps.push_back(fmt::format("({}) {} {}", name == std::string("fig17_contract") ? "a" : "b",
+                                 name == std::string("fig17_contract") ? "contraction" : "relaxation", fmtTime(t)));
+    }
+  }
+  F.save("fig17_muscles.png", tiles, caps, 3,
+         "Fig. 17: muscle deformation by tangential force, origin rings pinned (a) contraction (b) relaxation");
+}
+
+// Fig. 18: per muscle type: muscle, ROI (red free, blue pinned), right side only, both sides.
+void fig18(Figures& F) {
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  const std::vector<std::pair<std::string, std::string>> rows = {
+      {"fig18_zygomaticus", "zygomaticus_major"},
+      {"fig18_depressor_labii", "depressor_labii_inferioris"},
+      {"fig18_depressor_anguli", "depressor_anguli_oris"}};
+  const char* letter[] = {"a", "b", "c"};
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const Loaded l = F.load(rows[r].first);
+    const FaceModel& model = *l.model;
+    const Camera cam = F.camera(model, ViewPreset::front);
+    const int mr = model.muscleIndex(rows[r].second + "_right");
+    Simulator sim(l.model);
+    const auto rest = musclesOf(sim);
+    tiles.push_back(F.tile(model, cam, model.head().mesh.V, {}, &rest, 0.25));
+    caps.push_back(fmt::format("({}) {}", letter[r], rows[r].second));
+    tiles.push_back(F.tile(model, cam, model.head().mesh.V,
+                           Figures::roiColors(model.skin().vertexCount(), model.muscles()[mr].roi)));
+    caps.push_back(fmt::format("ROI, {} free vertices", model.muscles()[mr].roi.size()));
+    Figures::playTo(l.scene, sim, 0.95);
+    const MatX3 u1 = sim.skinDisplacement();
+    const MatX3 p1 = sim.skinPositions();
+    Figures::playTo(l.scene, sim, 2.0);
+    const double maxU = std::max(u1.rowwise().norm().maxCoeff(), sim.skinDisplacement().rowwise().norm().maxCoeff());
+    const ColorBar bar = F.bar(maxU);
+    tiles.push_back(F.tile(model, cam, p1, Figures::displacementColors(u1, maxU), nullptr, 1.0, {}, &bar));
+    caps.push_back("right side only");
+    tiles.push_back(F.tile(model, cam, sim.skinPositions(),
+                           Figures::displacementColors(sim.skinDisplacement(), maxU), nullptr, 1.0, {}, &bar));
+    caps.push_back("both sides");
+  }
+  F.save("fig18_roi_right_both.png", tiles, caps, 4,
+         "Fig. 18: muscle, its ROI, skin by the right muscle only and by both (a) zyg. major (b) dep. labii inf. (c) dep. anguli oris");
+}
+
+// Fig. 19 and 20: the corrugators, their ROI; contraction | neutral | relaxation.
+void fig19_20(Figures& F) {
+  const Loaded l = F.load("fig20_corrugator");
+  const FaceModel& model = *l.model;
+  const Camera cam = F.camera(model, ViewPreset::front);
+  Simulator sim(l.model);
+  const int mr = model.muscleIndex("corrugator_supercilii_right");
+  const int ml = model.muscleIndex("corrugator_supercilii_left");
+  std::vector<int> roi = model.muscles()[mr].roi;
+  roi.insert(roi.end(), model.muscles()[ml].roi.begin(), model.muscles()[ml].roi.end());
+  const auto rest = musclesOf(sim);
+  F.save("fig19_corrugator_roi.png",
+         {F.tile(model, cam, model.head().mesh.V, {}, &rest, 0.25),
+          F.tile(model, cam, model.head().mesh.V, Figures::roiColors(model.skin().vertexCount(), roi))},
+         {"(a) corrugator supercilii", "(b) ROI of (a): red free, blue pinned"}, 2,
+         "Fig. 19: insertion and ROI of corrugator supercilii");
+  const MatX3 neutral = model.head().mesh.V;
+  Figures::playTo(l.scene, sim, 0.95);
+  const MatX3 u1 = sim.skinDisplacement(), p1 = sim.skinPositions();
+  Figures::playTo(l.scene, sim, 2.0);
+  const double maxU = std::max(u1.rowwise().norm().maxCoeff(), sim.skinDisplacement().rowwise().norm().maxCoeff());
+  const ColorBar bar = F.bar(maxU);
+  const MatX3 zero = MatX3::Zero(neutral.rows(), 3);
+  F.save("fig20_corrugator.png",
+         {F.tile(model, cam, p1, Figures::displacementColors(u1, maxU), nullptr, 1.0, {}, &bar),
+          F.tile(model, cam, neutral, Figures::displacementColors(zero, maxU)),
+          F.tile(model, cam, sim.skinPositions(), Figures::displacementColors(sim.skinDisplacement(), maxU), nullptr,
+                 1.0, {}, &bar)},
+         {"contraction (a = 1)", "neutral", "relaxation (a = -1)"}, 3,
+         "Fig. 20: corrugator supercilii, contraction (left) and relaxation (right) from the neutral face");
+}
+
+// Fig. 21 and 22: gravity pins; the sag with the skin stiffness scaled by 1, 0.5, 0.25.
+void fig21_22(Figures& F) {
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  {
+    const Loaded l = F.load("fig22_gravity_sweep");
+    const FaceModel& model = *l.model;
+    const Camera cam = F.camera(model, ViewPreset::threeQuarter);
+    std::vector<int> freeV;
+    std::vector<bool> pinned(static_cast<size_t>(model.skin().vertexCount()), false);
+    for (int v : model.head().gravityPins) pinned[static_cast<size_t>(v)] = true;
+    for (int v = 0; v < model.skin().vertexCount(); ++v)
+      if (!pinned[static_cast<size_t>(v)]) freeV.push_back(v);
+    std::vector<Marker> marks;
+    for (const auto& [name, v] : model.head().landmarks.resolved())
+      if (pinned[static_cast<size_t>(v)]) marks.push_back({model.head().mesh.V.row(v).transpose(), kFeature, 4.0 * Figures::kSuper});
+    F.save("fig21_gravity_pins.png",
+           {F.tile(model, cam, model.head().mesh.V, Figures::roiColors(model.skin().vertexCount(), freeV), nullptr, 1.0,
+                   marks)},
+           {fmt::format("{} pinned (blue), {} free (red), fixed feature points yellow",
+                        model.head().gravityPins.size(), freeV.size())},
+           1, "Fig. 21: static constraints of the skin for the gravity load");
+  }
+  std::vector<MatX3> pos, disp;
+  std::vector<std::shared_ptr<const FaceModel>> models;
+  const std::vector<double> scales = {1.0, 0.5, 0.25};
+  for (double s : scales) {
+    const Loaded l = F.load("fig22_gravity_sweep", [s](SceneDesc& d) {
+      d.model.skin.kA *= s;
+      d.model.skin.kL *= s;
+      d.model.skin.kB *= s;
+    });
+    Simulator sim(l.model);
+    Figures::playTo(l.scene, sim, l.scene.duration);
+    pos.push_back(sim.skinPositions());
+    disp.push_back(sim.skinDisplacement());
+    models.push_back(l.model);
+  }
+  double maxU = 0.0;
+  for (const MatX3& u : disp) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
+  const ColorBar bar = F.bar(maxU);
+  for (size_t i = 0; i < scales.size(); ++i) {
+    const Camera cam = F.camera(*models[i], ViewPreset::threeQuarter);
+    tiles.push_back(F.tile(*models[i], cam, pos[i], Figures::displacementColors(disp[i], maxU), nullptr, 1.0, {}, &bar));
+    caps.push_back(fmt::format("k_A, k_L, k_B x {:.2f}: max sag {:.2f} cm", scales[i], disp[i].rowwise().norm().maxCoeff()));
+  }
+  F.save("fig22_gravity_sweep.png", tiles, caps, 3,
+         "Fig. 22: gravity load for skin with decreasing element stiffnesses");
+}
+
+// Fig. 23: zygomaticus major + depressor labii inferioris, frame by frame; (b) the muscles.
+void fig23(Figures& F) {
+  const Loaded l = F.load("fig23_combined");
+  const FaceModel& model = *l.model;
+  const Camera cam = F.camera(model, ViewPreset::front);
+  Simulator sim(l.model);
+  const std::vector<double> times = {0.0, 0.1, 0.2, 0.3, 1.0};
+  std::vector<MatX3> P, U;
+  std::vector<std::vector<MatX3>> M;
+  for (double t : times) {
+    Figures::playTo(l.scene, sim, t);
+    P.push_back(sim.skinPositions());
+    U.push_back(sim.skinDisplacement());
+    M.push_back(musclesOf(sim));
+  }
+  double maxU = 0.0;
+  for (const MatX3& u : U) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
+  const ColorBar bar = F.bar(maxU);
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  for (size_t i = 0; i < times.size(); ++i) {
+    tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
+    caps.push_back("(a) skin, " + fmtTime(times[i]));
+  }
+  for (size_t i = 0; i < times.size(); ++i) {
+    tiles.push_back(F.tile(model, cam, P[i], {}, &M[i], 0.25));
+    caps.push_back("(b) muscles, " + fmtTime(times[i]));
+  }
+  F.save("fig23_combined.png", tiles, caps, 5,
+         "Fig. 23: zygomaticus major + depressor labii inferioris, combined displacement fields frame by frame");
+}
+
+// Fig. 24 and 25: the drag's pins and its own displacement field; drag + zygomaticus major.
+void fig24_25(Figures& F) {
+  const Loaded l = F.load("fig25_drag");
+  const FaceModel& model = *l.model;
+  const Camera cam = F.camera(model, ViewPreset::threeQuarter);
+  int drag = -1;
+  for (size_t c = 0; c < model.channels().size(); ++c)
+    if (model.channels()[c].kind == ChannelKind::Drag) drag = static_cast<int>(c);
+  if (drag < 0) throw InputError("fig25_drag has no drag channel");
+  const SkinChannel& ch = model.channels()[static_cast<size_t>(drag)];
+  std::vector<Marker> marks;
+  for (int row : ch.dragRows)
+    marks.push_back({model.head().mesh.V.row(ch.basis->freeVertices[static_cast<size_t>(row)]).transpose(), kFeature,
+                     2.5 * Figures::kSuper});
+  Simulator sim(l.model);
+  Figures::playTo(l.scene, sim, l.scene.duration);
+  const MatX3 ud = sim.channelDisplacement(drag);
+  const double maxD = ud.rowwise().norm().maxCoeff();
+  const ColorBar barD = F.bar(maxD);
+  F.save("fig24_drag.png",
+         {F.tile(model, cam, model.head().mesh.V, Figures::roiColors(model.skin().vertexCount(), ch.basis->freeVertices),
+                 nullptr, 1.0, marks),
+          F.tile(model, cam, model.head().mesh.V + ud, Figures::displacementColors(ud, maxD), nullptr, 1.0, {}, &barD)},
+         {"(a) static points (blue), dragged region (yellow)", "(b) displacement field u_ext of the drag alone"}, 2,
+         "Fig. 24: static constraints and displacement field of the drag force F_ext_s1 on the right cheek");
+  const double maxU = sim.skinDisplacement().rowwise().norm().maxCoeff();
+  const ColorBar bar = F.bar(maxU);
+  F.save("fig25_drag_and_zygomaticus.png",
+         {F.tile(model, cam, model.head().mesh.V, {}),
+          F.tile(model, cam, sim.skinPositions(), Figures::displacementColors(sim.skinDisplacement(), maxU), nullptr,
+                 1.0, {}, &bar)},
+         {"neutral", "drag on the right cheek + zygomaticus major"}, 2,
+         "Fig. 25: skin deformation by the drag F_ext_s1 and the zygomaticus major together");
+}
+
+// Fig. 26: t0 neutral, t1 lifted, t2 neutral again, t3 pulled down.
+void fig26(Figures& F) {
+  const Loaded l = F.load("fig26_transition");
+  const FaceModel& model = *l.model;
+  const Camera cam = F.camera(model, ViewPreset::front);
+  Simulator sim(l.model);
+  const std::vector<std::pair<double, std::string>> keys = {
+      {0.0, "t0 neutral"}, {0.6, "t1 zyg. major contracted"}, {1.2, "t2 relaxed"}, {1.8, "t3 dep. anguli oris"}};
+  std::vector<MatX3> P, U;
+  for (const auto& k : keys) {
+    Figures::playTo(l.scene, sim, k.first);
+    P.push_back(sim.skinPositions());
+    U.push_back(sim.skinDisplacement());
+  }
+  double maxU = 0.0;
+  for (const MatX3& u : U) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
+  const ColorBar bar = F.bar(maxU);
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
+    caps.push_back(fmt::format("{} ({})", keys[i].second, fmtTime(keys[i].first)));
+  }
+  F.save("fig26_transition.png", tiles, caps, 4,
+         "Fig. 26: transition from the lifted to the pulled-down lip, t0 to t3");
+}
+
+// Fig. 27: the ICT head (a user-specific mesh).
+void fig27(Figures& F, const FigureOptions& opt) {
+  const SceneDesc probe = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string());
+  const fs::path obj = fs::path(opt.scenesDir) / probe.head.obj;
+  if (!fs::exists(obj) && !fs::exists(probe.head.obj)) {
+    fmt::print("fig27 skipped: the ICT head ({}) is absent\n", obj.string());
+    return;
+  }
+  const Loaded l = F.load("fig27_ict_head");
+  const FaceModel& model = *l.model;
+  const Camera cam = F.camera(model, ViewPreset::front);
+  Simulator sim(l.model);
+  const std::vector<std::pair<double, std::string>> keys = {
+      {0.0, "neutral"}, {0.6, "zygomaticus major"}, {1.5, "depressor anguli oris"}, {2.4, "zyg. major + dep. labii inf."}};
+  std::vector<MatX3> P, U;
+  for (const auto& k : keys) {
+    Figures::playTo(l.scene, sim, k.first);
+    P.push_back(sim.skinPositions());
+    U.push_back(sim.skinDisplacement());
+  }
+  double maxU = 0.0;
+  for (const MatX3& u : U) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
+  const ColorBar bar = F.bar(maxU);
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
+    caps.push_back(keys[i].second);
+  }
+  F.save("fig27_ict_head.png", tiles, caps, 4, "Fig. 27: facial animation with a user-specific mesh (ICT-FaceKit head)");
+}
+
+int runFigures(const FigureOptions& opt) {
+  if (opt.size < 64 || opt.size > 2048) throw InputError("--size must be in [64, 2048]");
+  if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
+    throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
+  fs::create_directories(opt.outDir);
+  Figures F(opt);
+  const std::vector<std::pair<std::string, std::function<void()>>> all = {
+      {"fig17", [&] { fig17(F); }},    {"fig18", [&] { fig18(F); }},       {"fig20", [&] { fig19_20(F); }},
+      {"fig22", [&] { fig21_22(F); }}, {"fig23", [&] { fig23(F); }},       {"fig25", [&] { fig24_25(F); }},
+      {"fig26", [&] { fig26(F); }},    {"fig27", [&] { fig27(F, opt); }}};
+  std::set<std::string> want;
+  std::stringstream ss(opt.only);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) {
+      if (std::none_of(all.begin(), all.end(), [&](const auto& p) { return p.first == item; }))
+        throw InputError("unknown figure '" + item + "' (fig17 fig18 fig20 fig22 fig23 fig25 fig26 fig27)");
+      want.insert(item);
+    }
+  for (const auto& [key, fn] : all)
+    if (want.empty() || want.count(key)) fn();
+  return kExitOk;
+}
+
+const CommandRegistrar figuresRegistrar("figures", [](CLI::App& app) {
+  auto opt = std::make_shared<FigureOptions>();
+  CLI::App* sub = app.add_subcommand("figures", "Render the thesis's Figures 17-27 from scenes/thesis into PNGs");
+  sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
+  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes")->capture_default_str();
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_option("--only", opt->only, "Only these figures (comma-separated: fig17, fig18, fig20, fig22, ...)");
+  sub->add_option("--size", opt->size, "Tile size, pixels")->capture_default_str();
+  return std::function<int()>([opt] { return runFigures(*opt); });
+});
+
+}  // namespace
+}  // namespace myo::cli

@@ -1,0 +1,115 @@
+// `myoshell bench`: the rows of the thesis's Tables 2–4 with their settings and channel facts.
+// Asserts the report's shape and content, never the speed (docs/PERFORMANCE.md holds numbers).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out;
+};
+
+RunResult bench(const std::string& args, bool mergeStderr = false) {
+  const fs::path cache = fs::path(testing::TempDir()) / "myo_thesis_cache";
+  const fs::path scenes = test::sourceDir() / "scenes" / "thesis";
+  RunResult r;
+  const std::string cmd = "'" + test::cliPath() + "' bench --scenes '" + scenes.string() + "' --cache '" +
+                          cache.string() + "' " + args + (mergeStderr ? " 2>&1" : " 2>/dev/null");
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+TEST(BenchCommand, ReportsRowsWithSettingsChannelsAndThesisFps) {
+  const RunResult r = bench(
+      "--json --seconds 0.02 --runs 3 --heads default --no-reference --threads 4 "
+      "--rows t2_all8,t3_zygomaticus_right,t4_gravity,t4_muscle_and_drag");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["threads"], 1);
+  ASSERT_EQ(j["notes"].size(), 1u);
+  EXPECT_THAT(j["notes"][0].get<std::string>(), HasSubstr("single-threaded"));
+  EXPECT_TRUE(j["machine"].contains("cpu"));
+  ASSERT_EQ(j["rows"].size(), 4u);
+  EXPECT_TRUE(j["reference"].empty());
+
+  const auto& all8 = j["rows"][0];
+  EXPECT_EQ(all8["table"], "2");
+  EXPECT_EQ(all8["timed"], "muscle phase");
+  EXPECT_EQ(all8["muscles"], 8);
+  EXPECT_EQ(all8["thesis_fps"], 200.0);
+  EXPECT_EQ(all8["channels"].size(), 8u);
+
+  const auto& right = j["rows"][1];
+  EXPECT_EQ(right["id"], "t3_zygomaticus_right");
+  EXPECT_EQ(right["timed"], "whole step");
+  EXPECT_EQ(right["thesis_fps"], 95.0);
+  EXPECT_EQ(right["d"], 30);
+  EXPECT_NEAR(right["dt"].get<double>(), 1.0 / 240.0, 1e-12);
+
+  const auto& gravity = j["rows"][2];
+  bool haveGravity = false;
+  for (const auto& c : gravity["channels"])
+    if (c["name"] == "gravity") {
+      haveGravity = true;
+      EXPECT_GT(c["free_vertices"].get<int>(), 6000);
+      EXPECT_GT(c["load_participation"].get<double>(), 0.0);
+      EXPECT_LE(c["load_participation"].get<double>(), 1.0 + 1e-9);
+    }
+  EXPECT_TRUE(haveGravity);
+
+  for (const auto& row : j["rows"]) {
+    EXPECT_EQ(row["head"], "default");
+    EXPECT_EQ(row["skin_vertices"], 7152);
+    EXPECT_EQ(row["runs_steps_per_second"].size(), 3u);
+    EXPECT_GT(row["steps_per_second"].get<double>(), 0.0);
+    EXPECT_NEAR(row["ratio"].get<double>(),
+                row["steps_per_second"].get<double>() / row["thesis_fps"].get<double>(), 1e-9);
+    for (const auto& c : row["channels"]) {
+      EXPECT_GT(c["free_vertices"].get<int>(), 0);
+      EXPECT_EQ(c["modes"], 30);
+    }
+  }
+  // The drag row has a muscle channel and a drag channel.
+  EXPECT_EQ(j["rows"][3]["channels"].size(), 2u);
+}
+
+TEST(BenchCommand, TextTableNamesTheThesisColumns) {
+  const RunResult r = bench("--seconds 0.01 --runs 1 --heads default --no-reference --rows t3_depressor_anguli_both");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("Depressor anguli oris, both sides"));
+  EXPECT_THAT(r.out, HasSubstr("thesis   96"));
+}
+
+TEST(BenchCommand, BadArgumentsAreInputErrors) {
+  RunResult r = bench("--rows no_such_row", true);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("unknown bench row 'no_such_row'"));
+  r = bench("--heads moon", true);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.out, HasSubstr("unknown head 'moon'"));
+  r = bench("--seconds 0", true);
+  EXPECT_EQ(r.exitCode, 2);
+}
+
+}  // namespace
+}  // namespace myo
