@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
@@ -18,29 +18,16 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-};
-
-RunResult bench(const std::string& args, bool mergeStderr = false) {
+test::CliResult bench(const std::string& args, bool mergeStderr = false) {
   const fs::path cache = fs::path(testing::TempDir()) / "myo_thesis_cache";
   const fs::path scenes = test::sourceDir() / "scenes" / "thesis";
-  RunResult r;
-  const std::string cmd = "'" + test::cliPath() + "' bench --scenes '" + scenes.string() + "' --cache '" +
-                          cache.string() + "' " + args + (mergeStderr ? " 2>&1" : " 2>/dev/null");
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  test::CliResult r = test::runCli("bench --scenes '" + scenes.string() + "' --cache '" + cache.string() + "' " + args);
+  if (mergeStderr) r.out = r.merged;
   return r;
 }
 
 TEST(BenchCommand, ReportsRowsWithSettingsChannelsAndThesisFps) {
-  const RunResult r = bench(
+  const test::CliResult r = bench(
       "--json --seconds 0.02 --runs 3 --heads default --no-reference --threads 4 "
       "--rows t2_all8,t3_zygomaticus_right,t4_gravity,t4_muscle_and_drag");
   ASSERT_EQ(r.exitCode, 0) << r.out;
@@ -94,14 +81,14 @@ TEST(BenchCommand, ReportsRowsWithSettingsChannelsAndThesisFps) {
 }
 
 TEST(BenchCommand, TextTableNamesTheThesisColumns) {
-  const RunResult r = bench("--seconds 0.01 --runs 1 --heads default --no-reference --rows t3_depressor_anguli_both");
+  const test::CliResult r = bench("--seconds 0.01 --runs 1 --heads default --no-reference --rows t3_depressor_anguli_both");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("Depressor anguli oris, both sides"));
   EXPECT_THAT(r.out, HasSubstr("thesis   96"));
 }
 
 TEST(BenchCommand, BadArgumentsAreInputErrors) {
-  RunResult r = bench("--rows no_such_row", true);
+  test::CliResult r = bench("--rows no_such_row", true);
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("unknown bench row 'no_such_row'"));
   r = bench("--heads moon", true);

@@ -16,7 +16,7 @@
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
-#include "support/test_data.h"
+#include "support/cli_runner.h"
 
 namespace myo {
 namespace {
@@ -104,21 +104,10 @@ double restInsertionToOrigin(const FaceModel& model, int m) {
 // ---------------------------------------------------------------------------------------------
 // Every scene file is valid (`myoshell check`), and one runs end to end through `myoshell run`.
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-};
-
-RunResult runCli(const std::string& args) {
-  RunResult r;
-  const std::string cmd = "'" + test::cliPath() + "' " + args + " 2>&1";
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// The CLI's stdout and stderr together.
+test::CliResult runCli(const std::string& args) {
+  test::CliResult r = test::runCli(args);
+  r.out = r.merged;
   return r;
 }
 
@@ -127,7 +116,7 @@ TEST(ThesisScenes, EverySceneChecks) {
                          "fig18_depressor_anguli", "fig20_corrugator", "fig22_gravity_sweep", "fig23_combined",
                          "fig25_drag",     "fig26_transition", "fig27_ict_head"};
   for (const char* n : names) {
-    const RunResult r = runCli("check '" + scenePath(n) + "'");
+    const test::CliResult r = runCli("check '" + scenePath(n) + "'");
     EXPECT_EQ(r.exitCode, 0) << n << ": " << r.out;
   }
 }
@@ -135,7 +124,7 @@ TEST(ThesisScenes, EverySceneChecks) {
 TEST(ThesisScenes, Fig17RunsThroughTheCli) {
   const fs::path out = fs::path(testing::TempDir()) / "myo_thesis_run_fig17";
   fs::remove_all(out);
-  const RunResult r =
+  const test::CliResult r =
       runCli("run '" + scenePath("fig17_contract") + "' --out '" + out.string() + "' --json --cache '" +
              cacheDir().string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
