@@ -24,7 +24,7 @@ demo: build
 	@$(BUILD_DIR)/bin/myoshell demo --out out/demo
 
 bench: build
-	@$(BUILD_DIR)/bin/bench_shell --benchmark_min_time=0.2
+	@$(BUILD_DIR)/bin/myoshell bench
 
 clean:
 	rm -rf $(BUILD_DIR)
