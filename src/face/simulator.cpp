@@ -1,6 +1,8 @@
 #include "myoshell/face/simulator.h"
 
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
@@ -39,6 +41,9 @@ Simulator::Simulator(std::shared_ptr<const FaceModel> model) : model_(std::move(
   activation_.assign(model_->muscles().size(), 0.0);
   dragForce_.assign(s.drags.size(), Vec3::Zero());
   skinU_ = MatX3::Zero(model_->head().mesh.vertexCount(), 3);
+  // The runaway guard: a displacement larger than the head's bounding-box diagonal.
+  const MatX3& V = model_->head().mesh.V;
+  runawayLimit_ = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   setGravity(s.gravity ? 1.0 : 0.0);
 }
 
@@ -129,9 +134,36 @@ void Simulator::step() {
     integrator.addDisplacementTo(skinU_);
   }
   timings_.channels = phase.seconds();
-  timings_.total = total.seconds();
   time_ += model_->settings().dt;
   ++steps_;
+  checkHealth();
+  timings_.total = total.seconds();
+}
+
+void Simulator::checkHealth() const {
+  // One pass over the summed field: a NaN, an infinity or a displacement larger than the head
+  // itself means a channel ran away. Only then is the culprit looked for.
+  const double limit = runawayLimit_;
+  const double worst = skinU_.cwiseAbs().maxCoeff();
+  if (worst < limit && skinU_.allFinite()) return;  // (maxCoeff may skip NaNs: allFinite does not)
+  std::string culprit = "the summed field";
+  double culpritSize = worst;
+  const auto& channels = model_->channels();
+  for (size_t c = 0; c < channels.size(); ++c) {
+    const MatX3& u = channelIntegrators_[c].freeDisplacement();
+    const double size = u.allFinite() ? u.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+    if (!(size < limit)) {
+      culprit = "skin channel '" + channels[c].name + "'";
+      culpritSize = size;
+      break;
+    }
+  }
+  std::ostringstream os;
+  os << "the simulation blew up at step " << steps_ << " (t = " << time_ << " s): " << culprit << " reached a displacement of "
+     << culpritSize << " cm, more than the head's size (" << limit << " cm). Likely causes: activations or drag forces too "
+     << "strong for the springs' stiffness, a skin that bends too easily under modal warping (raise skin.k_b; "
+        "docs/face_model.md), or a time step too large for the semi-implicit stepper.";
+  throw NumericalError(os.str());
 }
 
 int Simulator::advance(double seconds) {

@@ -330,6 +330,24 @@ TEST(FaceModel, AnImportedMuscleObjActsLikeTheGeneratedOne) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Simulator, ARunawayStopsWithAnErrorNamingTheChannel) {
+  // Springs a thousand times too stiff for the skin: the zygomaticus channel runs away.
+  FaceModelSettings s = testSettings();
+  s.gravity = false;
+  s.springStiffness = 3.0e5;
+  const auto model = std::make_shared<const FaceModel>(loadDefaultHead(), std::vector<MuscleDef>{thesisMuscleDefs()[0]}, s);
+  Simulator sim(model);
+  sim.setActivation(0, 1.0);
+  try {
+    sim.advance(2.0);
+    FAIL() << "no error; max displacement " << sim.skinDisplacement().rowwise().norm().maxCoeff();
+  } catch (const NumericalError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("skin channel 'zygomaticus_major_right' reached a displacement of"), std::string::npos) << what;
+    EXPECT_NE(what.find("the simulation blew up at step"), std::string::npos) << what;
+  }
+}
+
 TEST(Simulator, ActivationsAreClampedAndNaNRejected) {
   Simulator sim(defaultFace());
   sim.setActivation(0, 3.0);

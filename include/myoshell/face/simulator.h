@@ -37,7 +37,8 @@ class Simulator {
   // Drag force (dyn, total, shared by the drag region) of drag channel `drag`.
   void setDragForce(int drag, const Vec3& force);
 
-  // Advances the whole face by the model's dt.
+  // Advances the whole face by the model's dt. Throws NumericalError naming the channel, the step and
+  // the likely causes when the skin's displacement becomes NaN, infinite or larger than the head.
   void step();
   // Steps until `seconds` of simulated time have passed (rounded to whole steps); returns the steps.
   int advance(double seconds);
@@ -75,6 +76,9 @@ class Simulator {
   long long steps_ = 0;
   int clamped_ = 0;
   StepTimings timings_;
+  double runawayLimit_ = 0.0;  // cm: the head's bounding-box diagonal
+
+  void checkHealth() const;
 };
 
 }  // namespace myo
