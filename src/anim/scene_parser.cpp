@@ -330,6 +330,10 @@ std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCac
     DragDef def;
     def.name = d.name;
     def.vertex = d.landmark.empty() ? d.vertex : head.landmarks.vertex(d.landmark);
+    if (def.vertex >= head.mesh.vertexCount())
+      throw InputError("drag '" + d.name + "': vertex " + std::to_string(def.vertex) + " is outside [0, " +
+                           std::to_string(head.mesh.vertexCount()) + ") of head '" + head.name + "'",
+                       scene.path);
     def.radius = d.radius;
     if (!d.pins.empty()) def.pins = readVertexSet(resolve(d.pins), head.mesh.vertexCount());
     settings.drags.push_back(def);

@@ -1,3 +1,4 @@
+#include <array>
 // OBJ reading: a line scan that validates every line (so faults name their line), then
 // tinyobjloader over the sanitised text for the actual values, then triangulation and the
 // mesh-level checks (degenerate triangles, non-manifold edges, orientation).
@@ -470,6 +471,33 @@ std::vector<MeshFault> meshFaults(const TriMesh& mesh, const std::vector<int>* p
        << triangleArea(mesh.V.row(mesh.F(t, 0)), mesh.V.row(mesh.F(t, 1)), mesh.V.row(mesh.F(t, 2)))
        << " cm², below " << kDegenerateAreaTolerance << " × bbox diagonal²)";
     faults.push_back({"degenerate_triangle", os.str(), line});
+  }
+
+  // Two used vertices at exactly the same position split the surface there: a crack that the
+  // shell cannot see (typical of scans exported per patch). Weld them before simulating.
+  {
+    std::vector<char> used(static_cast<size_t>(mesh.vertexCount()), 0);
+    for (int t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) used[static_cast<size_t>(mesh.F(t, k))] = 1;
+    struct PositionHash {
+      size_t operator()(const std::array<double, 3>& p) const {
+        size_t h = 0;
+        for (double x : p) h = h * 1000003u ^ std::hash<double>()(x);
+        return h;
+      }
+    };
+    std::unordered_map<std::array<double, 3>, int, PositionHash> first;
+    for (int i = 0; i < mesh.vertexCount(); ++i) {
+      if (!used[static_cast<size_t>(i)] || !mesh.V.row(i).allFinite()) continue;
+      const std::array<double, 3> p{mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2)};
+      auto [it, inserted] = first.try_emplace(p, i);
+      if (!inserted) {
+        std::ostringstream os;
+        os << "vertex " << i << " duplicates vertex " << it->second << " at (" << p[0] << ", " << p[1] << ", " << p[2]
+           << "): the surface is split there (weld duplicate vertices before simulating)";
+        faults.push_back({"duplicate_vertex", os.str(), 0});
+      }
+    }
   }
 
   const EdgeTable table = buildEdgeTable(mesh.F, mesh.vertexCount());
