@@ -1,6 +1,6 @@
 // `myoshell demo`: the default head plays a short scene — smile (zygomaticus major, both sides),
 // relax, frown (depressor anguli oris), brow lowered (corrugator supercilii), with gravity — and
-// out/demo/ receives the OBJ sequence, stats.json, PNG frames and a contact sheet. The scene is
+// out/demo/ receives the OBJ sequence, demo.glb, demo.pc2, stats.json, PNG frames and a contact sheet. The scene is
 // scenes/demo.json, embedded at build time so the demo runs from any folder.
 #include <fmt/core.h>
 
@@ -21,6 +21,7 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   opt->render = true;
   opt->renderEvery = 3;
   opt->showMuscles = true;
+  opt->formats = {"glb", "pc2", "obj"};
   CLI::App* sub = app.add_subcommand("demo", "Smile, frown and brow lowering on the built-in head (scenes/demo.json)");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();

@@ -1,5 +1,5 @@
-// `myoshell run SCENE --out DIR`: simulates a scene and writes an OBJ sequence, stats.json and,
-// with --render, pictures. `myoshell check SCENE`: validates a scene and prints it with every
+// `myoshell run SCENE --out DIR`: simulates a scene and writes its animation (--format: an OBJ
+// sequence, GLB, PC2), stats.json and, with --render, pictures. `myoshell check SCENE`: validates a scene and prints it with every
 // default filled in.
 #include <fmt/core.h>
 
@@ -17,6 +17,9 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_option("--out", opt->outDir, "Output folder")->required();
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
   sub->add_flag("--json", opt->json, "Print a JSON summary");
+  sub->add_option("--format", opt->formats, "Animation exports, comma-separated: glb, pc2, obj")
+      ->delimiter(',')
+      ->capture_default_str();
   sub->add_flag("--render", opt->render, "Write PNG frames (DIR/png/) and a contact sheet");
   sub->add_option("--render-every", opt->renderEvery, "Render every N-th frame")->check(CLI::PositiveNumber);
   sub->add_option("--size", opt->size, "Picture size, pixels")->check(CLI::Range(64, 4096));

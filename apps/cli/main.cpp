@@ -43,6 +43,16 @@ int main(int argc, char** argv) {
       if (std::find(before.begin(), before.end(), sub) == before.end()) runners[sub] = run;
   }
 
+  // A first word that is neither an option nor a command: say so by name (CLI11 would only say
+  // that a subcommand is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    for (const auto& [name, setup] : commands) known |= name == argv[1];
+    if (!known) {
+      fmt::print(stderr, "myoshell: error: unknown command '{}' (see myoshell --help)\n", argv[1]);
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

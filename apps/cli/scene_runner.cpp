@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
+#include "myoshell/io/animation_export.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/mesh/obj_reader.h"
 
@@ -53,22 +55,50 @@ void applyTimeline(const SceneDesc& scene, const FaceModel& model, Simulator& si
   }
 }
 
+struct ExportFormats {
+  bool obj = false, glb = false, pc2 = false;
+};
+
+ExportFormats parseFormats(const std::vector<std::string>& names) {
+  ExportFormats f;
+  for (const std::string& name : names) {
+    if (name == "obj") f.obj = true;
+    else if (name == "glb") f.glb = true;
+    else if (name == "pc2") f.pc2 = true;
+    else throw InputError("unknown export format '" + name + "' (use glb, pc2 or obj)");
+  }
+  return f;
+}
+
 }  // namespace
 
 int runScene(const SceneDesc& scene, const RunOptions& opt) {
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
-  fs::create_directories(out / "obj");
+  const ExportFormats formats = parseFormats(opt.formats);  // before any work: a typo fails at once
   FileBasisCache cache(opt.cacheDir);
 
   const bool tty = !opt.json && isatty(STDOUT_FILENO);
   Stopwatch buildClock;
   const auto model = buildSceneFace(scene, &cache);
   const double buildSeconds = buildClock.seconds();
+  // Folders only once the scene has built: a bad scene leaves nothing behind.
+  std::error_code ec;
+  fs::create_directories(formats.obj ? out / "obj" : out, ec);
+  if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
   Simulator sim(model);
   const double dt = model->settings().dt;
   const int frames = static_cast<int>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
   const auto& channels = model->channels();
+  AnimationFrames animation;  // kept only for the GLB and PC2 exports
+  const bool keepFrames = formats.glb || formats.pc2;
+  if (keepFrames) {
+    animation.name = scene.name;
+    animation.triangles = model->head().mesh.F;
+    animation.rest = model->head().mesh.V;
+    animation.fps = scene.fps;
+    animation.positions.reserve(frames);
+  }
 
   FacePictureOptions picture;
   picture.width = picture.height = opt.size;
@@ -98,7 +128,9 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     stepSeconds += frameStep;
     steps += frameSteps;
     const MatX3 positions = sim.skinPositions();
-    writeObj((out / "obj" / fmt::format("{}_{:04d}.obj", scene.name, f)).string(), model->head().mesh, &positions);
+    if (formats.obj)
+      writeObj((out / "obj" / fmt::format("{}_{:04d}.obj", scene.name, f)).string(), model->head().mesh, &positions);
+    if (keepFrames) animation.positions.push_back(positions);
     if (opt.render && (f % opt.renderEvery == 0 || f % sheetEvery == 0)) {
       const Image image = renderFace(sim, picture);
       if (f % opt.renderEvery == 0)
@@ -127,6 +159,8 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     }
   }
   if (tty) fmt::print("\n");
+  if (formats.glb) writeGlb(out / (scene.name + ".glb"), animation);
+  if (formats.pc2) writePc2(out / (scene.name + ".pc2"), animation);
 
   nlohmann::json stats;
   stats["scene"] = scene.name;
@@ -169,7 +203,10 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   } else {
     fmt::print("{}: {} frames, {} steps at {:.0f} steps/s (precompute {:.2f} s, {} cached bases)\n", scene.name,
                frames, steps, steps / std::max(stepSeconds, 1e-12), buildSeconds, model->cacheHits());
-    fmt::print("wrote {}/obj/{}_NNNN.obj and {}/stats.json\n", out.string(), scene.name, out.string());
+    if (formats.obj) fmt::print("wrote {}/obj/{}_NNNN.obj\n", out.string(), scene.name);
+    if (formats.glb) fmt::print("wrote {}/{}.glb\n", out.string(), scene.name);
+    if (formats.pc2) fmt::print("wrote {}/{}.pc2\n", out.string(), scene.name);
+    fmt::print("wrote {}/stats.json\n", out.string());
   }
   return kExitOk;
 }

@@ -1,8 +1,9 @@
-// Running a scene: simulate, write the OBJ sequence, stats.json and (optionally) pictures. Shared
-// by `myoshell run` and `myoshell demo`.
+// Running a scene: simulate, write the animation exports (OBJ sequence, GLB, PC2), stats.json and
+// (optionally) pictures. Shared by `myoshell run` and `myoshell demo`.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "myoshell/anim/scene.h"
 
@@ -13,6 +14,9 @@ struct RunOptions {
   std::string outDir;
   std::string cacheDir = ".cache/bases";
   bool json = false;
+  // Animation exports, any subset of "obj" (DIR/obj/<name>_NNNN.obj), "glb" (DIR/<name>.glb) and
+  // "pc2" (DIR/<name>.pc2); see io/animation_export.h. An unknown name is an InputError.
+  std::vector<std::string> formats = {"obj"};
   // Pictures: every `renderEvery`-th frame to DIR/png/, and a contact sheet of a few frames.
   bool render = false;
   int renderEvery = 1;

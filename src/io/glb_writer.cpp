@@ -1,0 +1,201 @@
+// GLB export: the skin with its frames baked as one-hot morph targets (scheme in animation_export.h).
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+#include <fmt/core.h>
+
+#include "export_file.h"
+#include "myoshell/core/check.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/io/animation_export.h"
+#include "myoshell/mesh/geometry.h"
+
+namespace myo {
+namespace {
+
+constexpr int kArrayBuffer = 34962;         // glTF bufferView.target ARRAY_BUFFER
+constexpr int kElementArrayBuffer = 34963;  // glTF bufferView.target ELEMENT_ARRAY_BUFFER
+
+// The single binary buffer and its views/accessors, appended as the model is assembled.
+class BufferBuilder {
+ public:
+  explicit BufferBuilder(tinygltf::Model& model) : model_(model) { model_.buffers.emplace_back(); }
+
+  // Appends raw bytes as a new buffer view (4-byte aligned); returns the view index.
+  int addView(const void* data, size_t bytes, int target) {
+    auto& buf = model_.buffers[0].data;
+    buf.resize((buf.size() + 3) & ~size_t(3), 0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buf.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buf.insert(buf.end(), p, p + bytes);
+    model_.bufferViews.push_back(view);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
+
+  int addAccessor(int view, size_t byteOffset, int componentType, size_t count, int type,
+                  std::vector<double> minValues = {}, std::vector<double> maxValues = {}) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.byteOffset = byteOffset;
+    a.componentType = componentType;
+    a.count = count;
+    a.type = type;
+    a.minValues = std::move(minValues);
+    a.maxValues = std::move(maxValues);
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+ private:
+  tinygltf::Model& model_;
+};
+
+// Per-component min and max of n×3 float data (as stored, so they match the accessor exactly).
+void bounds(const std::vector<float>& xyz, std::vector<double>& lo, std::vector<double>& hi) {
+  lo.assign(3, std::numeric_limits<double>::infinity());
+  hi.assign(3, -std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min<double>(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max<double>(hi[i % 3], xyz[i]);
+  }
+}
+
+std::vector<float> toFloat(const MatX3& M) {
+  std::vector<float> out(static_cast<size_t>(M.size()));
+  for (Eigen::Index i = 0; i < M.rows(); ++i)
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = static_cast<float>(M(i, c));
+  return out;
+}
+
+}  // namespace
+
+std::vector<int> glbFrameIndices(int frameCount, int maxMorphTargets) {
+  MYO_CHECK_GE(maxMorphTargets, 1);
+  std::vector<int> out;
+  if (frameCount <= 0) return out;
+  const int stride = (frameCount + maxMorphTargets - 1) / maxMorphTargets;
+  for (int f = 0; f < frameCount; f += stride) out.push_back(f);
+  if (out.back() != frameCount - 1) out.push_back(frameCount - 1);
+  return out;
+}
+
+void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, int maxMorphTargets) {
+  detail::checkFrames(frames);
+  MYO_CHECK_GT(frames.fps, 0.0);
+  MYO_CHECK_GT(frames.triangles.rows(), 0);
+  const auto n = static_cast<size_t>(frames.rest.rows());
+  MYO_CHECK(frames.triangles.minCoeff() >= 0 && static_cast<size_t>(frames.triangles.maxCoeff()) < n,
+            "triangle indices must lie in [0, " << n << ")");
+  const std::vector<int> exported = glbFrameIndices(static_cast<int>(frames.positions.size()), maxMorphTargets);
+  const size_t T = exported.size();
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "Myoshell";
+  BufferBuilder bb(model);
+
+  // Indices.
+  std::vector<uint32_t> indices(static_cast<size_t>(frames.triangles.size()));
+  for (Eigen::Index t = 0; t < frames.triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) indices[3 * t + c] = static_cast<uint32_t>(frames.triangles(t, c));
+  const int indexAccessor =
+      bb.addAccessor(bb.addView(indices.data(), indices.size() * 4, kElementArrayBuffer), 0,
+                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR);
+
+  // Rest positions and normals.
+  std::vector<double> lo, hi;
+  const std::vector<float> rest = toFloat(frames.rest);
+  bounds(rest, lo, hi);
+  const int positionAccessor = bb.addAccessor(bb.addView(rest.data(), rest.size() * 4, kArrayBuffer), 0,
+                                              TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
+  const std::vector<float> normals = toFloat(vertexNormals(frames.rest, frames.triangles));
+  const int normalAccessor = bb.addAccessor(bb.addView(normals.data(), normals.size() * 4, kArrayBuffer), 0,
+                                            TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
+
+  // Morph targets: displacement from the rest, all in one view.
+  std::vector<float> targets;
+  targets.reserve(T * 3 * n);
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> targetBounds;
+  for (const int f : exported) {
+    std::vector<float> d = toFloat(frames.positions[f] - frames.rest);
+    bounds(d, lo, hi);
+    targetBounds.emplace_back(lo, hi);
+    targets.insert(targets.end(), d.begin(), d.end());
+  }
+  const int targetView = bb.addView(targets.data(), targets.size() * 4, kArrayBuffer);
+  model.bufferViews[targetView].byteStride = 12;  // required: several vertex accessors share the view
+  tinygltf::Primitive prim;
+  prim.attributes["POSITION"] = positionAccessor;
+  prim.attributes["NORMAL"] = normalAccessor;
+  prim.indices = indexAccessor;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Value::Array targetNames;
+  for (size_t k = 0; k < T; ++k) {
+    const int a = bb.addAccessor(targetView, k * 3 * n * 4, TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3,
+                                 targetBounds[k].first, targetBounds[k].second);
+    prim.targets.push_back({{"POSITION", a}});
+    targetNames.emplace_back(fmt::format("frame_{:04d}", exported[k]));
+  }
+
+  tinygltf::Mesh mesh;
+  mesh.name = frames.name;
+  mesh.primitives.push_back(prim);
+  mesh.weights.assign(T, 0.0);
+  tinygltf::Value::Object extras;
+  extras["targetNames"] = tinygltf::Value(std::move(targetNames));
+  mesh.extras = tinygltf::Value(std::move(extras));
+  model.meshes.push_back(mesh);
+
+  // The node carries the cm → m scale (glTF's unit is the metre); accessors stay in cm.
+  tinygltf::Node node;
+  node.name = frames.name;
+  node.mesh = 0;
+  node.scale = {0.01, 0.01, 0.01};
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.name = frames.name;
+  scene.nodes = {0};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  // Animation: keyframe k at exported[k] / fps with one-hot weights e_k.
+  std::vector<float> times(T), weights(T * T, 0.0f);
+  for (size_t k = 0; k < T; ++k) {
+    times[k] = static_cast<float>(exported[k] / frames.fps);
+    weights[k * T + k] = 1.0f;
+  }
+  const int timeAccessor = bb.addAccessor(bb.addView(times.data(), T * 4, 0), 0, TINYGLTF_COMPONENT_TYPE_FLOAT, T,
+                                          TINYGLTF_TYPE_SCALAR, {times.front()}, {times.back()});
+  const int weightAccessor = bb.addAccessor(bb.addView(weights.data(), weights.size() * 4, 0), 0,
+                                            TINYGLTF_COMPONENT_TYPE_FLOAT, weights.size(), TINYGLTF_TYPE_SCALAR);
+  tinygltf::Animation anim;
+  anim.name = frames.name;
+  tinygltf::AnimationSampler sampler;
+  sampler.input = timeAccessor;
+  sampler.output = weightAccessor;
+  sampler.interpolation = "LINEAR";
+  anim.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = 0;
+  channel.target_path = "weights";
+  anim.channels.push_back(channel);
+  model.animations.push_back(anim);
+
+  std::ostringstream out;
+  tinygltf::TinyGLTF gltf;
+  if (!gltf.WriteGltfSceneToStream(&model, out, false, true))
+    throw InputError("cannot serialise the GLB", path.string());
+  detail::writeFileAtomically(path, out.str());
+}
+
+}  // namespace myo

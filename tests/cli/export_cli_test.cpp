@@ -1,0 +1,88 @@
+// `myoshell run --format`: GLB, PC2 and OBJ exports of one run agree; unknown formats are errors.
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "myoshell/io/animation_export.h"
+#include "myoshell/mesh/obj_reader.h"
+#include "support/cli_runner.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ExportCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("myo_export_cli_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "small.json") << R"({
+  "name": "small",
+  "muscles": {"use": ["zygomaticus_major_left"]},
+  "gravity": {"enabled": false},
+  "numerics": {"skin_modes": 8},
+  "duration": 0.1, "fps": 20,
+  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
+})";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string run(const std::string& out, const std::string& extra) const {
+    return "run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / out).string() + "' --cache '" +
+           (dir_ / "cache").string() + "' " + extra;
+  }
+  fs::path dir_;
+};
+
+TEST_F(ExportCommand, WritesGlbPc2AndObjThatAgree) {
+  const auto r = test::runCli(run("out", "--format glb,pc2,obj"));
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const fs::path out = dir_ / "out";
+  ASSERT_TRUE(fs::exists(out / "small.glb"));
+  ASSERT_TRUE(fs::exists(out / "small.pc2"));
+  ASSERT_TRUE(fs::exists(out / "obj" / "small_0002.obj"));
+  for (const auto& e : fs::recursive_directory_iterator(out))
+    EXPECT_NE(e.path().extension(), ".tmp") << "half-written file left: " << e.path();
+
+  const TriMesh first = readObj((out / "obj" / "small_0000.obj").string());
+  const TriMesh last = readObjLike((out / "obj" / "small_0002.obj").string(), first);
+  const PointCache pc = readPc2(out / "small.pc2");
+  EXPECT_EQ(pc.numPoints, first.vertexCount());
+  ASSERT_EQ(pc.samples.size(), 3u);
+  EXPECT_LT((pc.samples.back() - last.V).cwiseAbs().maxCoeff(), 1e-5);
+  EXPECT_GT((pc.samples.back() - pc.samples.front()).rowwise().norm().maxCoeff(), 0.01);
+
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (out / "small.glb").string())) << err;
+  ASSERT_EQ(m.meshes.size(), 1u);
+  EXPECT_EQ(m.accessors[m.meshes[0].primitives[0].attributes.at("POSITION")].count,
+            static_cast<size_t>(first.vertexCount()));
+  EXPECT_EQ(m.meshes[0].primitives[0].targets.size(), 3u);
+  EXPECT_EQ(m.animations.size(), 1u);
+}
+
+TEST_F(ExportCommand, OnlyTheRequestedFormatsAreWritten) {
+  const auto r = test::runCli(run("out", "--format pc2"));
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "small.pc2"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "small.glb"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "obj"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "stats.json"));
+}
+
+TEST_F(ExportCommand, UnknownFormatExitsTwoNamingIt) {
+  const auto r = test::runCli(run("out", "--format glb,fbx"));
+  EXPECT_EQ(r.exitCode, 2) << r.merged;
+  EXPECT_NE(r.merged.find("unknown export format 'fbx'"), std::string::npos) << r.merged;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "small.glb"));
+}
+
+}  // namespace
+}  // namespace myo
