@@ -1,0 +1,43 @@
+// The library for other programs: `cmake --install` of this build, then examples/embed.cpp built
+// against the installed tree with find_package(Myoshell), run, and checked.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+int shell(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(Install, AnInstalledMyoshellBuildsAndRunsTheEmbedExample) {
+  const fs::path dir = fs::temp_directory_path() / ("myo_install_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string cmake = std::string("'") + MYO_CMAKE_COMMAND + "'";
+  const fs::path prefix = dir / "prefix", build = dir / "build", log = dir / "log.txt";
+  fs::create_directories(dir);
+  const std::string quiet = " >> '" + log.string() + "' 2>&1";
+  ASSERT_EQ(shell(cmake + " --install '" + std::string(MYO_BINARY_DIR) + "' --prefix '" + prefix.string() + "'" + quiet), 0)
+      << "see " << log;
+  EXPECT_TRUE(fs::exists(prefix / "include" / "myoshell" / "face" / "simulator.h"));
+  EXPECT_TRUE(fs::exists(prefix / "lib" / "cmake" / "Myoshell" / "MyoshellConfig.cmake"));
+  ASSERT_EQ(shell(cmake + " -S '" + (test::sourceDir() / "examples").string() + "' -B '" + build.string() +
+                  "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH='" + prefix.string() + "'" + quiet),
+            0)
+      << "see " << log;
+  ASSERT_EQ(shell(cmake + " --build '" + build.string() + "'" + quiet), 0) << "see " << log;
+  EXPECT_EQ(shell("'" + (build / "embed").string() + "'" + quiet), 0) << "see " << log;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace myo
