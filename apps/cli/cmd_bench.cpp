@@ -23,6 +23,7 @@
 
 #include "command.h"
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/head.h"
@@ -111,15 +112,6 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
-// Applies the scene's timeline at time t (s), as `myoshell run` does.
-void applyTimeline(const SceneDesc& scene, const FaceModel& model, Simulator& sim, double t) {
-  for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(t));
-  if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(t));
-  for (size_t d = 0; d < scene.drags.size(); ++d) {
-    auto it = scene.dragForces.find(scene.drags[d].name);
-    if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(t));
-  }
-}
 
 // The row's scene on the given head: the ICT head is the one fig27_ict_head.json names (its paths
 // are relative to the same folder), the default head the built-in one.
@@ -176,7 +168,7 @@ std::pair<long long, double> playWindow(const SceneDesc& scene, const FaceModel&
     double t = row.t0;
     if (row.muscleOnly) {
       while (t < row.t1 - 0.5 * dt && total.seconds() < budget) {
-        applyTimeline(scene, model, sim, t);
+        applySceneTimeline(scene, sim, t);
         sim.step();
         counted += sim.lastTimings().muscles;
         t += dt;
@@ -186,7 +178,7 @@ std::pair<long long, double> playWindow(const SceneDesc& scene, const FaceModel&
       Stopwatch sw;
       long long n = 0;
       while (t < row.t1 - 0.5 * dt) {
-        applyTimeline(scene, model, sim, t);
+        applySceneTimeline(scene, sim, t);
         sim.step();
         t += dt;
         ++n;

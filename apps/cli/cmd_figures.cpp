@@ -14,6 +14,7 @@
 
 #include "command.h"
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
@@ -62,21 +63,7 @@ class Figures {
     return l;
   }
 
-  // Plays the scene's timeline on `sim` up to time t (s), as `myoshell run` does.
-  static void playTo(const SceneDesc& scene, Simulator& sim, double t) {
-    const FaceModel& model = sim.model();
-    const double dt = model.settings().dt;
-    while (sim.time() < t - 0.5 * dt) {
-      const double now = sim.time();
-      for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(now));
-      if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(now));
-      for (size_t d = 0; d < scene.drags.size(); ++d) {
-        auto it = scene.dragForces.find(scene.drags[d].name);
-        if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(now));
-      }
-      sim.step();
-    }
-  }
+
 
   Camera camera(const FaceModel& model, ViewPreset preset, double yaw = 0.0) const {
     const FaceFrame f = model.head().frame();
@@ -192,7 +179,7 @@ void fig17(Figures& F) {
     const Camera cam = F.camera(*l.model, ViewPreset::front);
     Simulator sim(l.model);
     for (double t : {0.0, 0.15, 0.6}) {
-      Figures::playTo(l.scene, sim, t);
+      playSceneTo(l.scene, sim, t);
       const auto mus = musclesOf(sim);
       tiles.push_back(F.tile(*l.model, cam, l.model->head().mesh.V, {}, &mus, 0.25));
       caps.push_back(fmt::format("({}) {} {}", name == std::string("fig17_contract") ? "a" : "b",
@@ -224,10 +211,10 @@ void fig18(Figures& F) {
     tiles.push_back(F.tile(model, cam, model.head().mesh.V,
                            Figures::roiColors(model.skin().vertexCount(), model.muscles()[mr].roi)));
     caps.push_back(fmt::format("ROI, {} free vertices", model.muscles()[mr].roi.size()));
-    Figures::playTo(l.scene, sim, 0.95);
+    playSceneTo(l.scene, sim, 0.95);
     const MatX3 u1 = sim.skinDisplacement();
     const MatX3 p1 = sim.skinPositions();
-    Figures::playTo(l.scene, sim, 2.0);
+    playSceneTo(l.scene, sim, 2.0);
     const double maxU = std::max(u1.rowwise().norm().maxCoeff(), sim.skinDisplacement().rowwise().norm().maxCoeff());
     const ColorBar bar = F.bar(maxU);
     tiles.push_back(F.tile(model, cam, p1, Figures::displacementColors(u1, maxU), nullptr, 1.0, {}, &bar));
@@ -257,9 +244,9 @@ void fig19_20(Figures& F) {
          {"(a) corrugator supercilii", "(b) ROI of (a): red free, blue pinned"}, 2,
          "Fig. 19: insertion and ROI of corrugator supercilii");
   const MatX3 neutral = model.head().mesh.V;
-  Figures::playTo(l.scene, sim, 0.95);
+  playSceneTo(l.scene, sim, 0.95);
   const MatX3 u1 = sim.skinDisplacement(), p1 = sim.skinPositions();
-  Figures::playTo(l.scene, sim, 2.0);
+  playSceneTo(l.scene, sim, 2.0);
   const double maxU = std::max(u1.rowwise().norm().maxCoeff(), sim.skinDisplacement().rowwise().norm().maxCoeff());
   const ColorBar bar = F.bar(maxU);
   const MatX3 zero = MatX3::Zero(neutral.rows(), 3);
@@ -305,7 +292,7 @@ void fig21_22(Figures& F) {
       d.model.skin.kB *= s;
     });
     Simulator sim(l.model);
-    Figures::playTo(l.scene, sim, l.scene.duration);
+    playSceneTo(l.scene, sim, l.scene.duration);
     pos.push_back(sim.skinPositions());
     disp.push_back(sim.skinDisplacement());
     models.push_back(l.model);
@@ -332,7 +319,7 @@ void fig23(Figures& F) {
   std::vector<MatX3> P, U;
   std::vector<std::vector<MatX3>> M;
   for (double t : times) {
-    Figures::playTo(l.scene, sim, t);
+    playSceneTo(l.scene, sim, t);
     P.push_back(sim.skinPositions());
     U.push_back(sim.skinDisplacement());
     M.push_back(musclesOf(sim));
@@ -369,7 +356,7 @@ void fig24_25(Figures& F) {
     marks.push_back({model.head().mesh.V.row(ch.basis->freeVertices[static_cast<size_t>(row)]).transpose(), kFeature,
                      2.5 * Figures::kSuper});
   Simulator sim(l.model);
-  Figures::playTo(l.scene, sim, l.scene.duration);
+  playSceneTo(l.scene, sim, l.scene.duration);
   const MatX3 ud = sim.channelDisplacement(drag);
   const double maxD = ud.rowwise().norm().maxCoeff();
   const ColorBar barD = F.bar(maxD);
@@ -399,7 +386,7 @@ void fig26(Figures& F) {
       {0.0, "t0 neutral"}, {0.6, "t1 zyg. major contracted"}, {1.2, "t2 relaxed"}, {1.8, "t3 dep. anguli oris"}};
   std::vector<MatX3> P, U;
   for (const auto& k : keys) {
-    Figures::playTo(l.scene, sim, k.first);
+    playSceneTo(l.scene, sim, k.first);
     P.push_back(sim.skinPositions());
     U.push_back(sim.skinDisplacement());
   }
@@ -432,7 +419,7 @@ void fig27(Figures& F, const FigureOptions& opt) {
       {0.0, "neutral"}, {0.6, "zygomaticus major"}, {1.5, "depressor anguli oris"}, {2.4, "zyg. major + dep. labii inf."}};
   std::vector<MatX3> P, U;
   for (const auto& k : keys) {
-    Figures::playTo(l.scene, sim, k.first);
+    playSceneTo(l.scene, sim, k.first);
     P.push_back(sim.skinPositions());
     U.push_back(sim.skinDisplacement());
   }

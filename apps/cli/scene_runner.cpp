@@ -14,6 +14,7 @@
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/png.h"
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
@@ -45,15 +46,6 @@ void writeAtomically(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
-// Applies the scene's timeline at time t (s) to the simulator.
-void applyTimeline(const SceneDesc& scene, const FaceModel& model, Simulator& sim, double t) {
-  for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(t));
-  if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(t));
-  for (size_t d = 0; d < scene.drags.size(); ++d) {
-    auto it = scene.dragForces.find(scene.drags[d].name);
-    if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(t));
-  }
-}
 
 struct ExportFormats {
   bool obj = false, glb = false, pc2 = false;
@@ -119,7 +111,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     double frameStep = 0.0;
     int frameSteps = 0;
     while (sim.time() < frameTime - 0.5 * dt) {
-      applyTimeline(scene, *model, sim, sim.time());
+      applySceneTimeline(scene, sim, sim.time());
       Stopwatch sw;
       sim.step();
       frameStep += sw.seconds();

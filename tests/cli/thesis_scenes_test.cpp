@@ -14,6 +14,7 @@
 #include <string>
 
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "support/cli_runner.h"
@@ -50,24 +51,6 @@ std::shared_ptr<const FaceModel> modelFor(const SceneDesc& scene, const std::str
   return m;
 }
 
-// Applies the scene's timeline at time t, as `myoshell run` does.
-void applyTimeline(const SceneDesc& scene, const FaceModel& model, Simulator& sim, double t) {
-  for (const auto& [name, track] : scene.activations) sim.setActivation(model.muscleIndex(name), track.at(t));
-  if (model.gravityChannel() >= 0 && !scene.gravity.empty()) sim.setGravity(scene.gravity.at(t));
-  for (size_t d = 0; d < scene.drags.size(); ++d) {
-    auto it = scene.dragForces.find(scene.drags[d].name);
-    if (it != scene.dragForces.end()) sim.setDragForce(static_cast<int>(d), it->second.at(t));
-  }
-}
-
-// Plays the scene's timeline up to time t (s).
-void playTo(const SceneDesc& scene, Simulator& sim, double t) {
-  const double dt = sim.model().settings().dt;
-  while (sim.time() < t - 0.5 * dt) {
-    applyTimeline(scene, sim.model(), sim, sim.time());
-    sim.step();
-  }
-}
 
 // Nearest skin vertex to a point (cm).
 int nearestSkinVertex(const FaceModel& model, const Vec3& p) {
@@ -145,8 +128,8 @@ TEST(ThesisScenes, Fig17MusclesContractAndRelax) {
   const auto model = modelFor(contract, "fig17");  // both scenes describe the same face
   ASSERT_EQ(model->muscles().size(), 8u);
   Simulator a(model), b(model);
-  playTo(contract, a, 0.6);
-  playTo(relax, b, 0.6);
+  playSceneTo(contract, a, 0.6);
+  playSceneTo(relax, b, 0.6);
   for (int m = 0; m < 8; ++m) {
     const double rest = restInsertionToOrigin(*model, m);
     const std::string& name = model->muscles()[static_cast<size_t>(m)].muscle.def.name;
@@ -195,13 +178,13 @@ void checkRightThenBoth(const std::string& sceneName, double upSign) {
   const auto model = modelFor(scene, sceneName);
   Simulator sim(model);
   const Vec3 y = up(*model);
-  playTo(scene, sim, 0.95);
+  playSceneTo(scene, sim, 0.95);
   const auto [r1, l1] = sideSums(sim);
   EXPECT_GT(r1, 1.0) << sceneName << ": the right side moves";
   EXPECT_LT(l1, 0.3 * r1) << sceneName << ": the left side stays (nearly)";
   const int vr = mostDisplaced(sim, -1.0);
   EXPECT_GT(upSign * displacementAt(sim, vr).dot(y), 0.05) << sceneName << ": direction of the right side";
-  playTo(scene, sim, 2.0);
+  playSceneTo(scene, sim, 2.0);
   const auto [r2, l2] = sideSums(sim);
   EXPECT_GT(l2, 0.7 * r2) << sceneName << ": both sides move";
   EXPECT_LT(l2, 1.4 * r2) << sceneName << ": both sides move alike";
@@ -229,11 +212,11 @@ TEST(ThesisScenes, Fig20CorrugatorContractsThenRelaxes) {
   const int m = model->muscleIndex("corrugator_supercilii_right");
   const double rest = restInsertionToOrigin(*model, m);
   const int v = insertionSkinVertex(*model, "corrugator_supercilii_right");
-  playTo(scene, sim, 0.95);
+  playSceneTo(scene, sim, 0.95);
   EXPECT_LT(insertionToOrigin(sim, m), rest);
   const Vec3 contracted = displacementAt(sim, v);
   EXPECT_GT(contracted.norm(), 0.02);
-  playTo(scene, sim, 2.0);
+  playSceneTo(scene, sim, 2.0);
   EXPECT_GT(insertionToOrigin(sim, m), rest);
   const Vec3 relaxed = displacementAt(sim, v);
   EXPECT_GT(relaxed.norm(), 0.02);
@@ -254,7 +237,7 @@ TEST(ThesisScenes, Fig22GravitySagGrowsAsStiffnessFalls) {
     const auto model = modelFor(scene, "fig22@" + std::to_string(scale));
     ASSERT_GE(model->gravityChannel(), 0);
     Simulator sim(model);
-    playTo(scene, sim, scene.duration);
+    playSceneTo(scene, sim, scene.duration);
     const MatX3 u = sim.channelDisplacement(model->gravityChannel());
     const double sag = u.rowwise().norm().maxCoeff();
     const double meanDown = -(u * up(*model)).mean();
@@ -271,7 +254,7 @@ TEST(ThesisScenes, Fig23CombinedSmileOpensTheLowerLip) {
   const SceneDesc scene = readScene(scenePath("fig23_combined"));
   const auto model = modelFor(scene, "fig23_combined");
   Simulator sim(model);
-  playTo(scene, sim, scene.duration);
+  playSceneTo(scene, sim, scene.duration);
   const Vec3 y = up(*model);
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_right")).dot(y), -0.02);
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_left")).dot(y), -0.02);
@@ -288,7 +271,7 @@ TEST(ThesisScenes, Fig25DragMovesTheCheekAlongTheForce) {
   const auto model = modelFor(scene, "fig25_drag");
   ASSERT_EQ(scene.drags.size(), 1u);
   Simulator sim(model);
-  playTo(scene, sim, scene.duration);
+  playSceneTo(scene, sim, scene.duration);
   const Vec3 force = scene.dragForces.at(scene.drags[0].name).at(scene.duration);
   int dragChannel = -1;
   for (size_t c = 0; c < model->channels().size(); ++c)
@@ -311,13 +294,13 @@ TEST(ThesisScenes, Fig26TransitionUpNeutralDown) {
   Simulator sim(model);
   const int corner = landmark(*model, "mouth_corner_right");
   const Vec3 y = up(*model);
-  playTo(scene, sim, 0.6);
+  playSceneTo(scene, sim, 0.6);
   const Vec3 t1 = displacementAt(sim, corner);
   EXPECT_GT(t1.dot(y), 0.03) << "t1: corner up";
-  playTo(scene, sim, 1.2);
+  playSceneTo(scene, sim, 1.2);
   const Vec3 t2 = displacementAt(sim, corner);
   EXPECT_LT(t2.norm(), 0.25 * t1.norm()) << "t2: back near rest";
-  playTo(scene, sim, 1.8);
+  playSceneTo(scene, sim, 1.8);
   EXPECT_LT(displacementAt(sim, corner).dot(y), -0.03) << "t3: corner down";
 }
 
@@ -332,11 +315,11 @@ TEST(ThesisScenes, Fig27IctHeadSmileFrownAndCombined) {
   Simulator sim(model);
   const int corner = landmark(*model, "mouth_corner_right");
   const Vec3 y = up(*model);
-  playTo(scene, sim, 0.6);
+  playSceneTo(scene, sim, 0.6);
   EXPECT_GT(displacementAt(sim, corner).dot(y), 0.02) << "zygomaticus major: corner up";
-  playTo(scene, sim, 1.5);
+  playSceneTo(scene, sim, 1.5);
   EXPECT_LT(displacementAt(sim, corner).dot(y), -0.02) << "depressor anguli oris: corner down";
-  playTo(scene, sim, scene.duration);
+  playSceneTo(scene, sim, scene.duration);
   EXPECT_GT(displacementAt(sim, corner).dot(y), 0.02) << "combined: corner up";
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_right")).dot(y), -0.02)
       << "combined: lower lip down";
