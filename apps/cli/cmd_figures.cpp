@@ -376,14 +376,14 @@ void fig24_25(Figures& F) {
          "Fig. 25: skin deformation by the drag F_ext_s1 and the zygomaticus major together");
 }
 
-// Fig. 26: t0 neutral, t1 lifted, t2 neutral again, t3 pulled down.
-void fig26(Figures& F) {
-  const Loaded l = F.load("fig26_transition");
+// A row of frames of one scene at the given times, coloured by displacement on one shared scale.
+// withTimes appends each key's time to its caption.
+void timelineStrip(Figures& F, const std::string& scene, const std::vector<std::pair<double, std::string>>& keys,
+                   bool withTimes, const std::string& file, const std::string& title) {
+  const Loaded l = F.load(scene);
   const FaceModel& model = *l.model;
   const Camera cam = F.camera(model, ViewPreset::front);
   Simulator sim(l.model);
-  const std::vector<std::pair<double, std::string>> keys = {
-      {0.0, "t0 neutral"}, {0.6, "t1 zyg. major contracted"}, {1.2, "t2 relaxed"}, {1.8, "t3 dep. anguli oris"}};
   std::vector<MatX3> P, U;
   for (const auto& k : keys) {
     playSceneTo(l.scene, sim, k.first);
@@ -397,10 +397,16 @@ void fig26(Figures& F) {
   std::vector<std::string> caps;
   for (size_t i = 0; i < keys.size(); ++i) {
     tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
-    caps.push_back(fmt::format("{} ({})", keys[i].second, fmtTime(keys[i].first)));
+    caps.push_back(withTimes ? fmt::format("{} ({})", keys[i].second, fmtTime(keys[i].first)) : keys[i].second);
   }
-  F.save("fig26_transition.png", tiles, caps, 4,
-         "Fig. 26: transition from the lifted to the pulled-down lip, t0 to t3");
+  F.save(file, tiles, caps, static_cast<int>(keys.size()), title);
+}
+
+// Fig. 26: t0 neutral, t1 lifted, t2 neutral again, t3 pulled down.
+void fig26(Figures& F) {
+  timelineStrip(F, "fig26_transition",
+                {{0.0, "t0 neutral"}, {0.6, "t1 zyg. major contracted"}, {1.2, "t2 relaxed"}, {1.8, "t3 dep. anguli oris"}},
+                true, "fig26_transition.png", "Fig. 26: transition from the lifted to the pulled-down lip, t0 to t3");
 }
 
 // Fig. 27: the ICT head (a user-specific mesh).
@@ -411,28 +417,9 @@ void fig27(Figures& F, const FigureOptions& opt) {
     fmt::print("fig27 skipped: the ICT head ({}) is absent\n", obj.string());
     return;
   }
-  const Loaded l = F.load("fig27_ict_head");
-  const FaceModel& model = *l.model;
-  const Camera cam = F.camera(model, ViewPreset::front);
-  Simulator sim(l.model);
-  const std::vector<std::pair<double, std::string>> keys = {
-      {0.0, "neutral"}, {0.6, "zygomaticus major"}, {1.5, "depressor anguli oris"}, {2.4, "zyg. major + dep. labii inf."}};
-  std::vector<MatX3> P, U;
-  for (const auto& k : keys) {
-    playSceneTo(l.scene, sim, k.first);
-    P.push_back(sim.skinPositions());
-    U.push_back(sim.skinDisplacement());
-  }
-  double maxU = 0.0;
-  for (const MatX3& u : U) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
-  const ColorBar bar = F.bar(maxU);
-  std::vector<Image> tiles;
-  std::vector<std::string> caps;
-  for (size_t i = 0; i < keys.size(); ++i) {
-    tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
-    caps.push_back(keys[i].second);
-  }
-  F.save("fig27_ict_head.png", tiles, caps, 4, "Fig. 27: facial animation with a user-specific mesh (ICT-FaceKit head)");
+  timelineStrip(F, "fig27_ict_head",
+                {{0.0, "neutral"}, {0.6, "zygomaticus major"}, {1.5, "depressor anguli oris"}, {2.4, "zyg. major + dep. labii inf."}},
+                false, "fig27_ict_head.png", "Fig. 27: facial animation with a user-specific mesh (ICT-FaceKit head)");
 }
 
 int runFigures(const FigureOptions& opt) {
