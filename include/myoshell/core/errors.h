@@ -36,4 +36,11 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A picture that cannot be drawn: no OpenGL context could be made (no EGL display, no GL 3.3 core,
+// no window system), or a shader did not compile. Callers may fall back to the software renderer.
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace myo
