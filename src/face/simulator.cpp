@@ -40,6 +40,9 @@ Simulator::Simulator(std::shared_ptr<const FaceModel> model) : model_(std::move(
   channelLoaded_.assign(model_->channels().size(), false);
   activation_.assign(model_->muscles().size(), 0.0);
   dragForce_.assign(s.drags.size(), Vec3::Zero());
+  dragVertex_.resize(s.drags.size());
+  for (size_t d = 0; d < s.drags.size(); ++d) dragVertex_[d] = s.drags[d].vertex;
+  for (const SkinChannel& ch : model_->channels()) dragRows_.push_back(ch.dragRows);
   skinU_ = MatX3::Zero(model_->head().mesh.vertexCount(), 3);
   // The runaway guard: a displacement larger than the head's bounding-box diagonal.
   const MatX3& V = model_->head().mesh.V;
@@ -86,10 +89,49 @@ void Simulator::setDragForce(int drag, const Vec3& force) {
     if (channels[c].kind != ChannelKind::Drag || channels[c].source != drag) continue;
     MatX3& F = channelForce_[c];
     F.setZero();
-    const Vec3 share = force / static_cast<double>(channels[c].dragRows.size());
-    for (int r : channels[c].dragRows) F.row(r) = share.transpose();
+    const Vec3 share = force / static_cast<double>(dragRows_[c].size());
+    for (int r : dragRows_[c]) F.row(r) = share.transpose();
     channelLoaded_[c] = force.squaredNorm() > 0.0;
   }
+}
+
+void Simulator::setDragVertex(int drag, int vertex, double radius) {
+  MYO_CHECK(drag >= 0 && drag < static_cast<int>(dragForce_.size()), "drag index " << drag);
+  const DragDef& def = model_->settings().drags[static_cast<size_t>(drag)];
+  const MatX3& rest = model_->head().mesh.V;
+  if (vertex < 0 || vertex >= rest.rows())
+    throw InputError("drag '" + def.name + "': vertex " + std::to_string(vertex) + " is outside [0, " +
+                     std::to_string(rest.rows()) + ")");
+  if (!(radius > 0.0)) radius = def.radius;
+  const auto& channels = model_->channels();
+  for (size_t c = 0; c < channels.size(); ++c) {
+    if (channels[c].kind != ChannelKind::Drag || channels[c].source != drag) continue;
+    const ModalBasis& basis = *channels[c].basis;
+    std::vector<int> rows;
+    const Vec3 centre = rest.row(vertex);
+    for (int r = 0; r < basis.freeCount(); ++r)
+      if ((Vec3(rest.row(basis.freeVertices[static_cast<size_t>(r)])) - centre).norm() <= radius) rows.push_back(r);
+    if (rows.empty())
+      throw InputError("drag '" + def.name + "': no free skin vertex within " + std::to_string(radius) +
+                       " cm of vertex " + std::to_string(vertex) + " (is it pinned?)");
+    dragRows_[c] = std::move(rows);
+  }
+  dragVertex_[static_cast<size_t>(drag)] = vertex;
+  setDragForce(drag, dragForce_[static_cast<size_t>(drag)]);  // re-spread the current force
+}
+
+void Simulator::setSkinStiffnessScale(double s) {
+  if (!std::isfinite(s) || s <= 0.0)
+    throw InputError("skin stiffness scale must be finite and > 0, got " + std::to_string(s));
+  for (size_t c = 0; c < channelIntegrators_.size(); ++c) {
+    try {
+      channelIntegrators_[c].setStiffnessScale(s);
+    } catch (...) {  // an unstable semi-implicit step: every channel keeps the previous scale
+      for (size_t done = 0; done < c; ++done) channelIntegrators_[done].setStiffnessScale(skinStiffnessScale_);
+      throw;
+    }
+  }
+  skinStiffnessScale_ = s;
 }
 
 void Simulator::step() {

@@ -2,6 +2,7 @@
 // channels and their sum.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "myoshell/core/errors.h"
@@ -355,6 +356,78 @@ TEST(Simulator, ActivationsAreClampedAndNaNRejected) {
   EXPECT_EQ(sim.clampedActivations(), 1);
   EXPECT_THROW(sim.setActivation(0, std::nan("")), InputError);
   EXPECT_THROW(sim.setActivation("buccinator", 0.5), InputError);
+}
+
+
+TEST(Simulator, SkinStiffnessScaleScalesTheSteadySagAsOneOverS) {
+  // The viewer's stiffness slider (thesis Fig. 22 live): Λ ← sΛ with Φ kept, so under gravity the
+  // steady displacement is exactly u/s without warping, and close to it with warping at small sag.
+  for (const bool warping : {false, true}) {
+    FaceModelSettings s = testSettings();
+    s.warping = warping;
+    const auto model = std::make_shared<const FaceModel>(loadDefaultHead(), std::vector<MuscleDef>{}, s);
+    MatX3 sag[2];
+    const double scales[2] = {1.0, 2.5};
+    for (int k = 0; k < 2; ++k) {
+      Simulator sim(model);
+      sim.setSkinStiffnessScale(scales[k]);
+      EXPECT_EQ(sim.skinStiffnessScale(), scales[k]);
+      sim.advance(6.0);  // many times the slowest mode's damping time 2/ξ = 0.25 s
+      sag[k] = sim.skinDisplacement();
+    }
+    ASSERT_GT(sag[0].norm(), 1e-3);
+    const double error = (sag[1] * scales[1] - sag[0]).norm() / sag[0].norm();
+    EXPECT_LE(error, warping ? 0.05 : 1e-6) << (warping ? "warped" : "linear");
+  }
+  Simulator sim(defaultFace());
+  EXPECT_THROW(sim.setSkinStiffnessScale(0.0), InputError);
+  EXPECT_THROW(sim.setSkinStiffnessScale(std::nan("")), InputError);
+  EXPECT_EQ(sim.skinStiffnessScale(), 1.0);
+}
+
+TEST(Simulator, ADragGripMovesToAnotherVertexWithoutANewBasis) {
+  FaceModelSettings s = testSettings();
+  s.gravity = false;
+  Head head = loadDefaultHead();
+  DragDef drag;
+  drag.name = "mouse";
+  drag.vertex = head.landmarks.vertex("mouth_corner_right");
+  s.drags.push_back(drag);
+  const auto model = std::make_shared<const FaceModel>(head, std::vector<MuscleDef>{}, s);
+  Simulator sim(model);
+  // A free cheek vertex (landmarks are pinned with the gravity pins): the one nearest to halfway
+  // between the left mouth corner and the left eye's outer corner.
+  const std::vector<int> pins = model->gravityPins();
+  const Vec3 aim = 0.5 * (Vec3(head.mesh.V.row(head.landmarks.vertex("mouth_corner_left"))) +
+                          Vec3(head.mesh.V.row(head.landmarks.vertex("left_eye_outer"))));
+  int cheek = -1;
+  for (int v = 0; v < head.mesh.vertexCount(); ++v)
+    if (!std::binary_search(pins.begin(), pins.end(), v) &&
+        (cheek < 0 || (Vec3(head.mesh.V.row(v)) - aim).norm() < (Vec3(head.mesh.V.row(cheek)) - aim).norm()))
+      cheek = v;
+  sim.setDragVertex(0, cheek);
+  EXPECT_EQ(sim.dragVertex(0), cheek);
+  sim.setDragForce(0, Vec3(0.0, 0.0, 3000.0));
+  sim.advance(0.2);
+  const VecX moved = sim.skinDisplacement().rowwise().norm();
+  const MatX3& rest = head.mesh.V;
+  // The grip moved to the left cheek: it moves far more than the right corner's surroundings,
+  // where the drag was built.
+  const int rightCheek = head.mesh.vertexCount() > 0 ? drag.vertex : 0;
+  double nearRight = 0.0;
+  for (int v = 0; v < head.mesh.vertexCount(); ++v)
+    if ((Vec3(head.mesh.V.row(v)) - Vec3(head.mesh.V.row(rightCheek))).norm() < 1.0) nearRight = std::max(nearRight, moved(v));
+  EXPECT_GT(moved(cheek), 2.0 * nearRight);
+  EXPECT_GT(moved(cheek), 0.5 * moved.maxCoeff());
+  EXPECT_THROW(sim.setDragVertex(0, static_cast<int>(rest.rows())), InputError);
+  const int pinned = model->gravityPins().front();
+  try {
+    sim.setDragVertex(0, pinned, 1e-3);
+    FAIL() << "a pinned grip was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("drag 'mouse': no free skin vertex within"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(sim.dragVertex(0), cheek);  // unchanged after the refusal
 }
 
 }  // namespace

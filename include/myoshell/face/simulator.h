@@ -36,6 +36,17 @@ class Simulator {
   void setGravity(double scale);
   // Drag force (dyn, total, shared by the drag region) of drag channel `drag`.
   void setDragForce(int drag, const Vec3& force);
+  // Moves drag `drag`'s grip to skin vertex `vertex` (the viewer's mouse): its force is then
+  // shared by the free skin vertices within `radius` cm of it (radius ≤ 0: the drag's own radius).
+  // The channel's basis does not change. Throws InputError for a vertex outside the skin or when
+  // no free vertex is that close (a pinned spot). Allocates: call it between steps.
+  void setDragVertex(int drag, int vertex, double radius = 0.0);
+  int dragVertex(int drag) const { return dragVertex_[static_cast<size_t>(drag)]; }
+  // Scales the stiffness of every skin channel exactly: Λ ← sΛ, damping recomputed, Φ and Ψ kept
+  // (no eigen-solve; the thesis's Fig. 22 as a live slider). Under a constant load the steady
+  // displacement scales as 1/s. Throws InputError unless s is finite and > 0.
+  void setSkinStiffnessScale(double s);
+  double skinStiffnessScale() const { return skinStiffnessScale_; }
 
   // Advances the whole face by the model's dt. Throws NumericalError naming the channel, the step and
   // the likely causes when the skin's displacement becomes NaN, infinite or larger than the head.
@@ -71,6 +82,9 @@ class Simulator {
   std::vector<double> activation_;
   double gravity_ = 1.0;
   std::vector<Vec3> dragForce_;
+  std::vector<std::vector<int>> dragRows_;  // per skin channel (drag channels only): free rows sharing the force
+  std::vector<int> dragVertex_;             // per drag: the vertex gripped
+  double skinStiffnessScale_ = 1.0;
   MatX3 skinU_;
   double time_ = 0.0;
   long long steps_ = 0;
