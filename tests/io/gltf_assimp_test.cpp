@@ -1,0 +1,154 @@
+// Our GLB read back by a second, independent glTF reader (assimp, Debian libassimp-dev): the base
+// mesh in the head's vertex order, one anim mesh (morph target) per frame holding that frame's
+// positions, and the weights animation as a morph-mesh channel.
+#include <assimp/Importer.hpp>
+#include <assimp/anim.h>
+#include <assimp/mesh.h>
+#include <assimp/scene.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "myoshell/io/animation_export.h"
+#include "support/cli_runner.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 6×4 grid of vertices (30 triangles) 1 cm apart, bulging over `frameCount` frames.
+AnimationFrames bulgeAnimation(int frameCount) {
+  constexpr int nx = 6, ny = 4;
+  AnimationFrames a;
+  a.name = "bulge";
+  a.fps = 30.0;
+  a.rest.resize(nx * ny, 3);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) a.rest.row(j * nx + i) << 0.5 * i + 3, 0.7 * j - 1, 8.0 + 0.1 * i * j;
+  a.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
+  int t = 0;
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int v = j * nx + i;
+      a.triangles.row(t++) << v, v + 1, v + nx + 1;
+      a.triangles.row(t++) << v, v + nx + 1, v + nx;
+    }
+  for (int k = 0; k < frameCount; ++k) {
+    MatX3 P = a.rest;
+    for (int v = 0; v < P.rows(); ++v) {
+      P(v, 2) += 0.3 * std::sin(0.4 * k + v);
+      P(v, 0) -= 0.02 * k * (v % 3);
+    }
+    a.positions.push_back(P);
+  }
+  return a;
+}
+
+double maxDifference(const aiVector3D* v, const MatX3& expected) {
+  double worst = 0;
+  for (Eigen::Index i = 0; i < expected.rows(); ++i)
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(v[i][c]) - expected(i, c)));
+  return worst;
+}
+
+// Weight of target `target` in morph key `key` (0 when the key does not list it).
+double keyWeight(const aiMeshMorphKey& key, unsigned target) {
+  for (unsigned j = 0; j < key.mNumValuesAndWeights; ++j)
+    if (key.mValues[j] == target) return key.mWeights[j];
+  return 0.0;
+}
+
+class GltfAssimp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("myo_gltf_assimp_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(GltfAssimp, ReadsTheBaseMeshMorphTargetsAndWeightsAnimation) {
+  const AnimationFrames a = bulgeAnimation(10);
+  const fs::path path = dir_ / "bulge.glb";
+  writeGlb(path, a);
+
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path.string(), 0);  // no post-processing: keep the order
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(scene->mNumMeshes, 1u);
+  const aiMesh* mesh = scene->mMeshes[0];
+
+  // The base mesh: the rest positions, same vertex order, same triangles.
+  ASSERT_EQ(mesh->mNumVertices, static_cast<unsigned>(a.rest.rows()));
+  EXPECT_LT(maxDifference(mesh->mVertices, a.rest), 1e-6);
+  ASSERT_EQ(mesh->mNumFaces, static_cast<unsigned>(a.triangles.rows()));
+  for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+    ASSERT_EQ(mesh->mFaces[f].mNumIndices, 3u);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(mesh->mFaces[f].mIndices[c], static_cast<unsigned>(a.triangles(f, c))) << f;
+  }
+  EXPECT_TRUE(mesh->HasNormals());
+
+  // One anim mesh per frame; assimp adds the target's displacement to the base, so anim mesh k
+  // holds frame k's positions.
+  ASSERT_EQ(mesh->mNumAnimMeshes, a.positions.size());
+  for (unsigned k = 0; k < mesh->mNumAnimMeshes; ++k) {
+    const aiAnimMesh* am = mesh->mAnimMeshes[k];
+    ASSERT_EQ(am->mNumVertices, mesh->mNumVertices) << k;
+    ASSERT_TRUE(am->HasPositions()) << k;
+    EXPECT_LT(maxDifference(am->mVertices, a.positions[k]), 1e-5) << "frame " << k;
+  }
+  EXPECT_STREQ(mesh->mAnimMeshes[3]->mName.C_Str(), "frame_0003");  // extras.targetNames
+
+  // The weights animation: one morph-mesh channel, key k at k / fps with weight 1 on target k.
+  ASSERT_EQ(scene->mNumAnimations, 1u);
+  const aiAnimation* anim = scene->mAnimations[0];
+  ASSERT_EQ(anim->mNumMorphMeshChannels, 1u) << "assimp exposes no weights channel";
+  const aiMeshMorphAnim* channel = anim->mMorphMeshChannels[0];
+  ASSERT_EQ(channel->mNumKeys, a.positions.size());
+  const double ticksPerSecond = anim->mTicksPerSecond > 0 ? anim->mTicksPerSecond : 1.0;
+  for (unsigned k = 0; k < channel->mNumKeys; ++k) {
+    const aiMeshMorphKey& key = channel->mKeys[k];
+    EXPECT_NEAR(key.mTime / ticksPerSecond, k / a.fps, 1e-5) << k;
+    for (unsigned j = 0; j < a.positions.size(); ++j) EXPECT_EQ(keyWeight(key, j), j == k ? 1.0 : 0.0) << k << " " << j;
+  }
+}
+
+// A simulated run: the GLB's anim meshes are the frames the PC2 cache holds, vertex by vertex.
+TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
+  std::ofstream(dir_ / "small.json") << R"({
+  "name": "small",
+  "muscles": {"use": ["zygomaticus_major_left"]},
+  "gravity": {"enabled": false},
+  "numerics": {"skin_modes": 8},
+  "duration": 0.1, "fps": 20,
+  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
+})";
+  const auto r = test::runCli("run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / "out").string() +
+                              "' --cache '" + (dir_ / "cache").string() + "' --format glb,pc2");
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const PointCache pc = readPc2(dir_ / "out" / "small.pc2");
+
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile((dir_ / "out" / "small.glb").string(), 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(scene->mNumMeshes, 1u);
+  const aiMesh* mesh = scene->mMeshes[0];
+  ASSERT_EQ(mesh->mNumVertices, static_cast<unsigned>(pc.numPoints));
+  ASSERT_EQ(mesh->mNumAnimMeshes, pc.samples.size());
+  for (unsigned k = 0; k < mesh->mNumAnimMeshes; ++k)
+    EXPECT_LT(maxDifference(mesh->mAnimMeshes[k]->mVertices, pc.samples[k]), 1e-5) << "frame " << k;
+  // The skin moved: the last frame differs from the first by more than round-off.
+  EXPECT_GT((pc.samples.back() - pc.samples.front()).cwiseAbs().maxCoeff(), 0.01);
+  ASSERT_EQ(scene->mNumAnimations, 1u);
+  EXPECT_EQ(scene->mAnimations[0]->mNumMorphMeshChannels, 1u);
+}
+
+}  // namespace
+}  // namespace myo

@@ -1,0 +1,160 @@
+// Our GLB exports pass the Khronos glTF-Validator with no error: a small mesh written by writeGlb
+// (all frames, and strided), and the GLB of a `myoshell run`. The validator (npm gltf-validator,
+// installed by scripts/fetch_gltf_validator) runs through tools/validate_gltf.mjs under node; the
+// tests skip with a message when either is missing.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "myoshell/io/animation_export.h"
+#include "support/cli_runner.h"
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path validatorScript() { return test::sourceDir() / "tools" / "validate_gltf.mjs"; }
+fs::path validatorPackage() {
+  if (const char* env = std::getenv("MYO_GLTF_VALIDATOR_DIR")) return fs::path(env) / "node_modules" / "gltf-validator";
+  return test::sourceDir() / ".cache" / "gltf-validator" / "node_modules" / "gltf-validator";
+}
+bool haveNode() { return std::system("node --version > /dev/null 2>&1") == 0; }
+
+#define MYO_REQUIRE_GLTF_VALIDATOR()                                                                  \
+  do {                                                                                                \
+    if (!haveNode()) GTEST_SKIP() << "node not found on PATH (Debian package nodejs): validator test skipped"; \
+    if (!fs::exists(validatorPackage() / "package.json"))                                            \
+      GTEST_SKIP() << "glTF-Validator not installed at " << validatorPackage()                        \
+                   << " (run scripts/fetch_gltf_validator): validator test skipped";                  \
+  } while (0)
+
+std::string shellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct Validation {
+  int exitCode = -1;
+  nlohmann::json report;  // tools/validate_gltf.mjs's JSON line
+  std::string raw;
+};
+
+// Runs the validator on `file`.
+Validation validate(const fs::path& file) {
+  Validation v;
+  const std::string cmd = "node " + shellQuote(validatorScript().string()) + " " + shellQuote(file.string()) + " 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return v;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) v.raw.append(buf, n);
+  const int status = ::pclose(p);
+  v.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  v.report = nlohmann::json::parse(v.raw, nullptr, false);
+  return v;
+}
+
+// Asserts no error, and reports the counts in the test output.
+void expectValid(const fs::path& file) {
+  const Validation v = validate(file);
+  ASSERT_FALSE(v.report.is_discarded()) << "validator printed no JSON: " << v.raw;
+  ASSERT_TRUE(v.report.contains("numErrors")) << v.raw;
+  std::cout << "[ glTF-Validator " << v.report.value("validatorVersion", "?") << " ] " << file.filename().string()
+            << ": " << v.report["numErrors"] << " errors, " << v.report["numWarnings"] << " warnings, "
+            << v.report["numInfos"] << " infos, " << v.report["numHints"] << " hints\n";
+  EXPECT_EQ(v.report["numErrors"].get<int>(), 0) << v.report["messages"].dump(2);
+  EXPECT_EQ(v.exitCode, 0) << v.raw;
+}
+
+// A 7×5 grid of quads (48 vertices, 70 triangles) in z = 0, 1 cm apart, rippling over 12 frames.
+AnimationFrames rippleAnimation(int frameCount) {
+  constexpr int nx = 8, ny = 6;
+  AnimationFrames a;
+  a.name = "ripple";
+  a.fps = 25.0;
+  a.rest.resize(nx * ny, 3);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) a.rest.row(j * nx + i) << i, j, 0;
+  a.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
+  int t = 0;
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int v = j * nx + i;
+      a.triangles.row(t++) << v, v + 1, v + nx + 1;
+      a.triangles.row(t++) << v, v + nx + 1, v + nx;
+    }
+  for (int k = 0; k < frameCount; ++k) {
+    MatX3 P = a.rest;
+    for (int v = 0; v < P.rows(); ++v) P(v, 2) = 0.2 * std::sin(0.5 * k + 0.8 * P(v, 0)) * std::cos(0.6 * P(v, 1));
+    a.positions.push_back(P);
+  }
+  return a;
+}
+
+class GltfValidator : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("myo_gltf_validator_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(GltfValidator, WriteGlbHasNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  const fs::path path = dir_ / "ripple.glb";
+  writeGlb(path, rippleAnimation(12));
+  expectValid(path);
+}
+
+TEST_F(GltfValidator, StridedAndSingleFrameGlbsHaveNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  writeGlb(dir_ / "strided.glb", rippleAnimation(12), 5);  // frames 0, 3, 6, 9, 11
+  expectValid(dir_ / "strided.glb");
+  writeGlb(dir_ / "single.glb", rippleAnimation(1));  // one morph target, one keyframe
+  expectValid(dir_ / "single.glb");
+}
+
+// The validator does find errors: a GLB whose binary chunk is cut short fails (exit 1).
+TEST_F(GltfValidator, ATruncatedGlbFails) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  const fs::path path = dir_ / "cut.glb";
+  writeGlb(path, rippleAnimation(4));
+  fs::resize_file(path, fs::file_size(path) - 64);
+  const Validation v = validate(path);
+  ASSERT_FALSE(v.report.is_discarded()) << v.raw;
+  EXPECT_GT(v.report["numErrors"].get<int>(), 0) << v.raw;
+  EXPECT_EQ(v.exitCode, 1) << v.raw;
+}
+
+TEST_F(GltfValidator, CliRunGlbHasNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  std::ofstream(dir_ / "small.json") << R"({
+  "name": "small",
+  "muscles": {"use": ["zygomaticus_major_left"]},
+  "gravity": {"enabled": false},
+  "numerics": {"skin_modes": 8},
+  "duration": 0.1, "fps": 20,
+  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
+})";
+  const auto r = test::runCli("run " + shellQuote((dir_ / "small.json").string()) + " --out " +
+                              shellQuote((dir_ / "out").string()) + " --cache " + shellQuote((dir_ / "cache").string()) +
+                              " --format glb");
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  expectValid(dir_ / "out" / "small.glb");
+}
+
+}  // namespace
+}  // namespace myo
