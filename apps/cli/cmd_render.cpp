@@ -1,0 +1,244 @@
+// `myoshell render SCENE --out DIR`: simulates a scene and writes pictures of chosen frames
+// (DIR/png/<scene>_NNNN.png) and a contact sheet (DIR/<scene>_sheet.png), with overlays, through
+// OpenGL (a headless EGL context) or, when that is unavailable or --software, the software
+// renderer (docs/rendering.md).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "gl_face_picture.h"
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/face/simulator.h"
+#include "myoshell/io/basis_cache_file.h"
+#include "myoshell/render/contact_sheet.h"
+#include "myoshell/render/png.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderCommandOptions {
+  std::string scene;
+  std::string outDir;
+  std::string frames;            // "A:B" or "A:B:STEP"; empty: every frame
+  std::string size = "480x480";  // "WxH" or "N" (square)
+  std::string view = "front";
+  std::vector<std::string> overlays;
+  double colorScale = 0.0;       // cm; 0: the run's largest |u|
+  int sheet = 6;
+  bool software = false;
+  bool json = false;
+  std::string cacheDir = ".cache/bases";
+};
+
+[[noreturn]] void badValue(const std::string& option, const std::string& value, const std::string& why) {
+  throw InputError(option + " '" + value + "': " + why);
+}
+
+bool parseInt(const std::string& text, int& out) {
+  const char* end = text.data() + text.size();
+  const auto [p, ec] = std::from_chars(text.data(), end, out);
+  return ec == std::errc() && p == end && !text.empty();
+}
+
+struct FrameRange {
+  int first = 0, last = 0, step = 1;  // frame numbers, last included
+};
+
+FrameRange parseFrames(const std::string& text, int frameCount) {
+  FrameRange r{0, frameCount - 1, 1};
+  if (text.empty()) return r;
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t colon; (colon = text.find(':', start)) != std::string::npos; start = colon + 1)
+    parts.push_back(text.substr(start, colon - start));
+  parts.push_back(text.substr(start));
+  const bool ok = (parts.size() == 2 || parts.size() == 3) && parseInt(parts[0], r.first) &&
+                  parseInt(parts[1], r.last) && (parts.size() == 2 || parseInt(parts[2], r.step));
+  if (!ok) badValue("--frames", text, "expected A:B or A:B:STEP (frame numbers, e.g. 0:30:5)");
+  if (r.step < 1) badValue("--frames", text, "STEP must be at least 1");
+  if (r.first < 0 || r.first > r.last) badValue("--frames", text, "expected 0 <= A <= B");
+  if (r.last >= frameCount)
+    badValue("--frames", text, fmt::format("the scene's frames are 0 to {}", frameCount - 1));
+  return r;
+}
+
+std::pair<int, int> parseSize(const std::string& text) {
+  int w = 0, h = 0;
+  const size_t x = text.find('x');
+  const bool ok = x == std::string::npos ? parseInt(text, w) && (h = w, true)
+                                         : parseInt(text.substr(0, x), w) && parseInt(text.substr(x + 1), h);
+  if (!ok) badValue("--size", text, "expected WxH in pixels (e.g. 640x480) or N for NxN");
+  if (w < 16 || h < 16 || w > 4096 || h > 4096) badValue("--size", text, "each side must be 16 to 4096 pixels");
+  return {w, h};
+}
+
+FaceOverlays parseOverlays(const std::vector<std::string>& names) {
+  FaceOverlays o;
+  for (const std::string& name : names) {
+    if (name == "muscles") o.muscles = true;
+    else if (name == "roi") o.roi = true;
+    else if (name == "displacement") o.displacement = true;
+    else if (name == "pins") o.pins = true;
+    else badValue("--overlay", name, "unknown overlay (use muscles, roi, displacement, pins)");
+  }
+  if (o.roi && o.displacement) badValue("--overlay", "roi,displacement", "both colour the skin; choose one");
+  return o;
+}
+
+ViewPreset parseView(const std::string& name) {
+  if (name == "front") return ViewPreset::front;
+  if (name == "three-quarter") return ViewPreset::threeQuarter;
+  if (name == "profile") return ViewPreset::profile;
+  badValue("--view", name, "unknown view (use front, three-quarter or profile)");
+}
+
+// About `count` frames of `frames`, evenly spaced, first and last included.
+std::vector<int> sheetFrames(const std::vector<int>& frames, int count) {
+  std::vector<int> out;
+  const int n = static_cast<int>(frames.size());
+  if (count <= 0 || n == 0) return out;
+  if (count >= n) return frames;
+  for (int i = 0; i < count; ++i) {
+    const int k = count == 1 ? 0 : static_cast<int>(std::lround(static_cast<double>(i) * (n - 1) / (count - 1)));
+    if (out.empty() || out.back() != frames[static_cast<size_t>(k)]) out.push_back(frames[static_cast<size_t>(k)]);
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+int runRender(const RenderCommandOptions& opt) {
+  // Every option is checked before any work, so a typo fails at once and writes nothing.
+  const auto [width, height] = parseSize(opt.size);
+  FaceOverlays overlays = parseOverlays(opt.overlays);
+  const ViewPreset view = parseView(opt.view);
+  const SceneDesc scene = readScene(opt.scene);
+  const int frameCount = static_cast<int>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
+  const FrameRange range = parseFrames(opt.frames, frameCount);
+  const fs::path out(opt.outDir);
+  if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
+
+  FileBasisCache cache(opt.cacheDir);
+  const auto model = buildSceneFace(scene, &cache);
+  std::error_code ec;
+  fs::create_directories(out / "png", ec);
+  if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
+
+  std::unique_ptr<FacePainter> painter;
+  if (!opt.software) {
+    try {
+      painter = glPainter();
+    } catch (const RenderError& e) {
+      std::string why = e.what();  // one line, even with a shader compiler's log in it
+      std::replace(why.begin(), why.end(), '\n', ' ');
+      fmt::print(stderr, "myoshell: warning: using the software renderer: {}\n", why);
+    }
+  }
+  if (!painter) painter = softwarePainter();
+
+  // Simulate up to the last frame, keeping the state of the frames to draw.
+  std::vector<int> frames;
+  for (int f = range.first; f <= range.last; f += range.step) frames.push_back(f);
+  const std::vector<int> onSheet = sheetFrames(frames, opt.sheet);
+  Simulator sim(model);
+  std::vector<FaceFrameState> states;
+  std::vector<double> times;
+  double maxDisplacement = 0.0;
+  size_t next = 0;
+  for (int f = 0; f <= range.last; ++f) {
+    playSceneTo(scene, sim, f / scene.fps);
+    maxDisplacement = std::max(maxDisplacement, sim.skinDisplacement().rowwise().norm().maxCoeff());
+    if (next >= frames.size() || frames[next] != f) continue;
+    ++next;
+    FaceFrameState state;
+    state.skin = sim.skinPositions();
+    if (overlays.displacement) state.displacement = sim.skinDisplacement();
+    if (overlays.muscles)
+      for (int m = 0; m < static_cast<int>(model->muscles().size()); ++m) state.muscles.push_back(sim.musclePositions(m));
+    states.push_back(std::move(state));
+    times.push_back(sim.time());
+  }
+  overlays.displacementScale = opt.colorScale > 0 ? opt.colorScale : maxDisplacement > 0 ? maxDisplacement : 1.0;
+  const VecX roi = overlays.roi ? roiWeights(*model) : VecX();
+
+  // Draw and write each frame; keep the contact sheet's pictures.
+  std::vector<Image> sheet;
+  std::vector<std::string> captions;
+  std::vector<double> paintMs;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    Stopwatch clock;
+    const Image picture = painter->paint(faceScene(*model, states[i], view, width, height, overlays, &roi));
+    paintMs.push_back(1e3 * clock.seconds());
+    writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, frames[i])).string(), picture);
+    if (std::find(onSheet.begin(), onSheet.end(), frames[i]) != onSheet.end()) {
+      sheet.push_back(picture);
+      captions.push_back(fmt::format("t = {:.2f} s", times[i]));
+    }
+  }
+  const fs::path sheetPath = out / (scene.name + "_sheet.png");
+  if (!sheet.empty()) {
+    ContactSheetStyle style;
+    style.columns = std::min<int>(3, static_cast<int>(sheet.size()));
+    writePng(sheetPath.string(), contactSheet(sheet, captions, style));
+  }
+
+  if (opt.json) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["renderer"] = painter->name();
+    j["frames"] = frames;
+    j["width"] = width;
+    j["height"] = height;
+    j["png"] = (out / "png").string();
+    j["sheet"] = sheet.empty() ? nlohmann::json() : nlohmann::json(sheetPath.string());
+    j["sheet_frames"] = onSheet;
+    j["render_ms_median"] = median(paintMs);
+    j["render_ms"] = paintMs;
+    if (overlays.displacement) j["color_scale_cm"] = overlays.displacementScale;
+    fmt::print("{}\n", j.dump(2));
+  } else {
+    fmt::print("{}: {} frames drawn by {} at {}x{}, median {:.1f} ms per frame\n", scene.name, frames.size(),
+               painter->name(), width, height, median(paintMs));
+    fmt::print("wrote {}/png/{}_NNNN.png\n", out.string(), scene.name);
+    if (!sheet.empty()) fmt::print("wrote {}\n", sheetPath.string());
+  }
+  return kExitOk;
+}
+
+const CommandRegistrar renderRegistrar("render", [](CLI::App& app) {
+  auto opt = std::make_shared<RenderCommandOptions>();
+  CLI::App* sub = app.add_subcommand("render", "Simulate a scene and draw chosen frames and a contact sheet (PNG)");
+  sub->add_option("scene", opt->scene, "Scene file (JSON or YAML)")->required();
+  sub->add_option("--out", opt->outDir, "Output folder")->required();
+  sub->add_option("--frames", opt->frames, "Frames A:B or A:B:STEP (frame numbers, B included; default all)");
+  sub->add_option("--size", opt->size, "Picture size WxH, pixels")->capture_default_str();
+  sub->add_option("--view", opt->view, "front, three-quarter or profile")->capture_default_str();
+  sub->add_option("--overlay", opt->overlays, "Comma-separated: muscles, roi, displacement, pins")->delimiter(',');
+  sub->add_option("--color-scale", opt->colorScale, "Displacement colour scale [0, CM] (default: the run's largest |u|)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--sheet", opt->sheet, "About N evenly spaced frames on the contact sheet (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_flag("--software", opt->software, "Use the software renderer even where OpenGL is available");
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_flag("--json", opt->json, "Print a JSON summary");
+  return std::function<int()>([opt] { return runRender(*opt); });
+});
+
+}  // namespace
+}  // namespace myo::cli
