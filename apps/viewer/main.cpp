@@ -1,0 +1,66 @@
+// `myoshell-view`: the interactive viewer. A live face with a slider per muscle (the thesis's Maya
+// plug-in, standalone). The only place besides the CLI that prints to the user and exits.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <exception>
+#include <string>
+
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/io/basis_cache_file.h"
+#include "viewer_app.h"
+#include "viewer_session.h"
+
+namespace {
+// As the CLI's (apps/cli/command.h): 2 for bad arguments or input files, 1 for anything else.
+constexpr int kExitOk = 0, kExitFailure = 1, kExitBadInput = 2;
+}
+
+int main(int argc, char** argv) {
+  CLI::App app{"myoshell-view: a live face with a slider per muscle"};
+  std::string scenePath, cacheDir = ".cache/bases", size = "1280x800";
+  myo::viewer::ViewerOptions options;
+  app.add_option("scene", scenePath, "scene file (JSON or YAML); default: the built-in head and its eight muscles");
+  app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
+  app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");
+  app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(CLI::Range(0, 100000));
+  app.add_option("--msaa", options.samples, "multisamples per pixel (default 4; 0 is faster on software GL)")
+      ->check(CLI::Range(0, 16));
+  app.add_flag("--stay", options.stay, "keep the window open after --script");
+  app.add_option("--size", size, "window size WxH in pixels (default 1280x800)");
+  app.add_option("--cache", cacheDir, "folder of cached modal bases (default .cache/bases)");
+  app.set_version_flag("--version", "myoshell-view 0.1.0");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+  int w = 0, h = 0;
+  char x = 0;
+  if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 64 || h < 64 || w > 8192 || h > 8192) {
+    fmt::print(stderr, "myoshell-view: error: --size '{}' is not WxH with sides in [64, 8192]\n", size);
+    return kExitBadInput;
+  }
+  options.width = w;
+  options.height = h;
+  try {
+    myo::SceneDesc scene;
+    if (!scenePath.empty()) scene = myo::readScene(scenePath);
+    else scene.name = "default";
+    myo::FileBasisCache cache(cacheDir);
+    myo::viewer::ViewerSession session(scene, &cache);
+    const myo::viewer::ViewerStats stats = myo::viewer::runViewer(session, options);
+    if (!options.screenshot.empty()) fmt::print("wrote {}\n", options.screenshot);
+    fmt::print("myoshell-view: {} frames in {:.2f} s ({:.1f} frames/s), simulation {:.0f} steps/s\n", stats.frames,
+               stats.seconds, stats.framesPerSecond(), stats.stepsPerSecond);
+    return kExitOk;
+  } catch (const myo::InputError& e) {
+    fmt::print(stderr, "myoshell-view: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {  // no display, a blown-up simulation, …
+    fmt::print(stderr, "myoshell-view: error: {}\n", e.what());
+    return kExitFailure;
+  }
+}

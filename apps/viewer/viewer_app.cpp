@@ -1,0 +1,476 @@
+#include "viewer_app.h"
+
+// libepoxy first: it must come before any other GL header (GLFW's included).
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <fmt/core.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/gl/gl_renderer.h"
+#include "myoshell/render/colormap.h"
+#include "myoshell/render/png.h"
+
+namespace myo::viewer {
+namespace {
+
+std::string& glfwLastError() {
+  static std::string message;
+  return message;
+}
+
+// What is drawn, and from where.
+struct Display {
+  bool muscles = false, roi = false, displacement = false, pins = false, wireframe = false, skull = false;
+  bool panel = true;
+  int selected = 0;              // muscle whose ROI is shown
+  double displacementScale = 1;  // cm at the top of the colour map
+  double yaw = 0, pitch = 0;     // degrees, about the face frame (camera.h orbitCamera)
+  double zoom = 1;               // 2 = twice as close
+  Vec3 pan = Vec3::Zero();       // cm, added to the target
+  double dragStiffness = 1500;   // dyn/cm: the mouse pulls the grabbed spot like a spring
+};
+
+// A ray from pixel (x, y) of a width × height picture of `camera` (camera.h's conventions).
+void pixelRay(const Camera& camera, double x, double y, int width, int height, Vec3& origin, Vec3& direction) {
+  const Vec3 f = camera.forward(), r = camera.right(), u = camera.trueUp();
+  const double sx = x - 0.5 * width, sy = 0.5 * height - y;
+  if (camera.perspective) {
+    const double focal = 0.5 * height / std::tan(0.5 * camera.fovYDegrees * M_PI / 180.0);
+    origin = camera.eye;
+    direction = (f * focal + r * sx + u * sy).normalized();
+  } else {
+    const double pixel = camera.orthoHeight / height;
+    origin = camera.eye + r * (sx * pixel) + u * (sy * pixel);
+    direction = f;
+  }
+}
+
+// The skin vertex nearest to where the ray first hits the mesh (Möller–Trumbore), or −1.
+int pickVertex(const MatX3& V, const MatX3i& F, const Vec3& origin, const Vec3& direction) {
+  double best = std::numeric_limits<double>::infinity();
+  int hitTriangle = -1;
+  Vec3 hitPoint = Vec3::Zero();
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    const Vec3 a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
+    const Vec3 e1 = b - a, e2 = c - a, p = direction.cross(e2);
+    const double det = e1.dot(p);
+    if (std::abs(det) < 1e-14) continue;
+    const Vec3 s = origin - a;
+    const double u = s.dot(p) / det;
+    if (u < 0 || u > 1) continue;
+    const Vec3 q = s.cross(e1);
+    const double v = direction.dot(q) / det;
+    if (v < 0 || u + v > 1) continue;
+    const double distance = e2.dot(q) / det;
+    if (distance > 0 && distance < best) {
+      best = distance;
+      hitTriangle = static_cast<int>(t);
+      hitPoint = origin + distance * direction;
+    }
+  }
+  if (hitTriangle < 0) return -1;
+  int nearest = F(hitTriangle, 0);
+  for (int k = 1; k < 3; ++k)
+    if ((Vec3(V.row(F(hitTriangle, k))) - hitPoint).norm() < (Vec3(V.row(nearest)) - hitPoint).norm())
+      nearest = F(hitTriangle, k);
+  return nearest;
+}
+
+class ViewerApp {
+ public:
+  ViewerApp(ViewerSession& session, const ViewerOptions& options) : session_(session), options_(options) {
+    glfwSetErrorCallback([](int, const char* description) { glfwLastError() = description; });
+    if (!glfwInit())
+      throw RenderError("cannot open a window: " + glfwLastError() +
+                        " (is DISPLAY set? Run under `xvfb-run -a`, or use `myoshell render` for pictures without a display)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_SAMPLES, options.samples);
+    const std::string title = "Myoshell — " + (session.scene().name.empty() ? std::string("default head") : session.scene().name);
+    window_ = glfwCreateWindow(options.width, options.height, title.c_str(), nullptr, nullptr);
+    if (!window_) {
+      const std::string why = glfwLastError();
+      glfwTerminate();
+      throw RenderError("cannot open an OpenGL 3.3 core window: " + why);
+    }
+    glfwMakeContextCurrent(window_);
+    glfwSwapInterval(options.script.empty() && options.screenshot.empty() ? 1 : 0);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window_, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    renderer_ = std::make_unique<GlRenderer>();
+    const FaceFrame frame = session.model().head().frame();
+    viewFrame_.origin = frame.origin;
+    viewFrame_.axes = frame.axes;
+    viewFrame_.scale = frame.scale;
+  }
+
+  ~ViewerApp() {
+    renderer_.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+  }
+
+  ViewerStats stats() const { return stats_; }
+
+  void run() {
+    if (!options_.script.empty()) {
+      runScript(readViewerScript(options_.script));
+      if (!options_.stay && options_.screenshot.empty()) return;
+    }
+    if (!options_.screenshot.empty()) {
+      if (!session_.scene().activations.empty() && session_.playhead() == 0.0) session_.playing = true;
+      for (int f = 0; f < options_.frames; ++f) frame(1.0 / session_.scene().fps);
+      frame(0.0, options_.screenshot);
+      return;
+    }
+    double last = glfwGetTime();
+    while (!glfwWindowShouldClose(window_)) {
+      const double now = glfwGetTime();
+      frame(std::min(now - last, 0.05));  // a stalled frame does not make the simulation jump
+      last = now;
+    }
+  }
+
+ private:
+  ViewerSession& session_;
+  ViewerOptions options_;
+  GLFWwindow* window_ = nullptr;
+  std::unique_ptr<GlRenderer> renderer_;
+  ViewFrame viewFrame_;
+  Display display_;
+  Camera camera_;
+  int width_ = 0, height_ = 0;  // framebuffer pixels
+  int faceX_ = 0, faceWidth_ = 0;  // the face's viewport: right of the panel when it is shown
+  static constexpr int kPanelWidth = 430;
+  std::string status_;
+  std::string scenePath_ = "viewer_scene.json", glbPath_ = "viewer.glb";
+  int screenshots_ = 0;
+  ViewerStats stats_;
+  bool orbiting_ = false, panning_ = false, f12WasDown_ = false;
+  double lastX_ = 0, lastY_ = 0;
+  Vec3 grabPoint_ = Vec3::Zero();  // where the mouse holds the skin, cm (on the plane ⟂ view)
+
+  Camera makeCamera() const {
+    Camera camera = orbitCamera(viewFrame_, display_.yaw, display_.pitch);
+    fitToBounds(camera, session_.model().head().mesh.V, faceWidth_, std::max(height_, 1), 0.06);
+    camera.orthoHeight /= display_.zoom;
+    camera.target += display_.pan;
+    camera.eye += display_.pan;
+    return camera;
+  }
+
+  // One frame: input, the panel, `seconds` of simulation, drawing, an optional screenshot.
+  void frame(double seconds, const std::string& screenshot = {}) {
+    Stopwatch clock;
+    glfwPollEvents();
+    glfwGetFramebufferSize(window_, &width_, &height_);
+    faceX_ = display_.panel && width_ > 2 * kPanelWidth ? kPanelWidth : 0;
+    faceWidth_ = std::max(width_ - faceX_, 1);
+    camera_ = makeCamera();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    handleMouse();
+    if (display_.panel) panel();
+    session_.advance(seconds);
+    draw();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    const bool f12 = glfwGetKey(window_, GLFW_KEY_F12) == GLFW_PRESS;
+    if (f12 && !f12WasDown_) saveScreenshot(fmt::format("myoshell_view_{:03d}.png", screenshots_++));
+    f12WasDown_ = f12;
+    if (!screenshot.empty()) saveScreenshot(screenshot, false);
+    glfwSwapBuffers(window_);
+    if (screenshot.empty()) {  // a screenshot's PNG encoding is not a frame's cost
+      ++stats_.frames;
+      stats_.seconds += clock.seconds();
+    }
+  }
+
+  void saveScreenshot(const std::string& path, bool announce = true) {
+    glReadBuffer(GL_BACK);
+    writePng(path, readFramebuffer(width_, height_));
+    if (announce) status_ = "saved " + path;  // scripted captures keep the panel unchanged
+  }
+
+  void handleMouse() {
+    ImGuiIO& io = ImGui::GetIO();
+    double x, y;
+    glfwGetCursorPos(window_, &x, &y);
+    int windowW, windowH;
+    glfwGetWindowSize(window_, &windowW, &windowH);
+    const double toPixels = windowW > 0 ? static_cast<double>(width_) / windowW : 1.0;
+    const double px = x * toPixels - faceX_, py = y * toPixels;  // in the face's viewport
+    const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    const bool ctrl = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                      glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    if (!io.WantCaptureMouse) {
+      if (left && ctrl && !session_.grabbing()) grabAt(px, py);
+      if (left && !ctrl && !session_.grabbing() && !orbiting_) orbiting_ = true, lastX_ = px, lastY_ = py;
+      if (right && !panning_) panning_ = true, lastX_ = px, lastY_ = py;
+      if (io.MouseWheel != 0.0f) display_.zoom = std::clamp(display_.zoom * std::pow(1.15, io.MouseWheel), 0.2, 20.0);
+    }
+    if (!left) {
+      orbiting_ = false;
+      if (session_.grabbing()) session_.release();
+    }
+    if (!right) panning_ = false;
+    const double pixel = camera_.orthoHeight / std::max(height_, 1);
+    if (orbiting_) {
+      display_.yaw -= 0.4 * (px - lastX_);
+      display_.pitch = std::clamp(display_.pitch + 0.4 * (py - lastY_), -85.0, 85.0);
+    }
+    if (panning_) display_.pan += -camera_.right() * ((px - lastX_) * pixel) + camera_.trueUp() * ((py - lastY_) * pixel);
+    if (session_.grabbing()) {
+      // The spot follows the mouse on the plane through the grab point facing the viewer.
+      Vec3 origin, direction;
+      pixelRay(camera_, px, py, faceWidth_, height_, origin, direction);
+      const double along = (grabPoint_ - origin).dot(camera_.forward()) / direction.dot(camera_.forward());
+      const Vec3 target = origin + along * direction;
+      const Vec3 now = session_.simulator().skinPositions().row(session_.grabbedVertex());
+      session_.pull(display_.dragStiffness * (target - now));
+    }
+    lastX_ = px;
+    lastY_ = py;
+  }
+
+  void grabAt(double px, double py) {
+    Vec3 origin, direction;
+    pixelRay(camera_, px, py, faceWidth_, height_, origin, direction);
+    const MatX3 positions = session_.simulator().skinPositions();
+    const int vertex = pickVertex(positions, session_.model().head().mesh.F, origin, direction);
+    if (vertex < 0) return;
+    try {
+      session_.grab(vertex);
+      grabPoint_ = positions.row(vertex);
+      status_ = fmt::format("pulling vertex {}", vertex);
+    } catch (const InputError& e) {
+      status_ = e.what();
+    }
+  }
+
+  void panel() {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth - 16, static_cast<float>(std::max(height_ - 16, 200))), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Myoshell");
+    ImGui::PushItemWidth(170);
+    const StepTimings& t = session_.lastTimings();
+    ImGui::Text("simulation %.0f steps/s   render %.0f FPS", session_.stepsPerSecond(), ImGui::GetIO().Framerate);
+    ImGui::Text("step %.3f ms: muscles %.3f, springs %.3f, channels+sum %.3f", 1e3 * t.total, 1e3 * t.muscles,
+                1e3 * t.springs, 1e3 * t.channels);
+    if (ImGui::CollapsingHeader("Muscles", ImGuiTreeNodeFlags_DefaultOpen)) {
+      ImGui::Checkbox("link left and right", &session_.linked);
+      ImGui::SameLine();
+      if (ImGui::Button("reset")) session_.resetSliders();
+      for (int m = 0; m < session_.muscleCount(); ++m) {
+        float a = static_cast<float>(session_.slider(m));
+        if (ImGui::SliderFloat(session_.muscleName(m).c_str(), &a, -1.0f, 1.0f, "%.2f")) session_.setSlider(m, a);
+      }
+    }
+    if (ImGui::CollapsingHeader("Skin", ImGuiTreeNodeFlags_DefaultOpen)) {
+      bool gravity = session_.gravity();
+      if (session_.hasGravity() && ImGui::Checkbox("gravity", &gravity)) session_.setGravity(gravity);
+      float s = static_cast<float>(session_.simulator().skinStiffnessScale());
+      if (ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+        session_.setStiffnessScale(std::max(s, 0.1f));
+      float k = static_cast<float>(display_.dragStiffness);
+      if (ImGui::SliderFloat("drag dyn/cm", &k, 100.0f, 20000.0f, "%.0f", ImGuiSliderFlags_Logarithmic)) display_.dragStiffness = k;
+      ImGui::TextDisabled("Ctrl + left-drag on the skin pulls it");
+    }
+    if (ImGui::CollapsingHeader("Timeline", ImGuiTreeNodeFlags_DefaultOpen)) {
+      if (ImGui::Button(session_.playing ? "pause" : "play")) {
+        if (!session_.playing && session_.playhead() >= session_.duration()) session_.seek(0.0);
+        session_.playing = !session_.playing;
+      }
+      ImGui::SameLine();
+      float t = static_cast<float>(session_.playhead());
+      if (ImGui::SliderFloat("s", &t, 0.0f, static_cast<float>(session_.duration()), "%.2f")) session_.seek(t);
+      if (ImGui::Button("key sliders at playhead")) status_ = fmt::format("{} keys set at {:.2f} s", session_.setKeysAtPlayhead(), session_.playhead());
+      pathButton("save scene", scenePath_, [&](const std::string& p) { session_.saveScene(p); });
+      pathButton("export GLB", glbPath_, [&](const std::string& p) { session_.exportGlb(p); });
+    }
+    if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
+      ImGui::Checkbox("muscles", &display_.muscles);
+      ImGui::SameLine();
+      ImGui::Checkbox("pins", &display_.pins);
+      ImGui::SameLine();
+      ImGui::Checkbox("wireframe", &display_.wireframe);
+      if (session_.model().head().hasSkull()) {
+        ImGui::SameLine();
+        ImGui::Checkbox("skull", &display_.skull);
+      }
+      ImGui::Checkbox("ROI of", &display_.roi);
+      ImGui::SameLine();
+      if (session_.muscleCount() > 0 &&
+          ImGui::BeginCombo("##roi", session_.muscleName(display_.selected).c_str())) {
+        for (int m = 0; m < session_.muscleCount(); ++m)
+          if (ImGui::Selectable(session_.muscleName(m).c_str(), m == display_.selected)) display_.selected = m;
+        ImGui::EndCombo();
+      }
+      ImGui::Checkbox("displacement, cm up to", &display_.displacement);
+      float scale = static_cast<float>(display_.displacementScale);
+      if (ImGui::SliderFloat("##dscale", &scale, 0.05f, 5.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) display_.displacementScale = scale;
+      if (ImGui::Button("front")) display_.yaw = display_.pitch = 0;
+      ImGui::SameLine();
+      if (ImGui::Button("three-quarter")) display_.yaw = 35, display_.pitch = 0;
+      ImGui::SameLine();
+      if (ImGui::Button("profile")) display_.yaw = 90, display_.pitch = 0;
+      ImGui::SameLine();
+      if (ImGui::Button("screenshot (F12)")) saveScreenshot(fmt::format("myoshell_view_{:03d}.png", screenshots_++));
+    }
+    if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::PopItemWidth();
+    ImGui::End();
+  }
+
+  template <class Action>
+  void pathButton(const char* label, std::string& path, Action action) {
+    char buffer[512];
+    std::snprintf(buffer, sizeof buffer, "%s", path.c_str());
+    ImGui::PushID(label);
+    if (ImGui::InputText("##path", buffer, sizeof buffer)) path = buffer;
+    ImGui::SameLine();
+    if (ImGui::Button(label)) {
+      try {
+        action(path);
+        status_ = std::string(label) + ": wrote " + path;
+      } catch (const std::exception& e) {
+        status_ = e.what();
+      }
+    }
+    ImGui::PopID();
+  }
+
+  void draw() {
+    const FaceModel& model = session_.model();
+    const Simulator& sim = session_.simulator();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    renderer_->beginFrame(camera_, faceWidth_, height_, Rgb(0.16, 0.17, 0.20), faceX_, 0);
+    if (display_.skull && model.head().hasSkull()) {
+      RenderStyle bone;
+      bone.color = Rgb(0.85, 0.83, 0.76);
+      renderer_->drawMesh(model.head().skull.V, model.head().skull.F, bone);
+    }
+    if (display_.muscles) {
+      RenderStyle muscle;
+      muscle.color = Rgb(0.75, 0.18, 0.16);
+      for (int m = 0; m < static_cast<int>(model.muscles().size()); ++m)
+        renderer_->drawMesh(sim.musclePositions(m), model.muscles()[static_cast<size_t>(m)].muscle.mesh.F, muscle);
+    }
+    RenderStyle skin;
+    skin.wireframe = display_.wireframe;
+    skin.backColor = Rgb(0.45, 0.30, 0.28);
+    if (display_.muscles || display_.skull) skin.opacity = 0.55;
+    const int n = static_cast<int>(model.head().mesh.vertexCount());
+    if (display_.displacement) {
+      skin.vertexColors = scalarColors(sim.skinDisplacement().rowwise().norm(), 0.0, display_.displacementScale);
+    } else if (display_.roi && session_.muscleCount() > 0) {
+      skin.vertexColors = MatX3(n, 3);
+      skin.vertexColors.rowwise() = skin.color.transpose();
+      for (int v : model.muscles()[static_cast<size_t>(display_.selected)].roi)
+        skin.vertexColors.row(v) = Rgb(0.98, 0.62, 0.15).transpose();
+    }
+    renderer_->drawMesh(sim.skinPositions(), model.head().mesh.F, skin);
+    std::vector<Marker> markers;
+    if (display_.pins)
+      for (int v : model.gravityPins()) markers.push_back({model.head().mesh.V.row(v), Rgb(0.2, 0.5, 0.95), 2.5});
+    if (session_.grabbing())
+      markers.push_back({sim.skinPositions().row(session_.grabbedVertex()), Rgb(1.0, 0.9, 0.1), 5.0});
+    if (!markers.empty()) renderer_->drawMarkers(markers);
+  }
+
+  // Runs the script's commands in order; each error names the script's file and line.
+  void runScript(const std::vector<ScriptCommand>& script) {
+    for (const ScriptCommand& cmd : script) {
+      try {
+        execute(cmd);
+      } catch (const InputError& e) {
+        throw InputError(e.message(), options_.script, cmd.line);
+      } catch (const NumericalError& e) {
+        throw NumericalError(fmt::format("{}:{}: {}", options_.script, cmd.line, e.what()));
+      }
+    }
+  }
+
+  void execute(const ScriptCommand& c) {
+    const auto on = [&](size_t i) { return c.args.at(i) == "on"; };
+    if (c.verb == "set") session_.setSlider(c.args[0], c.number(1));
+    else if (c.verb == "link") session_.linked = on(0);
+    else if (c.verb == "gravity") session_.setGravity(on(0));
+    else if (c.verb == "stiffness") session_.setStiffnessScale(c.number(0));
+    else if (c.verb == "play") session_.playing = true;
+    else if (c.verb == "pause") session_.playing = false;
+    else if (c.verb == "seek") session_.seek(c.number(0));
+    else if (c.verb == "reset") session_.resetSliders();
+    else if (c.verb == "grab") session_.grab(vertexOf(c.args[0]));
+    else if (c.verb == "pull") session_.pull(Vec3(c.number(0), c.number(1), c.number(2)));
+    else if (c.verb == "release") session_.release();
+    else if (c.verb == "key") session_.setKeysAtPlayhead();
+    else if (c.verb == "save") session_.saveScene(c.args[0]);
+    else if (c.verb == "export") session_.exportGlb(c.args[0]);
+    else if (c.verb == "screenshot") frame(0.0, c.args[0]);
+    else if (c.verb == "advance") {
+      const double frames = c.number(0);
+      if (frames < 0 || frames != std::floor(frames)) throw InputError("'advance' takes a whole number of frames ≥ 0");
+      for (int f = 0; f < static_cast<int>(frames); ++f) frame(1.0 / session_.scene().fps);
+    } else if (c.verb == "show") {
+      bool* flag = c.args[0] == "muscles"        ? &display_.muscles
+                   : c.args[0] == "roi"          ? &display_.roi
+                   : c.args[0] == "displacement" ? &display_.displacement
+                   : c.args[0] == "pins"         ? &display_.pins
+                   : c.args[0] == "wireframe"    ? &display_.wireframe
+                   : c.args[0] == "skull"        ? &display_.skull
+                   : c.args[0] == "panel"        ? &display_.panel
+                                                 : nullptr;
+      if (!flag) throw InputError("'show': unknown layer '" + c.args[0] + "' (use muscles, roi, displacement, pins, wireframe, skull or panel)");
+      *flag = on(1);
+    } else if (c.verb == "select") display_.selected = session_.model().muscleIndex(c.args[0]);
+    else if (c.verb == "view") {
+      display_.pitch = 0;
+      display_.yaw = c.args[0] == "front" ? 0 : c.args[0] == "three-quarter" ? 35 : 90;
+    } else if (c.verb == "orbit") {
+      display_.yaw = c.number(0);
+      display_.pitch = std::clamp(c.number(1), -85.0, 85.0);
+    } else if (c.verb == "zoom") {
+      if (!(c.number(0) > 0)) throw InputError("'zoom' needs a factor > 0");
+      display_.zoom = c.number(0);
+    }
+  }
+
+  int vertexOf(const std::string& word) const {
+    if (!word.empty() && std::all_of(word.begin(), word.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+      return std::stoi(word);
+    return session_.model().head().landmarks.vertex(word);
+  }
+};
+
+}  // namespace
+
+ViewerStats runViewer(ViewerSession& session, const ViewerOptions& options) {
+  ViewerApp app(session, options);
+  app.run();
+  ViewerStats stats = app.stats();
+  stats.stepsPerSecond = session.stepsPerSecond();
+  return stats;
+}
+
+}  // namespace myo::viewer

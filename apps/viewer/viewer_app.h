@@ -1,0 +1,36 @@
+// The viewer's window: GLFW + OpenGL 3.3 core + Dear ImGui around a ViewerSession. Draws the face
+// with the shared GlRenderer (include/myoshell/gl/gl_renderer.h), takes the mouse (orbit, pan,
+// zoom, Ctrl+drag to pull the skin) and runs scripts (viewer_script.h).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "viewer_script.h"
+#include "viewer_session.h"
+
+namespace myo::viewer {
+
+struct ViewerOptions {
+  int width = 1280, height = 800;     // window size, screen pixels
+  std::string script;                 // --script FILE: run it, then exit (unless stay)
+  std::string screenshot;             // --screenshot PATH: draw `frames` frames, save, exit
+  int frames = 30;
+  bool stay = false;                  // keep the window open after the script
+  int samples = 4;                    // multisampling of the window (0: none; faster on llvmpipe)
+};
+
+// What a run measured: frames drawn and the wall time they took (input, panel, simulation, drawing,
+// buffer swap), and the simulation's steps per second (ViewerSession::stepsPerSecond).
+struct ViewerStats {
+  int frames = 0;
+  double seconds = 0.0;
+  double stepsPerSecond = 0.0;
+  double framesPerSecond() const { return seconds > 0.0 ? frames / seconds : 0.0; }
+};
+
+// Opens the window and runs until it is closed (or the script / screenshot is done). Throws
+// RenderError when no window can be opened (no display), InputError for a bad script.
+ViewerStats runViewer(ViewerSession& session, const ViewerOptions& options);
+
+}  // namespace myo::viewer

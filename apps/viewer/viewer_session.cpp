@@ -1,0 +1,209 @@
+#include "viewer_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/io/animation_export.h"
+
+namespace myo::viewer {
+namespace {
+
+// The scene as the viewer builds it: the user's scene plus the mouse's drag channel, appended
+// last so the scene's own drags keep their indices (the timeline refers to them by index).
+SceneDesc withMouseDrag(SceneDesc scene) {
+  DragDesc mouse;
+  mouse.name = "mouse";
+  while (std::any_of(scene.drags.begin(), scene.drags.end(), [&](const DragDesc& d) { return d.name == mouse.name; }))
+    mouse.name += "_";
+  mouse.landmark = "nose_tip";
+  mouse.radius = 1.0;
+  scene.drags.push_back(mouse);
+  return scene;
+}
+
+std::string mirrorName(const std::string& name) {
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"_left", "_right"}, {"_right", "_left"}})
+    if (name.size() > from.size() && name.compare(name.size() - from.size(), from.size(), from) == 0)
+      return name.substr(0, name.size() - from.size()) + to;
+  return {};
+}
+
+}  // namespace
+
+ViewerSession::ViewerSession(SceneDesc scene, BasisCache* cache)
+    : scene_(std::move(scene)),
+      model_(buildSceneFace(withMouseDrag(scene_), cache)),
+      sim_(model_),
+      sliders_(model_->muscles().size(), 0.0),
+      mirror_(model_->muscles().size(), -1),
+      mouseDrag_(static_cast<int>(scene_.drags.size())),
+      gravityOn_(model_->gravityChannel() >= 0) {
+  for (int m = 0; m < muscleCount(); ++m) {
+    const std::string other = mirrorName(muscleName(m));
+    for (int k = 0; k < muscleCount(); ++k)
+      if (muscleName(k) == other) mirror_[static_cast<size_t>(m)] = k;
+  }
+  applyControls();
+}
+
+const std::string& ViewerSession::muscleName(int muscle) const {
+  return model_->muscles()[static_cast<size_t>(muscle)].muscle.def.name;
+}
+
+void ViewerSession::setSlider(int muscle, double activation) {
+  if (std::isnan(activation)) throw InputError("activation of muscle '" + muscleName(muscle) + "' is NaN");
+  activation = std::clamp(activation, -1.0, 1.0);
+  sliders_[static_cast<size_t>(muscle)] = activation;
+  if (linked && mirrorOf(muscle) >= 0) sliders_[static_cast<size_t>(mirrorOf(muscle))] = activation;
+}
+
+void ViewerSession::setSlider(const std::string& muscle, double activation) {
+  setSlider(model_->muscleIndex(muscle), activation);
+}
+
+void ViewerSession::resetSliders() {
+  std::fill(sliders_.begin(), sliders_.end(), 0.0);
+  release();
+  sim_.reset();
+  pending_ = 0.0;
+  applyControls();
+}
+
+void ViewerSession::setGravity(bool on) {
+  if (on && !hasGravity()) throw InputError("this scene has no gravity channel (set \"gravity\": true in its model)");
+  gravityOn_ = on;
+  sim_.setGravity(on ? 1.0 : 0.0);
+}
+
+void ViewerSession::grab(int vertex) {
+  sim_.setDragVertex(mouseDrag_, vertex);
+  grabbing_ = true;
+}
+
+void ViewerSession::pull(const Vec3& force) {
+  if (grabbing_) sim_.setDragForce(mouseDrag_, force);
+}
+
+void ViewerSession::release() {
+  grabbing_ = false;
+  sim_.setDragForce(mouseDrag_, Vec3::Zero());
+}
+
+// The controls of one step: the timeline while playing (the sliders then show its values), the
+// sliders of every muscle it does not track, gravity as switched, the mouse drag as set.
+void ViewerSession::applyControls() {
+  if (playing) {
+    applySceneTimeline(scene_, sim_, playhead_);
+    if (!gravityOn_ && hasGravity()) sim_.setGravity(0.0);
+  }
+  for (int m = 0; m < muscleCount(); ++m) {
+    if (playing && scene_.activations.count(muscleName(m)))
+      sliders_[static_cast<size_t>(m)] = sim_.activation(m);
+    else
+      sim_.setActivation(m, sliders_[static_cast<size_t>(m)]);
+  }
+}
+
+void ViewerSession::advance(double seconds) {
+  const double dt = model_->settings().dt;
+  pending_ += std::max(seconds, 0.0);
+  const int steps = static_cast<int>(std::floor(pending_ / dt + 1e-6));  // a step owed up to round-off is taken
+  pending_ -= steps * dt;
+  Stopwatch wall;
+  for (int s = 0; s < steps; ++s) {
+    applyControls();
+    sim_.step();
+    if (playing) {
+      playhead_ += dt;
+      if (playhead_ >= scene_.duration - 0.5 * dt) {  // the end of the timeline: stop there
+        playhead_ = scene_.duration;
+        playing = false;
+      }
+    }
+  }
+  const double elapsed = wall.seconds();
+  if (steps > 0 && elapsed > 0.0) {
+    const double rate = steps / elapsed;
+    stepsPerSecond_ = stepsPerSecond_ == 0.0 ? rate : 0.9 * stepsPerSecond_ + 0.1 * rate;
+  }
+}
+
+void ViewerSession::seek(double t) {
+  if (!std::isfinite(t)) throw InputError("seek time is not finite");
+  t = std::clamp(t, 0.0, scene_.duration);
+  const bool wasPlaying = playing;
+  sim_.reset();
+  pending_ = 0.0;
+  playhead_ = 0.0;
+  playing = true;  // the timeline drives the replay
+  const double dt = model_->settings().dt;
+  while (playhead_ < t - 0.5 * dt) {
+    applyControls();
+    sim_.step();
+    playhead_ += dt;
+  }
+  playhead_ = t;
+  applyControls();  // the sliders show the values at t
+  playing = wasPlaying;
+}
+
+int ViewerSession::setKeysAtPlayhead() {
+  for (int m = 0; m < muscleCount(); ++m) {
+    const std::string& name = muscleName(m);
+    std::vector<Keyframe<double>> keys;
+    if (auto it = scene_.activations.find(name); it != scene_.activations.end()) keys = it->second.keys();
+    keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const auto& k) { return std::abs(k.time - playhead_) < 1e-9; }),
+               keys.end());
+    Keyframe<double> key;
+    key.time = playhead_;
+    key.value = slider(m);
+    keys.insert(std::upper_bound(keys.begin(), keys.end(), key, [](const auto& a, const auto& b) { return a.time < b.time; }),
+                key);
+    scene_.activations[name] = ScalarTrack(std::move(keys), "activation of " + name);
+  }
+  return muscleCount();
+}
+
+void ViewerSession::saveScene(const std::string& path) const {
+  namespace fs = std::filesystem;
+  const fs::path tmp = fs::path(path).string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << sceneToJson(scene_);
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError("cannot write the scene file", path);
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError("cannot write the scene file", path);
+  }
+}
+
+int ViewerSession::exportGlb(const std::string& path) const {
+  Simulator sim(model_);
+  const int frames = static_cast<int>(std::floor(scene_.duration * scene_.fps + 1e-9)) + 1;
+  AnimationFrames animation;
+  animation.name = scene_.name.empty() ? "viewer" : scene_.name;
+  animation.triangles = model_->head().mesh.F;
+  animation.rest = model_->head().mesh.V;
+  animation.fps = scene_.fps;
+  for (int f = 0; f < frames; ++f) {
+    playSceneTo(scene_, sim, f / scene_.fps);
+    animation.positions.push_back(sim.skinPositions());
+  }
+  writeGlb(path, animation);
+  return frames;
+}
+
+}  // namespace myo::viewer

@@ -1,0 +1,101 @@
+// What the viewer shows and changes, without any window or GL: the scene, its face model and
+// simulator, one slider per muscle (with a left/right link), gravity, the skin stiffness slider,
+// the mouse drag, the timeline's play/pause/scrub, and authoring (keys from the sliders, save the
+// scene, export a GLB). The window (viewer_app.cpp) and the scripts (viewer_script.h) drive it;
+// tests drive it directly.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/anim/scene.h"
+#include "myoshell/face/simulator.h"
+#include "myoshell/reduce/basis_cache.h"
+
+namespace myo::viewer {
+
+class ViewerSession {
+ public:
+  // Builds the scene's face (bases through `cache`, which may be null) plus one drag channel for
+  // the mouse ("mouse", gripping the nose tip until the user picks a vertex; its pins are the
+  // head's gravity pins, so its basis is the gravity channel's and comes from the cache).
+  ViewerSession(SceneDesc scene, BasisCache* cache);
+
+  const SceneDesc& scene() const { return scene_; }
+  const FaceModel& model() const { return *model_; }
+  const Simulator& simulator() const { return sim_; }
+
+  // --- sliders ---------------------------------------------------------------------------------
+  int muscleCount() const { return static_cast<int>(sliders_.size()); }
+  const std::string& muscleName(int muscle) const;
+  // The muscle's activation slider, in [−1, 1] (values outside are clamped; NaN is an InputError).
+  // With the link on, the mirror muscle (name with _left ↔ _right swapped) follows.
+  void setSlider(int muscle, double activation);
+  void setSlider(const std::string& muscle, double activation);  // InputError for an unknown name
+  double slider(int muscle) const { return sliders_[static_cast<size_t>(muscle)]; }
+  int mirrorOf(int muscle) const { return mirror_[static_cast<size_t>(muscle)]; }  // −1: none
+  bool linked = true;
+  void resetSliders();  // every slider to 0 and the face back to rest
+
+  // Gravity on or off (needs the scene's gravity channel to turn on).
+  void setGravity(bool on);
+  bool gravity() const { return gravityOn_; }
+  bool hasGravity() const { return model_->gravityChannel() >= 0; }
+  // The skin stiffness slider (Simulator::setSkinStiffnessScale): s > 0.
+  void setStiffnessScale(double s) { sim_.setSkinStiffnessScale(s); }
+
+  // --- the mouse drag ----------------------------------------------------------------------------
+  // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin).
+  void grab(int vertex);
+  // While grabbing: the force (dyn) on the grabbed spot.
+  void pull(const Vec3& force);
+  void release();
+  bool grabbing() const { return grabbing_; }
+  int grabbedVertex() const { return sim_.dragVertex(mouseDrag_); }
+
+  // --- time ------------------------------------------------------------------------------------
+  // Playing: the scene's timeline drives every tracked muscle, gravity and drag (the sliders show
+  // the values); paused: the sliders drive. Time advances only while playing or when advance()
+  // is called while paused (the face keeps settling under the sliders without moving the playhead).
+  bool playing = false;
+  // Advances `seconds` of simulated time at the model's fixed dt (an accumulator keeps the
+  // remainder), so the simulation runs at the same rate whatever the frame rate.
+  void advance(double seconds);
+  // Jumps the playhead to t (s, clamped to [0, duration]): the face restarts from rest and the
+  // timeline is replayed to t.
+  void seek(double t);
+  double playhead() const { return playhead_; }
+  double duration() const { return scene_.duration; }
+
+  // --- authoring -------------------------------------------------------------------------------
+  // A key at the playhead on every muscle's activation track with its slider value (a key already
+  // at that time is replaced). Returns the number of keys set.
+  int setKeysAtPlayhead();
+  // Writes the scene (sceneToJson) to `path` atomically.
+  void saveScene(const std::string& path) const;
+  // Simulates the scene's whole timeline from rest on a fresh simulator and writes a GLB
+  // (io/animation_export.h) to `path`; the live face is untouched. Returns the frames written.
+  int exportGlb(const std::string& path) const;
+
+  // --- readouts --------------------------------------------------------------------------------
+  double stepsPerSecond() const { return stepsPerSecond_; }  // simulated steps per wall second, smoothed
+  const StepTimings& lastTimings() const { return sim_.lastTimings(); }
+
+ private:
+  SceneDesc scene_;
+  std::shared_ptr<const FaceModel> model_;
+  Simulator sim_;
+  std::vector<double> sliders_;
+  std::vector<int> mirror_;
+  int mouseDrag_ = 0;
+  bool gravityOn_ = false;
+  bool grabbing_ = false;
+  double playhead_ = 0.0;
+  double pending_ = 0.0;  // simulated seconds owed to the accumulator
+  double stepsPerSecond_ = 0.0;
+
+  void applyControls();
+};
+
+}  // namespace myo::viewer

@@ -1,0 +1,194 @@
+// The viewer's logic without a window: sliders and their link, the fixed-dt accumulator, the
+// timeline (play, seek), the mouse drag, authoring (keys, save, export), scripts.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/anim/scene_playback.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/io/animation_export.h"
+#include "viewer_script.h"
+#include "viewer_session.h"
+
+namespace myo::viewer {
+namespace {
+
+namespace fs = std::filesystem;
+
+SceneDesc smallScene() {
+  SceneDesc scene = parseScene(R"({
+    "name": "viewer_test",
+    "muscles": {"use": ["zygomaticus_major_left", "zygomaticus_major_right", "depressor_anguli_oris_left"]},
+    "numerics": {"skin_modes": 12},
+    "duration": 0.5, "fps": 20,
+    "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.25, "value": 1}]}}
+  })");
+  return scene;
+}
+
+ViewerSession& session() {  // built once: the eigen-solves are the slow part
+  static ViewerSession s(smallScene(), nullptr);
+  return s;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::path(testing::TempDir()) / ("myo_viewer_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+TEST(ViewerSession, TheLinkMovesTheMirrorMuscleAndSlidersClamp) {
+  ViewerSession& s = session();
+  s.resetSliders();
+  const int left = s.model().muscleIndex("zygomaticus_major_left");
+  const int right = s.model().muscleIndex("zygomaticus_major_right");
+  const int dao = s.model().muscleIndex("depressor_anguli_oris_left");
+  EXPECT_EQ(s.mirrorOf(left), right);
+  EXPECT_EQ(s.mirrorOf(dao), -1);  // its right twin is not in this scene
+  s.linked = true;
+  s.setSlider(left, 0.7);
+  EXPECT_DOUBLE_EQ(s.slider(right), 0.7);
+  s.linked = false;
+  s.setSlider(right, -0.2);
+  EXPECT_DOUBLE_EQ(s.slider(left), 0.7);
+  s.setSlider(left, 4.0);
+  EXPECT_EQ(s.slider(left), 1.0);
+  EXPECT_THROW(s.setSlider(left, std::nan("")), InputError);
+  try {
+    s.setSlider("buccinator", 0.5);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("buccinator"), std::string::npos) << e.what();
+  }
+  s.linked = true;
+  s.resetSliders();
+}
+
+TEST(ViewerSession, SimulationTimeIsIndependentOfTheFrameRate) {
+  // 0.3 s in one frame or in 36 uneven frames: the same steps at the fixed dt, the same face.
+  SceneDesc scene = smallScene();
+  ViewerSession a(scene, nullptr), b(scene, nullptr);
+  for (ViewerSession* s : {&a, &b}) s->setSlider("zygomaticus_major_left", 1.0);
+  a.advance(0.3);
+  for (int f = 0; f < 36; ++f) b.advance(f % 2 ? 0.3 / 36 * 1.5 : 0.3 / 36 * 0.5);  // 18 short, 18 long
+  EXPECT_EQ(a.simulator().stepCount(), b.simulator().stepCount());
+  EXPECT_EQ(a.simulator().stepCount(), static_cast<long long>(std::llround(0.3 / a.model().settings().dt)));
+  EXPECT_EQ((a.simulator().skinDisplacement() - b.simulator().skinDisplacement()).norm(), 0.0);
+  EXPECT_GT(a.simulator().skinDisplacement().norm(), 1e-3);
+}
+
+TEST(ViewerSession, PlayingFollowsTheTimelineAndSeekReplaysIt) {
+  ViewerSession& s = session();
+  s.resetSliders();
+  s.seek(0.0);
+  s.playing = true;
+  s.advance(0.2);
+  EXPECT_NEAR(s.playhead(), 0.2, 1e-9);
+  const int left = s.model().muscleIndex("zygomaticus_major_left");
+  EXPECT_NEAR(s.slider(left), s.scene().activations.at("zygomaticus_major_left").at(s.playhead() - s.model().settings().dt), 1e-9);
+  s.advance(1.0);  // past the end: stops there
+  EXPECT_FALSE(s.playing);
+  EXPECT_DOUBLE_EQ(s.playhead(), s.duration());
+  // Seek = a fresh simulator played to t.
+  s.seek(0.3);
+  Simulator fresh(std::shared_ptr<const FaceModel>(&s.model(), [](const FaceModel*) {}));
+  playSceneTo(s.scene(), fresh, 0.3);
+  EXPECT_LE((fresh.skinDisplacement() - s.simulator().skinDisplacement()).norm(), 1e-12);
+  EXPECT_NEAR(s.slider(left), 1.0, 1e-12);
+  s.seek(0.0);
+}
+
+TEST(ViewerSession, TheMouseDragPullsTheGrabbedSpotAndReleaseLetsGo) {
+  ViewerSession& s = session();
+  s.setGravity(false);  // only the drag moves the face
+  s.resetSliders();
+  // A free cheek vertex (landmarks are pinned with the gravity pins, which the mouse drag shares).
+  const Head& head = s.model().head();
+  const std::vector<int> pins = s.model().gravityPins();
+  const Vec3 aim = 0.5 * (Vec3(head.mesh.V.row(head.landmarks.vertex("mouth_corner_left"))) +
+                          Vec3(head.mesh.V.row(head.landmarks.vertex("left_eye_outer"))));
+  int cheek = -1;
+  for (int v = 0; v < head.mesh.vertexCount(); ++v)
+    if (!std::binary_search(pins.begin(), pins.end(), v) &&
+        (cheek < 0 || (Vec3(head.mesh.V.row(v)) - aim).norm() < (Vec3(head.mesh.V.row(cheek)) - aim).norm()))
+      cheek = v;
+  s.grab(cheek);
+  EXPECT_TRUE(s.grabbing());
+  EXPECT_EQ(s.grabbedVertex(), cheek);
+  const Vec3 out = s.model().head().frame().axes.col(2);
+  s.pull(2000.0 * out);
+  s.advance(0.25);
+  const Vec3 moved = s.simulator().skinDisplacement().row(cheek);
+  EXPECT_GT(moved.dot(out), 0.05);
+  EXPECT_GT(moved.dot(out), 0.5 * s.simulator().skinDisplacement().rowwise().norm().maxCoeff());
+  s.release();
+  s.advance(2.0);
+  EXPECT_LT(s.simulator().skinDisplacement().norm(), 0.05 * moved.norm());
+  EXPECT_THROW(s.grab(-1), InputError);
+  s.setGravity(true);
+}
+
+TEST(ViewerSession, KeysFromSlidersSaveAndReloadAndExportAGlb) {
+  ViewerSession s(smallScene(), nullptr);
+  const fs::path dir = scratch("authoring");
+  s.seek(0.4);
+  s.setSlider("depressor_anguli_oris_left", 0.6);
+  EXPECT_EQ(s.setKeysAtPlayhead(), 3);
+  s.setSlider("depressor_anguli_oris_left", 0.8);
+  s.setKeysAtPlayhead();  // the key at 0.4 s is replaced, not doubled
+  s.saveScene((dir / "authored.json").string());
+  const SceneDesc back = readScene((dir / "authored.json").string());
+  const ScalarTrack& dao = back.activations.at("depressor_anguli_oris_left");
+  ASSERT_EQ(dao.keys().size(), 1u);
+  EXPECT_DOUBLE_EQ(dao.keys()[0].time, 0.4);
+  EXPECT_DOUBLE_EQ(dao.keys()[0].value, 0.8);
+  const ScalarTrack& zyg = back.activations.at("zygomaticus_major_left");
+  ASSERT_EQ(zyg.keys().size(), 3u);  // 0, 0.25 and the new 0.4
+  EXPECT_DOUBLE_EQ(zyg.keys()[2].time, 0.4);
+  EXPECT_FALSE(fs::exists(dir / "authored.json.tmp"));
+
+  const int frames = s.exportGlb((dir / "authored.glb").string());
+  EXPECT_EQ(frames, 11);  // 0.5 s at 20 fps
+  ASSERT_TRUE(fs::exists(dir / "authored.glb"));
+  EXPECT_GT(fs::file_size(dir / "authored.glb"), 10000u);
+  EXPECT_THROW(s.saveScene((dir / "missing" / "x.json").string()), InputError);
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
+TEST(ViewerScript, ErrorsNameTheFileLineAndFault) {
+  auto message = [](const std::string& text) {
+    try {
+      parseViewerScript(text, "s.txt");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("set zygomaticus_major_left 1\nfrobnicate\n"),
+            "s.txt:2: unknown command 'frobnicate' (known: advance, export, grab, gravity, key, link, orbit, pause, play, "
+            "pull, release, reset, save, screenshot, seek, select, set, show, stiffness, view, zoom)");
+  EXPECT_EQ(message("# a comment\n\nadvance\n"), "s.txt:3: 'advance' takes 1 argument, got 0");
+  EXPECT_EQ(message("set zygomaticus_major_left lots\n"), "s.txt:1: 'set': 'lots' is not a finite number");
+  EXPECT_EQ(message("stiffness nan\n"), "s.txt:1: 'stiffness': 'nan' is not a finite number");
+  EXPECT_EQ(message("gravity maybe\n"), "s.txt:1: 'gravity': expected on or off, got 'maybe'");
+  EXPECT_EQ(message("view top\n"), "s.txt:1: 'view': unknown view 'top' (use front, three-quarter or profile)");
+  const auto ok = parseViewerScript("set a 0.5  # half\npull 1 2 -3e2\n", "s.txt");
+  ASSERT_EQ(ok.size(), 2u);
+  EXPECT_EQ(ok[0].line, 1);
+  EXPECT_DOUBLE_EQ(ok[0].number(1), 0.5);
+  EXPECT_DOUBLE_EQ(ok[1].number(2), -300.0);
+  EXPECT_EQ(ok[1].line, 2);
+  try {
+    readViewerScript("/nonexistent/script.txt");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/script.txt: cannot open the script");
+  }
+}
+
+}  // namespace
+}  // namespace myo::viewer

@@ -1,0 +1,140 @@
+// The viewer's window under Xvfb, driven by scripts: a contracted zygomaticus changes the face
+// in the picture, the panel is drawn, and without a display it fails with a clear message.
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ViewerRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::path(testing::TempDir()) / ("myo_view_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+// Runs `prefix myoshell-view ARGS` in `dir`, output captured.
+ViewerRun runViewer(const std::string& prefix, const std::string& args, const fs::path& dir) {
+  const fs::path log = dir / "viewer.log";
+  const std::string cmd = "cd '" + dir.string() + "' && " + prefix + " '" + std::string(MYO_VIEWER_PATH) + "' " + args +
+                          " > '" + log.string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  ViewerRun run;
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::ostringstream text;
+  text << in.rdbuf();
+  run.output = text.str();
+  return run;
+}
+
+bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+const char* kXvfb = "xvfb-run -a -s '-screen 0 1280x1024x24'";
+
+struct Picture {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  const unsigned char* at(int x, int y) const { return &rgb[3 * (static_cast<size_t>(y) * width + x)]; }
+};
+
+Picture readPicture(const fs::path& path) {
+  Picture p;
+  int channels = 0;
+  unsigned char* data = stbi_load(path.string().c_str(), &p.width, &p.height, &channels, 3);
+  if (data) {
+    p.rgb.assign(data, data + 3 * static_cast<size_t>(p.width) * p.height);
+    stbi_image_free(data);
+  }
+  return p;
+}
+
+// Pixels of the box [x0, x1) × [y0, y1) whose colour differs by more than 24 levels in a channel.
+int differingPixels(const Picture& a, const Picture& b, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(a.at(x, y)[c] - b.at(x, y)[c]) > 24) {
+          ++count;
+          break;
+        }
+  return count;
+}
+
+TEST(ViewerWindow, AScriptedSmileChangesTheFaceAndThePanelIsDrawn) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs xvfb and xauth)";
+  const fs::path dir = scratch("smile");
+  std::ofstream(dir / "neutral.txt") << "show muscles off\nadvance 10\nscreenshot neutral.png\n";
+  std::ofstream(dir / "smile.txt") << "# the left zygomaticus, full\nset zygomaticus_major_left 1\nadvance 10\n"
+                                      "screenshot smile.png\n";
+  for (const char* name : {"neutral", "smile"}) {
+    const ViewerRun run = runViewer(kXvfb, std::string("--size 960x720 --script ") + name + ".txt", dir);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    ASSERT_TRUE(fs::exists(dir / (std::string(name) + ".png"))) << run.output;
+  }
+  const Picture neutral = readPicture(dir / "neutral.png"), smile = readPicture(dir / "smile.png");
+  ASSERT_EQ(neutral.width, 960);
+  ASSERT_EQ(neutral.height, 720);
+  ASSERT_EQ(smile.width, 960);
+  // The panel (top-left, ImGui's window): text and sliders, not a flat background.
+  int panelInk = 0;
+  const unsigned char* background = neutral.at(neutral.width - 2, neutral.height - 2);
+  for (int y = 10; y < 300; ++y)
+    for (int x = 10; x < 350; ++x)
+      if (std::abs(neutral.at(x, y)[0] - background[0]) > 40) ++panelInk;
+  EXPECT_GT(panelInk, 2000);
+  // The face (right of the panel): the smile moved the mouth; both runs drew the same panel layout.
+  const int faceChanged = differingPixels(neutral, smile, 380, 0, smile.width, smile.height);
+  EXPECT_GT(faceChanged, 150) << "the contracted zygomaticus left the picture unchanged";
+  // The lower face changes more than the upper face (the forehead stays).
+  const int upper = differingPixels(neutral, smile, 380, 0, smile.width, smile.height / 3);
+  EXPECT_LT(upper, faceChanged / 4);
+}
+
+TEST(ViewerWindow, ScreenshotModeWritesThePictureAndExits) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const fs::path dir = scratch("screenshot");
+  const ViewerRun run = runViewer(kXvfb, "--size 640x480 --screenshot shot.png --frames 5", dir);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("wrote shot.png"), std::string::npos) << run.output;
+  const Picture shot = readPicture(dir / "shot.png");
+  EXPECT_EQ(shot.width, 640);
+  EXPECT_EQ(shot.height, 480);
+}
+
+TEST(ViewerWindow, WithoutADisplayItSaysSoAndExitsCleanly) {
+  const fs::path dir = scratch("nodisplay");
+  const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", "--screenshot never.png", dir);
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("myoshell-view: error: cannot open a window:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("xvfb-run -a"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "never.png"));
+}
+
+TEST(ViewerWindow, ABadScriptNamesItsLineAndLeavesNoPicture) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const fs::path dir = scratch("badscript");
+  std::ofstream(dir / "bad.txt") << "set zygomaticus_major_left 1\nset buccinator 0.5\nscreenshot out.png\n";
+  const ViewerRun run = runViewer(kXvfb, "--size 320x240 --script bad.txt", dir);
+  EXPECT_EQ(run.exitCode, 2) << run.output;
+  EXPECT_NE(run.output.find("bad.txt:2: "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("buccinator"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+  const ViewerRun usage = runViewer("", "--size 10x10", dir);
+  EXPECT_EQ(usage.exitCode, 2);
+  EXPECT_NE(usage.output.find("myoshell-view: error: --size '10x10' is not WxH with sides in [64, 8192]"), std::string::npos)
+      << usage.output;
+}
+
+}  // namespace
