@@ -1,11 +1,13 @@
 // `myoshell demo`: the default head plays a short scene — smile (zygomaticus major, both sides),
 // relax, frown (depressor anguli oris), brow lowered (corrugator supercilii), with gravity — and
-// out/demo/ receives the OBJ sequence, demo.glb, demo.pc2, stats.json, PNG frames and a contact sheet. The scene is
+// out/demo/ receives the OBJ sequence, demo.glb, demo.pc2, demo.mp4, demo.gif, stats.json, PNG frames and a
+// contact sheet. The scene is
 // scenes/demo.json, embedded at build time so the demo runs from any folder.
 #include <fmt/core.h>
 
 #include "command.h"
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/render/video.h"
 #include "scene_runner.h"
 
 namespace myo::cli::detail {
@@ -22,14 +24,18 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   opt->renderEvery = 3;
   opt->showMuscles = true;
   opt->formats = {"glb", "pc2", "obj"};
+  opt->video = ffmpegAvailable();  // demo.mp4 and demo.gif; without ffmpeg the rest still runs
   CLI::App* sub = app.add_subcommand("demo", "Smile, frown and brow lowering on the built-in head (scenes/demo.json)");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
   sub->add_flag("--json", opt->json, "Print a JSON summary");
   return std::function<int()>([opt] {
     const int code = runScene(parseScene(detail::kDemoSceneJson, "<built-in scenes/demo.json>"), *opt);
-    if (!opt->json)
-      fmt::print("open {}/demo_sheet.png for a contact sheet, {}/png/ for the frames\n", opt->outDir, opt->outDir);
+    if (!opt->json) {
+      if (!opt->video) fmt::print(stderr, "myoshell: warning: no ffmpeg on PATH, so no demo.mp4 or demo.gif\n");
+      fmt::print("open {}/demo.mp4 or {}/demo_sheet.png; {}/png/ holds the frames\n", opt->outDir, opt->outDir,
+                 opt->outDir);
+    }
     return code;
   });
 });

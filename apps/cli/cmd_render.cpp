@@ -19,6 +19,7 @@
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/render/contact_sheet.h"
+#include "myoshell/render/video.h"
 #include "myoshell/render/png.h"
 
 namespace myo::cli {
@@ -36,6 +37,7 @@ struct RenderCommandOptions {
   double colorScale = 0.0;       // cm; 0: the run's largest |u|
   int sheet = 6;
   bool software = false;
+  bool video = false;            // DIR/<scene>.mp4 and .gif of the drawn frames
   bool json = false;
   std::string cacheDir = ".cache/bases";
 };
@@ -133,23 +135,16 @@ int runRender(const RenderCommandOptions& opt) {
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
 
+  if (opt.video && !ffmpegAvailable())
+    throw InputError("--video needs the ffmpeg program, which is not on PATH (scripts/setup installs it)");
+
   FileBasisCache cache(opt.cacheDir);
   const auto model = buildSceneFace(scene, &cache);
   std::error_code ec;
   fs::create_directories(out / "png", ec);
   if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
 
-  std::unique_ptr<FacePainter> painter;
-  if (!opt.software) {
-    try {
-      painter = glPainter();
-    } catch (const RenderError& e) {
-      std::string why = e.what();  // one line, even with a shader compiler's log in it
-      std::replace(why.begin(), why.end(), '\n', ' ');
-      fmt::print(stderr, "myoshell: warning: using the software renderer: {}\n", why);
-    }
-  }
-  if (!painter) painter = softwarePainter();
+  std::unique_ptr<FacePainter> painter = makePainter(opt.software);
 
   // Simulate up to the last frame, keeping the state of the frames to draw.
   std::vector<int> frames;
@@ -180,10 +175,19 @@ int runRender(const RenderCommandOptions& opt) {
   std::vector<Image> sheet;
   std::vector<std::string> captions;
   std::vector<double> paintMs;
+  std::unique_ptr<VideoWriter> video;
+  const fs::path videoPath = out / (scene.name + ".mp4"), gifPath = out / (scene.name + ".gif");
+  const double videoFps = scene.fps / range.step;  // the drawn frames keep their timing
+  if (opt.video) {
+    VideoOptions vo;
+    vo.fps = videoFps;
+    video = std::make_unique<VideoWriter>(videoPath.string(), width, height, vo);
+  }
   for (size_t i = 0; i < frames.size(); ++i) {
     Stopwatch clock;
     const Image picture = painter->paint(faceScene(*model, states[i], view, width, height, overlays, &roi));
     paintMs.push_back(1e3 * clock.seconds());
+    if (video) video->addFrame(picture);
     writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, frames[i])).string(), picture);
     if (std::find(onSheet.begin(), onSheet.end(), frames[i]) != onSheet.end()) {
       sheet.push_back(picture);
@@ -197,6 +201,11 @@ int runRender(const RenderCommandOptions& opt) {
     writePng(sheetPath.string(), contactSheet(sheet, captions, style));
   }
 
+  if (video) {
+    video->finish();
+    makeGif(videoPath.string(), gifPath.string(), std::min(width, 480), std::min(videoFps, 15.0));
+  }
+
   if (opt.json) {
     nlohmann::json j;
     j["scene"] = scene.name;
@@ -208,6 +217,7 @@ int runRender(const RenderCommandOptions& opt) {
     j["sheet"] = sheet.empty() ? nlohmann::json() : nlohmann::json(sheetPath.string());
     j["sheet_frames"] = onSheet;
     j["render_ms_median"] = median(paintMs);
+    if (video) j["video"] = {videoPath.string(), gifPath.string()};
     j["render_ms"] = paintMs;
     if (overlays.displacement) j["color_scale_cm"] = overlays.displacementScale;
     fmt::print("{}\n", j.dump(2));
@@ -216,6 +226,7 @@ int runRender(const RenderCommandOptions& opt) {
                painter->name(), width, height, median(paintMs));
     fmt::print("wrote {}/png/{}_NNNN.png\n", out.string(), scene.name);
     if (!sheet.empty()) fmt::print("wrote {}\n", sheetPath.string());
+    if (video) fmt::print("wrote {} and {}\n", videoPath.string(), gifPath.string());
   }
   return kExitOk;
 }
@@ -234,6 +245,7 @@ const CommandRegistrar renderRegistrar("render", [](CLI::App& app) {
   sub->add_option("--sheet", opt->sheet, "About N evenly spaced frames on the contact sheet (0: none)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  sub->add_flag("--video", opt->video, "Also write DIR/<scene>.mp4 and DIR/<scene>.gif of the drawn frames (ffmpeg)");
   sub->add_flag("--software", opt->software, "Use the software renderer even where OpenGL is available");
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
   sub->add_flag("--json", opt->json, "Print a JSON summary");

@@ -25,6 +25,8 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_option("--size", opt->size, "Picture size, pixels")->check(CLI::Range(64, 4096));
   sub->add_option("--view", opt->view, "front, three-quarter or profile")->capture_default_str();
   sub->add_flag("--muscles", opt->showMuscles, "Show the muscles through the skin");
+  sub->add_flag("--video", opt->video, "Write DIR/<name>.mp4 and DIR/<name>.gif of every frame (ffmpeg)");
+  sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");
   sub->add_option("--color-scale", opt->colorScale, "Colour the skin by displacement on [0, CM]")->check(CLI::NonNegativeNumber);
   return std::function<int()>([opt] { return runScene(readScene(opt->scene), *opt); });
 });

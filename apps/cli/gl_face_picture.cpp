@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <fmt/core.h>
+
+#include "myoshell/core/errors.h"
 #include "myoshell/gl/gl_context.h"
 #include "myoshell/gl/gl_renderer.h"
 
@@ -137,5 +140,18 @@ class GlPainter : public FacePainter {
 
 std::unique_ptr<FacePainter> softwarePainter() { return std::make_unique<SoftwarePainter>(); }
 std::unique_ptr<FacePainter> glPainter() { return std::make_unique<GlPainter>(); }
+
+std::unique_ptr<FacePainter> makePainter(bool software) {
+  if (!software) {
+    try {
+      return glPainter();
+    } catch (const RenderError& e) {
+      std::string why = e.what();  // one line, even with a shader compiler's log in it
+      std::replace(why.begin(), why.end(), '\n', ' ');
+      fmt::print(stderr, "myoshell: warning: using the software renderer: {}\n", why);
+    }
+  }
+  return softwarePainter();
+}
 
 }  // namespace myo::cli

@@ -1,7 +1,7 @@
 // Pictures of a simulated face through either renderer: what one picture holds (meshes with their
 // styles, markers, a colour bar), built from a face model, a frame's state and the overlays asked
 // for; and painters that draw it with OpenGL (a headless EGL context) or the software rasterizer.
-// Used by `myoshell render`.
+// Used by `myoshell render`, `run --render/--video` and `demo`.
 #pragma once
 
 #include <memory>
@@ -73,5 +73,8 @@ std::unique_ptr<FacePainter> softwarePainter();
 // OpenGL 3.3 through a headless EGL context, 4× multisampled. Throws RenderError (saying why)
 // when no such context can be made.
 std::unique_ptr<FacePainter> glPainter();
+// OpenGL unless `software` or no context can be made: then the software rasterizer, after one
+// warning line on standard error saying why.
+std::unique_ptr<FacePainter> makePainter(bool software);
 
 }  // namespace myo::cli

@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
-#include "face_picture.h"
+#include "gl_face_picture.h"
+#include "myoshell/render/video.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/png.h"
 #include "myoshell/anim/scene_parser.h"
@@ -92,11 +93,20 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     animation.positions.reserve(frames);
   }
 
-  FacePictureOptions picture;
-  picture.width = picture.height = opt.size;
-  picture.view = viewFromName(opt.view);
-  picture.showMuscles = opt.showMuscles;
-  picture.displacementScale = opt.colorScale;
+  const ViewPreset view = viewFromName(opt.view);
+  FaceOverlays overlays;
+  overlays.muscles = opt.showMuscles;
+  overlays.displacement = opt.colorScale > 0.0;
+  overlays.displacementScale = opt.colorScale > 0.0 ? opt.colorScale : 1.0;
+  const bool draw = opt.render || opt.video;
+  std::unique_ptr<FacePainter> painter = draw ? makePainter(opt.software) : nullptr;
+  std::unique_ptr<VideoWriter> video;
+  const fs::path videoPath = out / (scene.name + ".mp4"), gifPath = out / (scene.name + ".gif");
+  if (opt.video) {
+    VideoOptions vo;
+    vo.fps = scene.fps;
+    video = std::make_unique<VideoWriter>(videoPath.string(), opt.size, opt.size, vo);
+  }
   std::vector<Image> sheet;
   std::vector<std::string> sheetCaptions;
   const int sheetEvery = std::max(1, (frames - 1) / 5);  // about six frames on the sheet
@@ -123,11 +133,18 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     if (formats.obj)
       writeObj((out / "obj" / fmt::format("{}_{:04d}.obj", scene.name, f)).string(), model->head().mesh, &positions);
     if (keepFrames) animation.positions.push_back(positions);
-    if (opt.render && (f % opt.renderEvery == 0 || f % sheetEvery == 0)) {
-      const Image image = renderFace(sim, picture);
-      if (f % opt.renderEvery == 0)
-        writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, f)).string(), image);
-      if (f % sheetEvery == 0 && sheet.size() < 6) {
+    const bool png = opt.render && f % opt.renderEvery == 0;
+    const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
+    if (video || png || onSheet) {
+      FaceFrameState state;
+      state.skin = positions;
+      if (overlays.displacement) state.displacement = sim.skinDisplacement();
+      if (overlays.muscles)
+        for (int m = 0; m < static_cast<int>(model->muscles().size()); ++m) state.muscles.push_back(sim.musclePositions(m));
+      const Image image = painter->paint(faceScene(*model, state, view, opt.size, opt.size, overlays));
+      if (video) video->addFrame(image);
+      if (png) writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, f)).string(), image);
+      if (onSheet) {
         sheet.push_back(image);
         sheetCaptions.push_back(fmt::format("t = {:.2f} s", sim.time()));
       }
@@ -151,6 +168,10 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     }
   }
   if (tty) fmt::print("\n");
+  if (video) {
+    video->finish();
+    makeGif(videoPath.string(), gifPath.string(), std::min(opt.size, 480), std::min(scene.fps, 15.0));
+  }
   if (formats.glb) writeGlb(out / (scene.name + ".glb"), animation);
   if (formats.pc2) writePc2(out / (scene.name + ".pc2"), animation);
 
@@ -161,6 +182,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   stats["dt"] = dt;
   stats["precompute_seconds"] = buildSeconds;
   stats["cache_hits"] = model->cacheHits();
+  if (painter) stats["renderer"] = painter->name();
   stats["steps_per_second"] = steps / std::max(stepSeconds, 1e-12);
   stats["step_ms_mean"] = steps ? 1e3 * stepSeconds / steps : 0.0;
   nlohmann::json ch = nlohmann::json::array();
@@ -198,6 +220,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     if (formats.obj) fmt::print("wrote {}/obj/{}_NNNN.obj\n", out.string(), scene.name);
     if (formats.glb) fmt::print("wrote {}/{}.glb\n", out.string(), scene.name);
     if (formats.pc2) fmt::print("wrote {}/{}.pc2\n", out.string(), scene.name);
+    if (video) fmt::print("wrote {} and {}\n", videoPath.string(), gifPath.string());
     fmt::print("wrote {}/stats.json\n", out.string());
   }
   return kExitOk;

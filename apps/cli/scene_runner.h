@@ -24,6 +24,10 @@ struct RunOptions {
   std::string view = "front";
   bool showMuscles = false;
   double colorScale = 0.0;  // > 0: colour the skin by |u| on [0, colorScale] cm
+  bool software = false;    // the software rasterizer even where OpenGL (EGL) is available
+  // Video: every frame drawn into DIR/<name>.mp4 (H.264, the scene's frame rate) and DIR/<name>.gif
+  // (ffmpeg; render/video.h). Implies drawing every frame; PNGs still every renderEvery-th.
+  bool video = false;
 };
 
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.

@@ -170,5 +170,46 @@ TEST_F(RenderCommand, BadOptionValuesExitTwoNamingOptionAndValueAndWriteNothing)
   }
 }
 
+
+std::string firstBytes(const fs::path& path, size_t n) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(n, '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(n));
+  return bytes.substr(0, static_cast<size_t>(in.gcount()));
+}
+
+TEST_F(RenderCommand, VideoWritesAnMp4AndAGifOfTheDrawnFrames) {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed";
+  const auto r = test::runCli(render("video", "--size 96x96 --sheet 0 --video"));
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const fs::path mp4 = dir_ / "video" / "smile.mp4", gif = dir_ / "video" / "smile.gif";
+  ASSERT_TRUE(fs::exists(mp4)) << r.merged;
+  EXPECT_EQ(firstBytes(mp4, 8).substr(4), "ftyp");
+  EXPECT_EQ(firstBytes(gif, 6), "GIF89a");
+  // ffprobe counts the frames: all four (0.3 s at 10 fps, both ends included).
+  const fs::path count = dir_ / "frames.txt";
+  const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                            "-of csv=p=0 '" + mp4.string() + "' > '" + count.string() + "'";
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  std::ifstream in(count);
+  int frames = 0;
+  in >> frames;
+  EXPECT_EQ(frames, 4);
+  for (const auto& entry : fs::directory_iterator(dir_ / "video"))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST_F(RenderCommand, VideoWithoutFfmpegSaysSoBeforeAnyWork) {
+  const fs::path log = dir_ / "noff.log";
+  const std::string cmd = "PATH=/nonexistent '" + test::cliPath() + "' " + render("noff", "--video") + " > '" +
+                          log.string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("myoshell: error: --video needs the ffmpeg program, which is not on PATH"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(dir_ / "noff"));
+}
+
 }  // namespace
 }  // namespace myo
