@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
   app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");
   app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(CLI::Range(0, 100000));
-  app.add_option("--msaa", options.samples, "multisamples per pixel (default 4; 0 is faster on software GL)")
+  app.add_option("--msaa", options.samples, "multisamples per pixel (default: 4 on a GPU, 0 on llvmpipe)")
       ->check(CLI::Range(0, 16));
   app.add_flag("--stay", options.stay, "keep the window open after --script");
   app.add_option("--size", size, "window size WxH in pixels (default 1280x800)");

@@ -96,15 +96,15 @@ class ViewerApp {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_SAMPLES, options.samples);
     const std::string title = "Myoshell — " + (session.scene().name.empty() ? std::string("default head") : session.scene().name);
-    window_ = glfwCreateWindow(options.width, options.height, title.c_str(), nullptr, nullptr);
-    if (!window_) {
-      const std::string why = glfwLastError();
-      glfwTerminate();
-      throw RenderError("cannot open an OpenGL 3.3 core window: " + why);
+    openWindow(title, options.samples < 0 ? 4 : options.samples);
+    if (options.samples < 0) {  // auto: no multisampling on a software rasterizer
+      const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+      if (renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos) {
+        glfwDestroyWindow(window_);
+        openWindow(title, 0);
+      }
     }
-    glfwMakeContextCurrent(window_);
     glfwSwapInterval(options.script.empty() && options.screenshot.empty() ? 1 : 0);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -117,6 +117,17 @@ class ViewerApp {
     viewFrame_.origin = frame.origin;
     viewFrame_.axes = frame.axes;
     viewFrame_.scale = frame.scale;
+  }
+
+  void openWindow(const std::string& title, int samples) {
+    glfwWindowHint(GLFW_SAMPLES, samples);
+    window_ = glfwCreateWindow(options_.width, options_.height, title.c_str(), nullptr, nullptr);
+    if (!window_) {
+      const std::string why = glfwLastError();
+      glfwTerminate();
+      throw RenderError("cannot open an OpenGL 3.3 core window: " + why);
+    }
+    glfwMakeContextCurrent(window_);
   }
 
   ~ViewerApp() {

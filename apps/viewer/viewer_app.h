@@ -17,7 +17,9 @@ struct ViewerOptions {
   std::string screenshot;             // --screenshot PATH: draw `frames` frames, save, exit
   int frames = 30;
   bool stay = false;                  // keep the window open after the script
-  int samples = 4;                    // multisampling of the window (0: none; faster on llvmpipe)
+  // Multisamples per pixel of the window; −1 (auto): 4 on a GPU, none on a software rasterizer
+  // (llvmpipe), where 4× costs about 40% of the frame rate (docs/PERFORMANCE.md).
+  int samples = -1;
 };
 
 // What a run measured: frames drawn and the wall time they took (input, panel, simulation, drawing,
