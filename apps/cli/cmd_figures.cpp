@@ -1,6 +1,7 @@
 // `myoshell figures --out DIR [--scenes DIR] [--cache DIR] [--only fig18,fig26] [--size PX]`:
 // renders the thesis's Figures 17–27 from the scenes of scenes/thesis/ (docs/thesis_experiments.md)
-// with the render layer's software rasterizer: one contact sheet per figure, each captioned with
+// through the shared face painter (headless OpenGL, or the software rasterizer where OpenGL is not
+// available or with --software): one contact sheet per figure, each captioned with
 // the thesis's figure number. Deformed skin is coloured by displacement magnitude (viridis, the
 // range written on the colour bar); ROI and pin pictures use the thesis's colours (red free,
 // blue pinned, yellow fixed feature points).
@@ -13,6 +14,7 @@
 #include <sstream>
 
 #include "command.h"
+#include "gl_face_picture.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_playback.h"
 #include "myoshell/core/errors.h"
@@ -37,6 +39,7 @@ struct FigureOptions {
   std::string cacheDir = ".cache/bases";
   std::string only;  // comma-separated figure keys (fig17, fig18, …); empty = all
   int size = 360;    // tile width and height, pixels
+  bool software = false;
 };
 
 const Rgb kBackground(0.16, 0.17, 0.20);
@@ -53,7 +56,8 @@ struct Loaded {
 
 class Figures {
  public:
-  explicit Figures(const FigureOptions& opt) : opt_(opt), cache_(opt.cacheDir) {}
+  explicit Figures(const FigureOptions& opt)
+      : opt_(opt), cache_(opt.cacheDir), painter_(makePainter(opt.software)) {}
 
   Loaded load(const std::string& name, const std::function<void(SceneDesc&)>& edit = {}) {
     Loaded l;
@@ -89,29 +93,27 @@ class Figures {
   Image tile(const FaceModel& model, const Camera& cam, const MatX3& V, const MatX3& colors,
              const std::vector<MatX3>* muscles = nullptr, double skinOpacity = 1.0,
              const std::vector<Marker>& markers = {}, const ColorBar* bar = nullptr) const {
-    Image image(W(), W(), kBackground);
-    DepthBuffer depth(W(), W());
+    FaceScene scene;
+    scene.camera = cam;
+    scene.width = scene.height = opt_.size;
+    scene.background = kBackground;
     if (muscles) {
       RenderStyle ms;
       ms.color = kMuscle;
-      for (size_t m = 0; m < muscles->size(); ++m)
-        renderMesh(image, depth, cam, (*muscles)[m], model.muscles()[m].muscle.mesh.F, ms);
+      for (size_t m = 0; m < muscles->size(); ++m) scene.meshes.push_back({(*muscles)[m], &model.muscles()[m].muscle.mesh.F, ms});
     }
     RenderStyle style;
     style.color = kSkin;
     style.backColor = Rgb(0.55, 0.60, 0.75);
     if (colors.rows() == V.rows()) style.vertexColors = colors;
     style.opacity = skinOpacity;
-    renderMesh(image, depth, cam, V, model.head().mesh.F, style);
-    if (!markers.empty()) {
-      MarkerStyle mst;
-      mst.depthTolerance = 0.02 * cam.orthoHeight;
-      mst.outlineWidth = 0.8 * kSuper;
-      drawMarkers(image, &depth, cam, markers, mst);
-    }
-    Image out = downsample(image, kSuper);
-    if (bar) drawColorBar(out, *bar);
-    return out;
+    scene.meshes.push_back({V, &model.head().mesh.F, style});
+    scene.markers = markers;
+    for (Marker& m : scene.markers) m.radius /= kSuper;  // radii below are in supersampled pixels
+    scene.markerStyle.depthTolerance = 0.02 * cam.orthoHeight;
+    scene.markerStyle.outlineWidth = 0.8;
+    if (bar) scene.colorBar = *bar;
+    return painter_->paint(scene);
   }
 
   // Displacement-magnitude colours over [0, maxU] cm, and the matching colour bar.
@@ -159,6 +161,7 @@ class Figures {
  private:
   FigureOptions opt_;
   FileBasisCache cache_;
+  std::unique_ptr<FacePainter> painter_;
   std::vector<std::string> written_;
 };
 
@@ -426,7 +429,6 @@ int runFigures(const FigureOptions& opt) {
   if (opt.size < 64 || opt.size > 2048) throw InputError("--size must be in [64, 2048]");
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
     throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
-  fs::create_directories(opt.outDir);
   Figures F(opt);
   const std::vector<std::pair<std::string, std::function<void()>>> all = {
       {"fig17", [&] { fig17(F); }},    {"fig18", [&] { fig18(F); }},       {"fig20", [&] { fig19_20(F); }},
@@ -441,6 +443,7 @@ int runFigures(const FigureOptions& opt) {
         throw InputError("unknown figure '" + item + "' (fig17 fig18 fig20 fig22 fig23 fig25 fig26 fig27)");
       want.insert(item);
     }
+  fs::create_directories(opt.outDir);  // only once the arguments are known good
   for (const auto& [key, fn] : all)
     if (want.empty() || want.count(key)) fn();
   return kExitOk;
@@ -454,6 +457,7 @@ const CommandRegistrar figuresRegistrar("figures", [](CLI::App& app) {
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
   sub->add_option("--only", opt->only, "Only these figures (comma-separated: fig17, fig18, fig20, fig22, ...)");
   sub->add_option("--size", opt->size, "Tile size, pixels")->capture_default_str();
+  sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");
   return std::function<int()>([opt] { return runFigures(*opt); });
 });
 
