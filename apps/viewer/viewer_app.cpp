@@ -414,6 +414,8 @@ class ViewerApp {
     for (const ScriptCommand& cmd : script) {
       try {
         execute(cmd);
+        for (const std::string& w : session_.takeWarnings())
+          fmt::print(stderr, "myoshell-view: warning: {}:{}: {}\n", options_.script, cmd.line, w);
       } catch (const InputError& e) {
         throw InputError(e.message(), options_.script, cmd.line);
       } catch (const NumericalError& e) {

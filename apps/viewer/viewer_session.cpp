@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_playback.h"
@@ -58,7 +59,13 @@ const std::string& ViewerSession::muscleName(int muscle) const {
 
 void ViewerSession::setSlider(int muscle, double activation) {
   if (std::isnan(activation)) throw InputError("activation of muscle '" + muscleName(muscle) + "' is NaN");
-  activation = std::clamp(activation, -1.0, 1.0);
+  if (activation < -1.0 || activation > 1.0) {
+    const double clamped = std::clamp(activation, -1.0, 1.0);
+    std::ostringstream w;
+    w << "activation " << activation << " of muscle '" << muscleName(muscle) << "' clamped to " << clamped;
+    warnings_.push_back(w.str());
+    activation = clamped;
+  }
   sliders_[static_cast<size_t>(muscle)] = activation;
   if (linked && mirrorOf(muscle) >= 0) sliders_[static_cast<size_t>(mirrorOf(muscle))] = activation;
 }

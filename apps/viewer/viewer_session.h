@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "myoshell/anim/scene.h"
@@ -29,7 +30,8 @@ class ViewerSession {
   // --- sliders ---------------------------------------------------------------------------------
   int muscleCount() const { return static_cast<int>(sliders_.size()); }
   const std::string& muscleName(int muscle) const;
-  // The muscle's activation slider, in [−1, 1] (values outside are clamped; NaN is an InputError).
+  // The muscle's activation slider, in [−1, 1] (values outside are clamped with a warning naming
+  // the muscle, see takeWarnings(); NaN is an InputError).
   // With the link on, the mirror muscle (name with _left ↔ _right swapped) follows.
   void setSlider(int muscle, double activation);
   void setSlider(const std::string& muscle, double activation);  // InputError for an unknown name
@@ -78,6 +80,9 @@ class ViewerSession {
   // (io/animation_export.h) to `path`; the live face is untouched. Returns the frames written.
   int exportGlb(const std::string& path) const;
 
+  // Warnings since the last call (clamped sliders), oldest first: the window shows them.
+  std::vector<std::string> takeWarnings() { return std::exchange(warnings_, {}); }
+
   // --- readouts --------------------------------------------------------------------------------
   double stepsPerSecond() const { return stepsPerSecond_; }  // simulated steps per wall second, smoothed
   const StepTimings& lastTimings() const { return sim_.lastTimings(); }
@@ -94,6 +99,7 @@ class ViewerSession {
   double playhead_ = 0.0;
   double pending_ = 0.0;  // simulated seconds owed to the accumulator
   double stepsPerSecond_ = 0.0;
+  std::vector<std::string> warnings_;
 
   void applyControls();
 };

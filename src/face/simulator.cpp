@@ -57,7 +57,14 @@ void Simulator::setActivation(int muscle, double a) {
                      "' is NaN");
   if (a < -1.0 || a > 1.0) {
     ++clamped_;
-    a = std::clamp(a, -1.0, 1.0);
+    const double clamped = std::clamp(a, -1.0, 1.0);
+    if (warnings_.size() < 64) {
+      std::ostringstream w;
+      w << "activation " << a << " of muscle '" << model_->muscles()[static_cast<size_t>(muscle)].muscle.def.name
+        << "' clamped to " << clamped;
+      warnings_.push_back(w.str());
+    }
+    a = clamped;
   }
   activation_[static_cast<size_t>(muscle)] = a;
 }

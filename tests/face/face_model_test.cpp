@@ -354,6 +354,10 @@ TEST(Simulator, ActivationsAreClampedAndNaNRejected) {
   sim.setActivation(0, 3.0);
   EXPECT_EQ(sim.activation(0), 1.0);
   EXPECT_EQ(sim.clampedActivations(), 1);
+  const std::vector<std::string> warnings = sim.takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "activation 3 of muscle '" + defaultFace()->muscles()[0].muscle.def.name + "' clamped to 1");
+  EXPECT_TRUE(sim.takeWarnings().empty());
   EXPECT_THROW(sim.setActivation(0, std::nan("")), InputError);
   EXPECT_THROW(sim.setActivation("buccinator", 0.5), InputError);
 }

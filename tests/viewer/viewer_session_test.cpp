@@ -55,8 +55,12 @@ TEST(ViewerSession, TheLinkMovesTheMirrorMuscleAndSlidersClamp) {
   s.linked = false;
   s.setSlider(right, -0.2);
   EXPECT_DOUBLE_EQ(s.slider(left), 0.7);
+  s.takeWarnings();
   s.setSlider(left, 4.0);
   EXPECT_EQ(s.slider(left), 1.0);
+  const std::vector<std::string> warnings = s.takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "activation 4 of muscle 'zygomaticus_major_left' clamped to 1");
   EXPECT_THROW(s.setSlider(left, std::nan("")), InputError);
   try {
     s.setSlider("buccinator", 0.5);

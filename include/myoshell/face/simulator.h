@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "myoshell/face/face_model.h"
@@ -28,7 +29,8 @@ class Simulator {
   explicit Simulator(std::shared_ptr<const FaceModel> model);
 
   // Activation a of a muscle: +1 full contraction (force towards the origin), −1 relaxation (away).
-  // Values outside [−1, 1] are clamped (and counted in clampedActivations()); NaN throws InputError.
+  // Values outside [−1, 1] are clamped, counted in clampedActivations() and explained in
+  // takeWarnings() ("activation 3 of muscle 'x' clamped to 1"); NaN throws InputError.
   void setActivation(int muscle, double a);
   void setActivation(const std::string& muscle, double a);
   double activation(int muscle) const { return activation_[static_cast<size_t>(muscle)]; }
@@ -68,6 +70,9 @@ class Simulator {
 
   const StepTimings& lastTimings() const { return timings_; }
   int clampedActivations() const { return clamped_; }
+  // The warnings since the last call (clamped activations, naming the muscle), oldest first; at
+  // most 64 are kept between calls. The library prints nothing: callers show these.
+  std::vector<std::string> takeWarnings() { return std::exchange(warnings_, {}); }
   const FaceModel& model() const { return *model_; }
   // Back to the neutral face at rest (activations, gravity and drags kept).
   void reset();
@@ -89,6 +94,7 @@ class Simulator {
   double time_ = 0.0;
   long long steps_ = 0;
   int clamped_ = 0;
+  std::vector<std::string> warnings_;
   StepTimings timings_;
   double runawayLimit_ = 0.0;  // cm: the head's bounding-box diagonal
 
