@@ -25,6 +25,7 @@ SceneDesc withMouseDrag(SceneDesc scene) {
   mouse.landmark = "nose_tip";
   mouse.radius = 1.0;
   scene.drags.push_back(mouse);
+  scene.model.measureLoadParticipation = false;  // a diagnostic the viewer does not show: start faster
   return scene;
 }
 

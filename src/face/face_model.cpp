@@ -188,8 +188,9 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
 
   // Skin channels: one per muscle (non-ROI pinned), gravity, one per drag (eq. 20–25). The skin's
   // K is assembled once for all the load-participation reports.
-  const SparseMat skinK = skin_.stiffnessAtRest();
+  const SparseMat skinK = settings_.measureLoadParticipation ? skin_.stiffnessAtRest() : SparseMat();
   auto participation = [&](const ModalBasis& basis, const MatX3& load) {
+    if (!settings_.measureLoadParticipation) return -1.0;
     if (load.squaredNorm() == 0.0) return 0.0;
     return loadParticipation(basis, restrictToFree(skinK, basis.freeVertices, n), load).ratio;
   };

@@ -49,6 +49,9 @@ TEST(ViewerSession, TheLinkMovesTheMirrorMuscleAndSlidersClamp) {
   const int dao = s.model().muscleIndex("depressor_anguli_oris_left");
   EXPECT_EQ(s.mirrorOf(left), right);
   EXPECT_EQ(s.mirrorOf(dao), -1);  // its right twin is not in this scene
+  // The viewer skips the load-participation diagnostic (a factorization per channel at start-up).
+  for (const SkinChannel& ch : s.model().channels()) EXPECT_EQ(ch.loadParticipation, -1.0) << ch.name;
+  EXPECT_EQ(s.model().channels().back().name, "mouse");
   s.linked = true;
   s.setSlider(left, 0.7);
   EXPECT_DOUBLE_EQ(s.slider(right), 0.7);

@@ -78,6 +78,10 @@ struct FaceModelSettings {
   // The gravity channel pins the head's gravity pins and, as the thesis does (Fig. 21: "the
   // backside of the head and feature points of the face were fixed"), every landmark vertex.
   bool gravityPinsLandmarks = true;
+  // Report each skin channel's load participation (SkinChannel::loadParticipation): a diagnostic
+  // costing one sparse factorization per channel at build time, cached bases or not (2–3 s on the
+  // default head). The viewer turns it off to start faster; its channels then report −1.
+  bool measureLoadParticipation = true;
   std::vector<DragDef> drags;         // drag channels
   ModalPrecision precision = ModalPrecision::Float;
 
@@ -127,7 +131,7 @@ struct SkinChannel {
   ChannelKind kind = ChannelKind::Muscle;
   int source = -1;                          // muscle index or drag index
   std::shared_ptr<const ModalBasis> basis;  // over this channel's free skin vertices
-  double loadParticipation = 0.0;           // of its typical load (springs / gravity / drag)
+  double loadParticipation = 0.0;           // of its typical load (springs / gravity / drag); −1: not measured
   std::vector<int> dragRows;                // Drag: free rows that share the force
 };
 
