@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   options.width = w;
   options.height = h;
   try {
+    myo::viewer::checkDisplay();  // no display: say so now, not after building the face
     myo::SceneDesc scene;
     if (!scenePath.empty()) scene = myo::readScene(scenePath);
     else scene.name = "default";

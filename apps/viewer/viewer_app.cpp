@@ -27,6 +27,11 @@ std::string& glfwLastError() {
   return message;
 }
 
+std::string noWindowMessage() {
+  return "cannot open a window: " + glfwLastError() +
+         " (is DISPLAY set? Run under `xvfb-run -a`, or use `myoshell render` for pictures without a display)";
+}
+
 // What is drawn, and from where.
 struct Display {
   bool muscles = false, roi = false, displacement = false, pins = false, wireframe = false, skull = false;
@@ -89,9 +94,7 @@ class ViewerApp {
  public:
   ViewerApp(ViewerSession& session, const ViewerOptions& options) : session_(session), options_(options) {
     glfwSetErrorCallback([](int, const char* description) { glfwLastError() = description; });
-    if (!glfwInit())
-      throw RenderError("cannot open a window: " + glfwLastError() +
-                        " (is DISPLAY set? Run under `xvfb-run -a`, or use `myoshell render` for pictures without a display)");
+    if (!glfwInit()) throw RenderError(noWindowMessage());
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -477,6 +480,12 @@ class ViewerApp {
 };
 
 }  // namespace
+
+void checkDisplay() {
+  glfwSetErrorCallback([](int, const char* description) { glfwLastError() = description; });
+  if (!glfwInit()) throw RenderError(noWindowMessage());
+  glfwTerminate();
+}
 
 ViewerStats runViewer(ViewerSession& session, const ViewerOptions& options) {
   ViewerApp app(session, options);

@@ -22,6 +22,10 @@ struct ViewerOptions {
   int samples = -1;
 };
 
+// Throws RenderError (the same message runViewer would give) when no window system can be reached,
+// so the viewer fails at once, before building the face.
+void checkDisplay();
+
 // What a run measured: frames drawn and the wall time they took (input, panel, simulation, drawing,
 // buffer swap), and the simulation's steps per second (ViewerSession::stepsPerSecond).
 struct ViewerStats {

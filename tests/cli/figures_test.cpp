@@ -1,32 +1,19 @@
 // `myoshell figures`: a thesis figure drawn through the shared painter, the same picture by OpenGL
 // and by the software renderer, and an unknown figure named.
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 
 #include <filesystem>
 
 #include "support/cli_runner.h"
+#include "support/picture.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-};
-
-Picture readPicture(const fs::path& path) {
-  Picture p;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.string().c_str(), &p.width, &p.height, &channels, 3);
-  if (data) {
-    p.rgb.assign(data, data + 3 * static_cast<size_t>(p.width) * p.height);
-    stbi_image_free(data);
-  }
-  return p;
-}
+using test::Picture;
+using test::readPicture;
+using test::differingPixels;
 
 TEST(FiguresCommand, Fig26IsTheSamePictureThroughOpenGLAndSoftware) {
   const fs::path dir = fs::temp_directory_path() / ("myo_figures_" + std::to_string(::getpid()));

@@ -1,7 +1,6 @@
 // `myoshell render`: frames and a contact sheet through OpenGL (or the software fallback), what the
 // pictures show, overlays, and bad option values (exit 2, the option and value named, no output).
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,41 +8,15 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
+#include "support/picture.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const { return &rgb[3 * (static_cast<size_t>(y) * width + x)]; }
-};
-
-Picture readPicture(const fs::path& path) {
-  Picture p;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.string().c_str(), &p.width, &p.height, &channels, 3);
-  if (data) {
-    p.rgb.assign(data, data + 3 * static_cast<size_t>(p.width) * p.height);
-    stbi_image_free(data);
-  }
-  return p;
-}
-
-// Pixels of the box [x0, x1) × [y0, y1) whose colour differs by more than 24 levels in a channel.
-int differingPixels(const Picture& a, const Picture& b, int x0, int y0, int x1, int y1) {
-  int count = 0;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int c = 0; c < 3; ++c)
-        if (std::abs(a.at(x, y)[c] - b.at(x, y)[c]) > 24) {
-          ++count;
-          break;
-        }
-  return count;
-}
+using test::Picture;
+using test::readPicture;
+using test::differingPixels;
 
 // Both zygomatici contract from frame 0 to frame 2 (10 frames per second): a smile.
 const char* kSmileScene = R"({

@@ -16,6 +16,7 @@
 #include <unistd.h>
 #include "myoshell/reduce/modal_warping.h"
 #include "myoshell/reduce/reference_solver.h"
+#include "support/free_vertex.h"
 
 #include <sstream>
 
@@ -399,16 +400,7 @@ TEST(Simulator, ADragGripMovesToAnotherVertexWithoutANewBasis) {
   s.drags.push_back(drag);
   const auto model = std::make_shared<const FaceModel>(head, std::vector<MuscleDef>{}, s);
   Simulator sim(model);
-  // A free cheek vertex (landmarks are pinned with the gravity pins): the one nearest to halfway
-  // between the left mouth corner and the left eye's outer corner.
-  const std::vector<int> pins = model->gravityPins();
-  const Vec3 aim = 0.5 * (Vec3(head.mesh.V.row(head.landmarks.vertex("mouth_corner_left"))) +
-                          Vec3(head.mesh.V.row(head.landmarks.vertex("left_eye_outer"))));
-  int cheek = -1;
-  for (int v = 0; v < head.mesh.vertexCount(); ++v)
-    if (!std::binary_search(pins.begin(), pins.end(), v) &&
-        (cheek < 0 || (Vec3(head.mesh.V.row(v)) - aim).norm() < (Vec3(head.mesh.V.row(cheek)) - aim).norm()))
-      cheek = v;
+  const int cheek = test::freeLeftCheekVertex(head, model->gravityPins());
   sim.setDragVertex(0, cheek);
   EXPECT_EQ(sim.dragVertex(0), cheek);
   sim.setDragForce(0, Vec3(0.0, 0.0, 3000.0));

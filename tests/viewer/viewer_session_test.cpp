@@ -10,6 +10,7 @@
 #include "myoshell/anim/scene_playback.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
+#include "support/free_vertex.h"
 #include "viewer_script.h"
 #include "viewer_session.h"
 
@@ -113,16 +114,7 @@ TEST(ViewerSession, TheMouseDragPullsTheGrabbedSpotAndReleaseLetsGo) {
   ViewerSession& s = session();
   s.setGravity(false);  // only the drag moves the face
   s.resetSliders();
-  // A free cheek vertex (landmarks are pinned with the gravity pins, which the mouse drag shares).
-  const Head& head = s.model().head();
-  const std::vector<int> pins = s.model().gravityPins();
-  const Vec3 aim = 0.5 * (Vec3(head.mesh.V.row(head.landmarks.vertex("mouth_corner_left"))) +
-                          Vec3(head.mesh.V.row(head.landmarks.vertex("left_eye_outer"))));
-  int cheek = -1;
-  for (int v = 0; v < head.mesh.vertexCount(); ++v)
-    if (!std::binary_search(pins.begin(), pins.end(), v) &&
-        (cheek < 0 || (Vec3(head.mesh.V.row(v)) - aim).norm() < (Vec3(head.mesh.V.row(cheek)) - aim).norm()))
-      cheek = v;
+  const int cheek = test::freeLeftCheekVertex(s.model().head(), s.model().gravityPins());
   s.grab(cheek);
   EXPECT_TRUE(s.grabbing());
   EXPECT_EQ(s.grabbedVertex(), cheek);

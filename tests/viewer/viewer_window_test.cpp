@@ -1,16 +1,20 @@
 // The viewer's window under Xvfb, driven by scripts: a contracted zygomaticus changes the face
 // in the picture, the panel is drawn, and without a display it fails with a clear message.
 #include <gtest/gtest.h>
-#include <stb_image.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "support/picture.h"
+
 namespace {
 
 namespace fs = std::filesystem;
+using myo::test::Picture;
+using myo::test::readPicture;
+using myo::test::differingPixels;
 
 struct ViewerRun {
   int exitCode = -1;
@@ -41,36 +45,6 @@ ViewerRun runViewer(const std::string& prefix, const std::string& args, const fs
 
 bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 const char* kXvfb = "xvfb-run -a -s '-screen 0 1280x1024x24'";
-
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const { return &rgb[3 * (static_cast<size_t>(y) * width + x)]; }
-};
-
-Picture readPicture(const fs::path& path) {
-  Picture p;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.string().c_str(), &p.width, &p.height, &channels, 3);
-  if (data) {
-    p.rgb.assign(data, data + 3 * static_cast<size_t>(p.width) * p.height);
-    stbi_image_free(data);
-  }
-  return p;
-}
-
-// Pixels of the box [x0, x1) × [y0, y1) whose colour differs by more than 24 levels in a channel.
-int differingPixels(const Picture& a, const Picture& b, int x0, int y0, int x1, int y1) {
-  int count = 0;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int c = 0; c < 3; ++c)
-        if (std::abs(a.at(x, y)[c] - b.at(x, y)[c]) > 24) {
-          ++count;
-          break;
-        }
-  return count;
-}
 
 TEST(ViewerWindow, AScriptedSmileChangesTheFaceAndThePanelIsDrawn) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs xvfb and xauth)";
