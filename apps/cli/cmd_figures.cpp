@@ -427,8 +427,6 @@ void fig27(Figures& F, const FigureOptions& opt) {
 
 int runFigures(const FigureOptions& opt) {
   if (opt.size < 64 || opt.size > 2048) throw InputError("--size must be in [64, 2048]");
-  if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
-    throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
   Figures F(opt);
   const std::vector<std::pair<std::string, std::function<void()>>> all = {
       {"fig17", [&] { fig17(F); }},    {"fig18", [&] { fig18(F); }},       {"fig20", [&] { fig19_20(F); }},
@@ -443,6 +441,8 @@ int runFigures(const FigureOptions& opt) {
         throw InputError("unknown figure '" + item + "' (fig17 fig18 fig20 fig22 fig23 fig25 fig26 fig27)");
       want.insert(item);
     }
+  if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
+    throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
   fs::create_directories(opt.outDir);  // only once the arguments are known good
   for (const auto& [key, fn] : all)
     if (want.empty() || want.count(key)) fn();

@@ -36,9 +36,13 @@ TEST(FiguresCommand, Fig26IsTheSamePictureThroughOpenGLAndSoftware) {
 }
 
 TEST(FiguresCommand, AnUnknownFigureIsNamed) {
-  const auto r = test::runCli("figures --out /nonexistent/never --only fig99");
+  const auto r = test::runCli("figures --out /nonexistent/never --only fig99");  // from any folder
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("unknown figure 'fig99'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists("/nonexistent/never"));
+  const auto noScenes = test::runCli("figures --out /nonexistent/never --scenes /nonexistent/scenes");
+  EXPECT_EQ(noScenes.exitCode, 2);
+  EXPECT_NE(noScenes.err.find("/nonexistent/scenes: no thesis scenes here"), std::string::npos) << noScenes.err;
   EXPECT_FALSE(fs::exists("/nonexistent/never"));
 }
 
