@@ -181,7 +181,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     if (t.has("activations")) {
       DocReader a = t.child("activations");
       for (auto it = a.self().begin(); it != a.self().end(); ++it) {
-        const std::string muscle = it->first.Scalar();
+        const std::string muscle = a.asString(it->first, a.keyPath(it->first.Scalar()));
         scene.activations[muscle] = readTrack<double>(a, a.node(muscle), a.keyPath(muscle), -1.0, 1.0);
       }
       a.finish();
@@ -190,7 +190,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     if (t.has("drags")) {
       DocReader d = t.child("drags");
       for (auto it = d.self().begin(); it != d.self().end(); ++it) {
-        const std::string drag = it->first.Scalar();
+        const std::string drag = d.asString(it->first, d.keyPath(it->first.Scalar()));
         bool known = false;
         for (const DragDesc& dd : scene.drags) known |= dd.name == drag;
         if (!known) d.failAt(it->first, d.keyPath(drag), "no drag of that name in 'drags'");
@@ -320,7 +320,8 @@ std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCac
     }
   }
   for (const MuscleDef& d : scene.extraMuscles) muscles.push_back(d);
-  for (const auto& [name, track] : scene.activations) {
+  for (const auto& activation : scene.activations) {
+    const std::string& name = activation.first;  // a plain reference: clang 14 cannot capture a structured binding
     const bool known = std::any_of(muscles.begin(), muscles.end(), [&](const MuscleDef& d) { return d.name == name; });
     if (!known) throw InputError("key 'timeline.activations." + name + "': the scene has no muscle '" + name + "'", scene.path);
   }

@@ -16,6 +16,33 @@ std::string fmtValue(double v) {
   os << v;
   return os.str();
 }
+
+// Strict UTF-8 (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF), as JSON
+// writers require: yaml-cpp passes stray bytes and "\uD800" escapes through into scalars.
+bool isUtf8(const std::string& s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    int extra = 0;
+    unsigned lo = 0x80, hi = 0xBF;  // allowed range of the first continuation byte
+    if (c < 0x80) extra = 0;
+    else if (c >= 0xC2 && c <= 0xDF) extra = 1;
+    else if (c == 0xE0) { extra = 2; lo = 0xA0; }
+    else if (c == 0xED) { extra = 2; hi = 0x9F; }
+    else if (c >= 0xE1 && c <= 0xEF) extra = 2;
+    else if (c == 0xF0) { extra = 3; lo = 0x90; }
+    else if (c == 0xF4) { extra = 3; hi = 0x8F; }
+    else if (c >= 0xF1 && c <= 0xF3) extra = 3;
+    else return false;
+    if (i + static_cast<size_t>(extra) >= s.size() && extra > 0) return false;  // cut short
+    for (int k = 1; k <= extra; ++k) {
+      const auto b = static_cast<unsigned char>(s[i + static_cast<size_t>(k)]);
+      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return false;
+    }
+    i += static_cast<size_t>(extra) + 1;
+  }
+  return true;
+}
 }  // namespace
 
 YAML::Node loadDocument(const std::string& text, const std::string& file) {
@@ -33,6 +60,18 @@ YAML::Node loadDocument(const std::string& text, const std::string& file) {
       std::string what = e.what();
       const size_t colon = what.find("syntax error");
       throw InputError("JSON " + (colon == std::string::npos ? what : what.substr(colon)), file, line, column);
+    } catch (const nlohmann::json::exception& e) {
+      // A number beyond double's range ("number overflow parsing '1e400'", out_of_range.406) comes
+      // without a position: find the number in the text.
+      std::string what = e.what();
+      if (const size_t bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+      const size_t q1 = what.find('\''), q2 = what.rfind('\'');
+      const size_t at = q1 != std::string::npos && q2 > q1 ? text.find(what.substr(q1 + 1, q2 - q1 - 1)) : std::string::npos;
+      if (at == std::string::npos) throw InputError("JSON " + what, file);
+      const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+      const size_t lineStart = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
+      const int column = static_cast<int>(at - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
+      throw InputError("JSON " + what, file, line, column);
     }
   }
   try {
@@ -92,6 +131,7 @@ double DocReader::asNumber(const YAML::Node& n, const std::string& keyPath) cons
 
 std::string DocReader::asString(const YAML::Node& n, const std::string& keyPath) const {
   if (!n.IsScalar()) failAt(n, keyPath, "must be a string");
+  if (!isUtf8(n.Scalar())) failAt(n, keyPath, "must be UTF-8 text");
   return n.Scalar();
 }
 

@@ -1,5 +1,6 @@
 #include "myoshell/face/landmarks.h"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -35,12 +36,14 @@ int vertexId(const nlohmann::json& v, const std::string& what, int vertexCount,
              const std::string& name) {
   if (!v.is_number_integer())
     throw InputError(what + ": vertex id must be an integer, got " + v.dump(), name);
-  const long long id = v.get<long long>();
-  if (id < 0 || id >= vertexCount)
-    throw InputError(what + ": vertex id " + std::to_string(id) + " out of range [0, " +
-                         std::to_string(vertexCount) + ")",
+  // An unsigned integer above INT64_MAX would wrap to a negative long long: compare it unsigned.
+  const bool inRange = v.is_number_unsigned()
+                           ? v.get<unsigned long long>() < static_cast<unsigned long long>(std::max(vertexCount, 0))
+                           : v.get<long long>() >= 0 && v.get<long long>() < vertexCount;
+  if (!inRange)
+    throw InputError(what + ": vertex id " + v.dump() + " out of range [0, " + std::to_string(vertexCount) + ")",
                      name);
-  return static_cast<int>(id);
+  return static_cast<int>(v.get<long long>());
 }
 
 }  // namespace
@@ -85,6 +88,17 @@ Landmarks parseLandmarks(const std::string& jsonText, int vertexCount, const std
       what = what.substr(p);
       if (const auto q = what.find(": "); q != std::string::npos) what = what.substr(q + 2);
     }
+    throw InputError("bad JSON in landmark file: " + what, name, line, col);
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond double's range ("number overflow parsing '1e400'") comes without a position:
+    // find the number in the text.
+    std::string what = e.what();
+    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    const size_t q1 = what.find('\''), q2 = what.rfind('\'');
+    const size_t at = q1 != std::string::npos && q2 > q1 ? jsonText.find(what.substr(q1 + 1, q2 - q1 - 1))
+                                                         : std::string::npos;
+    if (at == std::string::npos) throw InputError("bad JSON in landmark file: " + what, name);
+    auto [line, col] = lineColumn(jsonText, at + 1);
     throw InputError("bad JSON in landmark file: " + what, name, line, col);
   }
   if (!j.is_object())

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include "myoshell/core/doc_reader.h"
@@ -72,6 +73,8 @@ MuscleDef readMuscleDef(DocReader& r) {
       for (size_t i = 0; i < list.size(); ++i) {
         const double v = r.asNumber(list[i], r.keyPath(key) + "[" + std::to_string(i) + "]");
         if (v < 0 || v != std::floor(v)) r.failAt(list[i], r.keyPath(key), "vertex ids must be integers ≥ 0");
+        if (v > std::numeric_limits<int>::max())  // (the cast below would be undefined)
+          r.failAt(list[i], r.keyPath(key), "vertex id " + list[i].Scalar() + " is too large");
         out.push_back(static_cast<int>(v));
       }
       return out;

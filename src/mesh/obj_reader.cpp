@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -86,19 +87,28 @@ std::vector<std::string_view> tokens(std::string_view s) {
 
 // The whole token must be a number; from_chars accepts "nan"/"inf", which the caller reports.
 bool parseDouble(std::string_view t, double& out) {
-  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  // One optional sign: from_chars takes '-' but not '+', so a leading '+' is dropped here; "+-4"
+  // is not a number.
+  if (!t.empty() && t.front() == '+') {
+    t.remove_prefix(1);
+    if (!t.empty() && t.front() == '-') return false;
+  }
   if (t.empty()) return false;
   auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), out);
   if (ec == std::errc::result_out_of_range) {
-    out = (!t.empty() && t.front() == '-') ? -std::numeric_limits<double>::infinity()
-                                           : std::numeric_limits<double>::infinity();
+    // Overflow ("1e400") reads as ±inf, which the caller reports; underflow ("1e-400") as the
+    // nearest double (0 or subnormal), as strtod rounds it.
+    out = std::strtod(std::string(t).c_str(), nullptr);
     return p == t.data() + t.size();
   }
   return ec == std::errc() && p == t.data() + t.size();
 }
 
 bool parseInt(std::string_view t, int& out) {
-  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  if (!t.empty() && t.front() == '+') {
+    t.remove_prefix(1);
+    if (!t.empty() && t.front() == '-') return false;
+  }
   if (t.empty()) return false;
   auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), out);
   return ec == std::errc() && p == t.data() + t.size();
@@ -109,19 +119,21 @@ std::string quoted(std::string_view s) {
   return "'" + std::string(s.substr(0, kMax)) + (s.size() > kMax ? "…'" : "'");
 }
 
+// Lines end at "\n", "\r\n" or a lone "\r" (classic Mac files), as tinyobjloader splits them: the
+// two must agree on every line, since tinyobjloader reads our sanitised text and we cross-check it.
 std::vector<std::string_view> splitLines(const std::string& text, const std::string& name) {
   std::vector<std::string_view> lines;
   std::string_view all(text);
   size_t start = 0;
   while (start <= all.size()) {
-    size_t end = all.find('\n', start);
+    size_t end = all.find_first_of("\r\n", start);
     if (end == std::string_view::npos) end = all.size();
     if (end - start > kMaxLineBytes)
       throw InputError("line " + std::to_string(lines.size() + 1) + " is longer than 16 MiB", name,
                        static_cast<int>(lines.size() + 1));
     lines.push_back(all.substr(start, end - start));
     if (end == all.size()) break;
-    start = end + 1;
+    start = end + (all[end] == '\r' && end + 1 < all.size() && all[end + 1] == '\n' ? 2 : 1);
   }
   return lines;
 }
@@ -293,14 +305,54 @@ ObjScan scanObj(const std::string& text, const std::string& name) {
 }
 
 // The file as tinyobjloader should see it: faulty element lines become harmless placeholders
-// (so indices do not shift) and faulty faces become blank lines.
+// (so indices do not shift) and faulty faces become blank lines. Good positions, texture
+// coordinates and faces are rewritten from the scan, in one canonical spelling (shortest
+// round-trip numbers; absolute indices "v", "v/vt", "v//vn", "v/vt/vn"): tinyobjloader reads some
+// spellings differently from us ("+-4" as 0; in "f 1 2/ 7" it takes 7 as the texture coordinate
+// of "2/"), and a user's odd file must give an InputError or a mesh, never a failed cross-check.
 std::string sanitisedText(const ObjScan& scan) {
   std::string out;
   size_t total = 0;
   for (auto l : scan.lines) total += l.size() + 1;
   out.reserve(total);
+  std::vector<const ScannedFace*> faceOnLine(scan.lines.size(), nullptr);
+  for (const ScannedFace& face : scan.faces) faceOnLine[static_cast<size_t>(face.line - 1)] = &face;
+  auto number = [&out](double x) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, x);
+    out += ' ';
+    out.append(buf, r.ptr);
+  };
+  size_t vertex = 0, texcoord = 0;  // ordinal of the next v / vt line (bad ones included)
   for (size_t i = 0; i < scan.lines.size(); ++i) {
-    if (!scan.drop[i]) {
+    if (scan.kinds[i] == LineKind::kVertex) {
+      const Vec3& p = scan.positions[vertex++];
+      if (!scan.drop[i]) {
+        out += 'v';
+        for (int k = 0; k < 3; ++k) number(p[k]);
+        out += '\n';
+        continue;
+      }
+    } else if (scan.kinds[i] == LineKind::kTexcoord) {
+      const Vec2& t = scan.texcoords[texcoord++];
+      if (!scan.drop[i]) {
+        out += "vt";
+        for (int k = 0; k < 2; ++k) number(t[k]);
+        out += '\n';
+        continue;
+      }
+    }
+    if (!scan.drop[i] && scan.kinds[i] == LineKind::kFace) {
+      MYO_CHECK(faceOnLine[i] != nullptr, "a kept face line without its scanned face, line " << i + 1);
+      out += 'f';
+      for (const Corner& c : faceOnLine[i]->corners) {
+        out += ' ';
+        out += std::to_string(c.v + 1);
+        if (c.vt >= 0 || c.vn >= 0) out += '/';
+        if (c.vt >= 0) out += std::to_string(c.vt + 1);
+        if (c.vn >= 0) out += '/' + std::to_string(c.vn + 1);
+      }
+    } else if (!scan.drop[i]) {
       out.append(scan.lines[i]);
     } else {
       switch (scan.kinds[i]) {
@@ -639,7 +691,11 @@ TriMesh readObjFromStringLenient(const std::string& text, MeshReport& report, co
 }
 
 TriMesh readObjLike(const std::string& path, const TriMesh& rest) {
-  ParsedObj parsed = parseObj(readWholeFile(path), path);
+  return readObjLikeFromString(readWholeFile(path), rest, path);
+}
+
+TriMesh readObjLikeFromString(const std::string& text, const TriMesh& rest, const std::string& path) {
+  ParsedObj parsed = parseObj(text, path);
   throwFirst(parsed.faults, path);
   if (parsed.V.rows() != rest.V.rows())
     throw InputError("has " + std::to_string(parsed.V.rows()) + " vertices but the rest mesh" +

@@ -92,6 +92,13 @@ size_t findElement(const std::string& s, size_t open, size_t k) {
   return std::string::npos;
 }
 
+// Where the number quoted in nlohmann's "number overflow parsing '1e400'" first occurs (npos if not).
+size_t numberPosition(const std::string& text, const std::string& what) {
+  const size_t q1 = what.find('\''), q2 = what.rfind('\'');
+  if (q1 == std::string::npos || q2 <= q1) return std::string::npos;
+  return text.find(what.substr(q1 + 1, q2 - q1 - 1));
+}
+
 [[noreturn]] void fail(const std::string& text, const std::string& name, size_t pos,
                        const std::string& message) {
   if (pos == std::string::npos) throw InputError(message, name);
@@ -111,6 +118,11 @@ std::vector<int> parseVertexSet(const std::string& jsonText, int vertexCount, co
     const size_t colon = what.find(": ", what.find("parse error"));
     if (colon != std::string::npos) what = what.substr(colon + 2);
     fail(jsonText, name, e.byte > 0 ? e.byte - 1 : 0, "invalid JSON: " + what);
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond double's range ("number overflow parsing '1e400'") comes without a position.
+    std::string what = e.what();
+    if (const size_t bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+    fail(jsonText, name, numberPosition(jsonText, what), "invalid JSON: " + what);
   }
   const nlohmann::json* list = &doc;
   if (doc.is_object()) {
@@ -131,11 +143,14 @@ std::vector<int> parseVertexSet(const std::string& jsonText, int vertexCount, co
       fail(jsonText, name, findElement(jsonText, listStart, k),
            "expected a list of integer vertex indices (element " + std::to_string(k) + " is " +
                v.dump().substr(0, 40) + ")");
-    const auto idx = v.get<long long>();
-    if (idx < 0 || idx >= vertexCount)
+    // An unsigned integer above INT64_MAX would wrap to a negative long long: compare it unsigned.
+    const bool inRange = v.is_number_unsigned()
+                             ? v.get<unsigned long long>() < static_cast<unsigned long long>(std::max(vertexCount, 0))
+                             : v.get<long long>() >= 0 && v.get<long long>() < vertexCount;
+    if (!inRange)
       fail(jsonText, name, findElement(jsonText, listStart, k),
-           "index " + std::to_string(idx) + " out of range [0, " + std::to_string(vertexCount) + ")");
-    out.push_back(static_cast<int>(idx));
+           "index " + v.dump() + " out of range [0, " + std::to_string(vertexCount) + ")");
+    out.push_back(static_cast<int>(v.get<long long>()));
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

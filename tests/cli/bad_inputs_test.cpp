@@ -2,6 +2,7 @@
 // fault in its message, and leaves no output file behind.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -54,6 +55,30 @@ TEST(BadInputs, EveryCaseFailsCleanlyWithItsMessage) {
   }
   EXPECT_GE(ran, 30);
   fs::remove_all(scratch);
+}
+
+TEST(BadInputs, ReliabilityDocListsEveryCase) {
+  // docs/RELIABILITY.md's catalogue table has one row per case: "| `name` | … | `expect` | exit |".
+  const fs::path root = test::sourceDir();
+  std::ifstream in(root / "tests" / "bad_inputs" / "cases.json");
+  const auto catalogue = nlohmann::json::parse(in);
+  std::ifstream docIn(root / "docs" / "RELIABILITY.md");
+  ASSERT_TRUE(docIn.good());
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(docIn, line);)
+    if (line.rfind("| `", 0) == 0) rows.push_back(line);
+  for (const auto& c : catalogue["cases"]) {
+    const std::string name = c["name"];
+    std::string expect = replaceAll(c["expect"].get<std::string>(), "|", "\\|");
+    const std::string tail = " | " + std::to_string(c["exit"].get<int>()) + " |";
+    const auto row = std::find_if(rows.begin(), rows.end(), [&](const std::string& r) {
+      return r.rfind("| `" + name + "` |", 0) == 0;
+    });
+    ASSERT_NE(row, rows.end()) << name << " has no row in docs/RELIABILITY.md";
+    EXPECT_NE(row->find("`" + expect + "`"), std::string::npos) << name << ": " << *row;
+    EXPECT_TRUE(row->size() >= tail.size() && row->compare(row->size() - tail.size(), tail.size(), tail) == 0)
+        << name << ": " << *row;
+  }
 }
 
 TEST(BadInputs, AnOverlongLineIsRefusedWithItsLineNumber) {

@@ -43,6 +43,8 @@ TriMesh readObjLike(const std::string& path, const TriMesh& rest);
 TriMesh readObjFromString(const std::string& text, const std::string& name = "<string>");
 TriMesh readObjFromStringLenient(const std::string& text, MeshReport& report,
                                  const std::string& name = "<string>");
+TriMesh readObjLikeFromString(const std::string& text, const TriMesh& rest,
+                              const std::string& name = "<string>");
 
 // Checks a triangle mesh for the simulation faults (NaN/Inf, degenerate triangles, non-manifold
 // edges, inconsistent orientation) and throws InputError naming the first one.
