@@ -24,6 +24,7 @@ SceneDesc withMouseDrag(SceneDesc scene) {
     mouse.name += "_";
   mouse.landmark = "nose_tip";
   mouse.radius = 1.0;
+  mouse.pinLandmarks = false;  // a grip on a mouth corner moves the corner
   scene.drags.push_back(mouse);
   scene.model.measureLoadParticipation = false;  // a diagnostic the viewer does not show: start faster
   return scene;

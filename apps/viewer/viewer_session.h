@@ -19,8 +19,8 @@ namespace myo::viewer {
 class ViewerSession {
  public:
   // Builds the scene's face (bases through `cache`, which may be null) plus one drag channel for
-  // the mouse ("mouse", gripping the nose tip until the user picks a vertex; its pins are the
-  // head's gravity pins, so its basis is the gravity channel's and comes from the cache).
+  // the mouse ("mouse", gripping the nose tip until the user picks a vertex; it pins the head's
+  // gravity pins but not the landmarks, so a grip on a mouth corner moves the corner).
   ViewerSession(SceneDesc scene, BasisCache* cache);
 
   const SceneDesc& scene() const { return scene_; }

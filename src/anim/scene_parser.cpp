@@ -146,6 +146,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
       d.radius = r.number("radius", d.radius);
       r.requireAbove("radius", d.radius, 0.0);
       d.pins = r.string("pins", "");
+      d.pinLandmarks = r.boolean("pin_landmarks", d.pinLandmarks);
       r.finish();
       for (const DragDesc& other : scene.drags)
         if (other.name == d.name) r.fail("name", "drag '" + d.name + "' is defined twice");
@@ -268,7 +269,7 @@ std::string sceneToJson(const SceneDesc& scene) {
   j["gravity"] = {{"enabled", s.gravity}, {"acceleration", s.gravityAcceleration}};
   json drags = json::array();
   for (const DragDesc& d : scene.drags) {
-    json dj = {{"name", d.name}, {"radius", d.radius}, {"pins", d.pins}};
+    json dj = {{"name", d.name}, {"radius", d.radius}, {"pins", d.pins}, {"pin_landmarks", d.pinLandmarks}};
     if (d.landmark.empty()) dj["vertex"] = d.vertex;
     else dj["landmark"] = d.landmark;
     drags.push_back(dj);
@@ -337,6 +338,7 @@ std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCac
                        scene.path);
     def.radius = d.radius;
     if (!d.pins.empty()) def.pins = readVertexSet(resolve(d.pins), head.mesh.vertexCount());
+    else if (!d.pinLandmarks && !head.gravityPins.empty()) def.pins = head.gravityPins;  // rim only
     settings.drags.push_back(def);
   }
   return std::make_shared<const FaceModel>(std::move(head), muscles, settings, cache);

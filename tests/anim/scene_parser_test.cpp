@@ -33,7 +33,7 @@ TEST(SceneParser, ReadsEveryPart) {
     "springs": {"model": "displacement", "stiffness": 250},
     "roi_alpha": 5,
     "gravity": {"enabled": false},
-    "drags": [{"name": "cheek", "landmark": "mouth_corner_right", "radius": 0.8}],
+    "drags": [{"name": "cheek", "landmark": "mouth_corner_right", "radius": 0.8, "pin_landmarks": false}],
     "numerics": {"dt": 0.002, "skin_modes": 12, "stepper": "semi-implicit", "precision": "double"},
     "duration": 3, "fps": 24,
     "timeline": {
@@ -50,6 +50,7 @@ TEST(SceneParser, ReadsEveryPart) {
   EXPECT_FALSE(s.model.gravity);
   ASSERT_EQ(s.drags.size(), 1u);
   EXPECT_EQ(s.drags[0].landmark, "mouth_corner_right");
+  EXPECT_FALSE(s.drags[0].pinLandmarks);
   EXPECT_DOUBLE_EQ(s.model.dt, 0.002);
   EXPECT_EQ(s.model.stepper, ModalStepper::SemiImplicit);
   EXPECT_EQ(s.model.precision, ModalPrecision::Double);
@@ -68,6 +69,8 @@ TEST(SceneParser, ErrorsNameFileLineColumnAndKeyPath) {
             "scene.json:1:23: key 'springs.model': must be \"thesis\" or \"displacement\" (got \"hooke\")");
   EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\"}]}"),
             "scene.json:1:12: key 'drags[0].landmark': give exactly one of 'landmark' and 'vertex'");
+  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": 1}]}"),
+            "scene.json:1:56: key 'drags[0].pin_landmarks': must be true or false");
   EXPECT_EQ(errorOf("{\"timeline\": {\"drags\": {\"nope\": []}}}"),
             "scene.json:1:25: key 'timeline.drags.nope': no drag of that name in 'drags'");
   const std::string syntax = errorOf("{\n  \"duration\": 1,,\n}");
@@ -79,7 +82,7 @@ TEST(SceneParser, RoundTripsThroughJson) {
   const SceneDesc a = parseScene(R"({"name": "rt", "numerics": {"skin_modes": 7},
     "muscles": {"extra": [{"name": "frontalis_right", "origin": {"landmark": "right_brow_inner", "offset": [0, 0.5, 0]},
                            "insertion": {"landmark": "right_brow_inner"}}]},
-    "drags": [{"name": "d", "vertex": 12}],
+    "drags": [{"name": "d", "vertex": 12, "pin_landmarks": false}],
     "timeline": {"activations": {"frontalis_right": [{"t": 0, "value": 0}, {"t": 1, "value": -0.5, "interp": "step"}]},
                  "gravity": [{"t": 0, "value": 1}, {"t": 2, "value": 0}]}})",
                                  "rt.json");
@@ -91,6 +94,8 @@ TEST(SceneParser, RoundTripsThroughJson) {
   EXPECT_TRUE(b.extraMuscles[0].origin.offset.isApprox(Vec3(0, 0.5, 0)));
   EXPECT_DOUBLE_EQ(b.activations.at("frontalis_right").at(2.0), -0.5);
   EXPECT_DOUBLE_EQ(b.gravity.at(1.0), 0.5);
+  ASSERT_EQ(b.drags.size(), 1u);
+  EXPECT_FALSE(b.drags[0].pinLandmarks);
 }
 
 TEST(SceneParser, BuildRejectsUnknownMusclesByName) {

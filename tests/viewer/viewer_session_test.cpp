@@ -128,6 +128,13 @@ TEST(ViewerSession, TheMouseDragPullsTheGrabbedSpotAndReleaseLetsGo) {
   s.advance(2.0);
   EXPECT_LT(s.simulator().skinDisplacement().norm(), 0.05 * moved.norm());
   EXPECT_THROW(s.grab(-1), InputError);
+  // The mouse's channel pins the rim only, not the landmarks: a grip on the mouth corner moves it.
+  const int corner = s.model().head().landmarks.vertex("mouth_corner_left");
+  s.grab(corner);
+  s.pull(2000.0 * out);
+  s.advance(0.25);
+  EXPECT_GT(s.simulator().skinDisplacement().row(corner).dot(out), 0.05);
+  s.release();
   s.setGravity(true);
 }
 

@@ -31,8 +31,10 @@ fs::path scratch(const std::string& name) {
 // Runs `prefix myoshell-view ARGS` in `dir`, output captured.
 ViewerRun runViewer(const std::string& prefix, const std::string& args, const fs::path& dir) {
   const fs::path log = dir / "viewer.log";
-  const std::string cmd = "cd '" + dir.string() + "' && " + prefix + " '" + std::string(MYO_VIEWER_PATH) + "' " + args +
-                          " > '" + log.string() + "' 2>&1";
+  // One basis cache for every run of this test program: the eigen-solves happen once.
+  const fs::path cache = fs::path(testing::TempDir()) / "myo_view_cache";
+  const std::string cmd = "cd '" + dir.string() + "' && " + prefix + " '" + std::string(MYO_VIEWER_PATH) + "' --cache '" +
+                          cache.string() + "' " + args + " > '" + log.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
   ViewerRun run;
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

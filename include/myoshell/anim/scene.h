@@ -27,6 +27,9 @@ struct DragDesc {
   int vertex = -1;                  // a skin vertex id
   double radius = 1.0;              // cm
   std::string pins;                 // vertex-set file; empty = the head's gravity pins
+  // With the default pins: also pin the landmarks, as the gravity channel does (Fig. 21). Off, a
+  // grip on a landmark (a mouth corner) moves it too; the channel then needs its own basis.
+  bool pinLandmarks = true;
 };
 
 struct SceneDesc {
