@@ -51,7 +51,7 @@ YAML::Node loadDocument(const std::string& text, const std::string& file) {
   const size_t first = text.find_first_not_of(" \t\r\n");
   if (first != std::string::npos && (text[first] == '{' || text[first] == '[')) {
     try {
-      (void)nlohmann::json::parse(text);
+      [[maybe_unused]] const nlohmann::json checked = nlohmann::json::parse(text);  // only its errors matter
     } catch (const nlohmann::json::parse_error& e) {
       const size_t at = std::min(e.byte > 0 ? e.byte - 1 : 0, text.size());
       const size_t lineStart = text.rfind('\n', at == 0 ? 0 : at - 1);
