@@ -160,12 +160,7 @@ int runRender(const RenderCommandOptions& opt) {
     maxDisplacement = std::max(maxDisplacement, sim.skinDisplacement().rowwise().norm().maxCoeff());
     if (next >= frames.size() || frames[next] != f) continue;
     ++next;
-    FaceFrameState state;
-    state.skin = sim.skinPositions();
-    if (overlays.displacement) state.displacement = sim.skinDisplacement();
-    if (overlays.muscles)
-      for (int m = 0; m < static_cast<int>(model->muscles().size()); ++m) state.muscles.push_back(sim.musclePositions(m));
-    states.push_back(std::move(state));
+    states.push_back(faceFrameState(sim, overlays));
     times.push_back(sim.time());
   }
   overlays.displacementScale = opt.colorScale > 0 ? opt.colorScale : maxDisplacement > 0 ? maxDisplacement : 1.0;

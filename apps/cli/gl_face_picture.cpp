@@ -10,6 +10,15 @@
 
 namespace myo::cli {
 
+FaceFrameState faceFrameState(const Simulator& sim, const FaceOverlays& overlays) {
+  FaceFrameState state;
+  state.skin = sim.skinPositions();
+  if (overlays.displacement) state.displacement = sim.skinDisplacement();
+  if (overlays.muscles)
+    for (int m = 0; m < static_cast<int>(sim.model().muscles().size()); ++m) state.muscles.push_back(sim.musclePositions(m));
+  return state;
+}
+
 VecX roiWeights(const FaceModel& model) {
   const MatX3& skin = model.head().mesh.V;
   VecX w = VecX::Zero(skin.rows());

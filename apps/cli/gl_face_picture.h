@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "myoshell/face/face_model.h"
+#include "myoshell/face/simulator.h"
 #include "myoshell/render/camera.h"
 #include "myoshell/render/colormap.h"
 #include "myoshell/render/image.h"
@@ -48,6 +49,9 @@ struct FaceOverlays {
   double displacementScale = 1.0;
   bool pins = false;          // the model's gravity pins as markers
 };
+
+// What the overlays need of `sim`'s current state (the skin always; u and the muscles on demand).
+FaceFrameState faceFrameState(const Simulator& sim, const FaceOverlays& overlays);
 
 // A weight per skin vertex (n) for the ROI heat map: the ROI of a muscle (thesis eq. 19) is every
 // skin vertex closer to one of its nodes than α·depth (depth: that node's spring rest length);

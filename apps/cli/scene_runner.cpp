@@ -16,6 +16,7 @@
 #include "myoshell/render/png.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_playback.h"
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
@@ -36,16 +37,6 @@ ViewPreset viewFromName(const std::string& name) {
   throw InputError("unknown view '" + name + "' (use front, three-quarter or profile)");
 }
 
-// Writes text to path through a temporary file renamed into place (never a half-written file).
-void writeAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    if (!f) throw InputError("cannot write file", tmp.string());
-  }
-  fs::rename(tmp, path);
-}
 
 
 struct ExportFormats {
@@ -136,12 +127,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     const bool png = opt.render && f % opt.renderEvery == 0;
     const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
     if (video || png || onSheet) {
-      FaceFrameState state;
-      state.skin = positions;
-      if (overlays.displacement) state.displacement = sim.skinDisplacement();
-      if (overlays.muscles)
-        for (int m = 0; m < static_cast<int>(model->muscles().size()); ++m) state.muscles.push_back(sim.musclePositions(m));
-      const Image image = painter->paint(faceScene(*model, state, view, opt.size, opt.size, overlays));
+      const Image image = painter->paint(faceScene(*model, faceFrameState(sim, overlays), view, opt.size, opt.size, overlays));
       if (video) video->addFrame(image);
       if (png) writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, f)).string(), image);
       if (onSheet) {
@@ -202,7 +188,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
                    {"roi_vertices", static_cast<int>(u.roi.size())}});
   stats["muscles"] = mus;
   stats["per_frame"] = frameStats;
-  writeAtomically(out / "stats.json", stats.dump(2) + "\n");
+  writeFileAtomically((out / "stats.json").string(), stats.dump(2) + "\n");
   if (!sheet.empty()) {
     ContactSheetStyle style;
     style.columns = std::min<int>(3, static_cast<int>(sheet.size()));

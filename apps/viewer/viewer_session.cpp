@@ -8,6 +8,7 @@
 
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_playback.h"
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/io/animation_export.h"
@@ -180,23 +181,7 @@ int ViewerSession::setKeysAtPlayhead() {
 }
 
 void ViewerSession::saveScene(const std::string& path) const {
-  namespace fs = std::filesystem;
-  const fs::path tmp = fs::path(path).string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << sceneToJson(scene_);
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError("cannot write the scene file", path);
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError("cannot write the scene file", path);
-  }
+  writeFileAtomically(path, sceneToJson(scene_), "cannot write the scene file");
 }
 
 int ViewerSession::exportGlb(const std::string& path) const {
