@@ -5,8 +5,8 @@
 //
 // Each row: a scene file, optionally only some of its muscles, and a window [t0, t1) of its
 // timeline. The model is built once (bases from the cache), then the window is played in a loop
-// (Simulator::reset at its start, the scene's timeline applied before every step, exactly as
-// `myoshell run` does) — first once as warm-up, then in R timed runs of S/R seconds each; a row
+// (ScenePlayer::restart at its start, then ScenePlayer::step: the scene's timeline applied before
+// every step, exactly as `myoshell run` does) — first once as warm-up, then in R timed runs of S/R seconds each; a row
 // reports the median of the runs' steps per second. Table 2 rows ("muscle only") count only the
 // muscle phase of the step (StepTimings::muscles, the thesis's muscle deformation without skin);
 // every other row counts whole steps (muscles + springs + skin channels).
@@ -23,7 +23,7 @@
 
 #include "command.h"
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/head.h"
@@ -156,32 +156,26 @@ double median(std::vector<double> v) {
 }
 
 // Plays the window once; returns (steps, seconds counted).
-std::pair<long long, double> playWindow(const SceneDesc& scene, const FaceModel& model, Simulator& sim,
-                                        const BenchRow& row, double budget) {
-  const double dt = model.settings().dt;
+std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row, double budget) {
+  const double dt = player.model().settings().dt;
   long long steps = 0;
   double counted = 0.0;
   Stopwatch total;
   // Muscle-only rows count the muscle phase but stop on wall time: the phase is ~1 % of a step.
   while (row.muscleOnly ? total.seconds() < budget : counted < budget) {
-    sim.reset();
-    double t = row.t0;
+    player.restart(row.t0);
     if (row.muscleOnly) {
       // At least one step, however short the budget (a slow build, a sanitizer).
-      while (t < row.t1 - 0.5 * dt && (steps == 0 || total.seconds() < budget)) {
-        applySceneTimeline(scene, sim, t);
-        sim.step();
-        counted += sim.lastTimings().muscles;
-        t += dt;
+      while (player.time() < row.t1 - 0.5 * dt && (steps == 0 || total.seconds() < budget)) {
+        player.step();
+        counted += player.simulator().lastTimings().muscles;
         ++steps;
       }
     } else {
       Stopwatch sw;
       long long n = 0;
-      while (t < row.t1 - 0.5 * dt) {
-        applySceneTimeline(scene, sim, t);
-        sim.step();
-        t += dt;
+      while (player.time() < row.t1 - 0.5 * dt) {
+        player.step();
         ++n;
         if ((n & 15) == 0 && counted + sw.seconds() >= budget) break;
       }
@@ -197,13 +191,13 @@ nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std:
   Stopwatch build;
   const auto model = buildSceneFace(scene, &cache);
   const double buildSeconds = build.seconds();
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
   // Warm-up: the window once (caches, branch predictors, page faults).
-  playWindow(scene, *model, sim, row, 0.05);
+  playWindow(player, row, 0.05);
   std::vector<double> rates, stepUs;
   const double budget = opt.seconds / opt.runs;
   for (int r = 0; r < opt.runs; ++r) {
-    const auto [steps, secs] = playWindow(scene, *model, sim, row, budget);
+    const auto [steps, secs] = playWindow(player, row, budget);
     rates.push_back(steps / std::max(secs, 1e-12));
     stepUs.push_back(1e6 * secs / std::max<long long>(steps, 1));
   }

@@ -14,19 +14,15 @@
 #include <sstream>
 
 #include "command.h"
-#include "gl_face_picture.h"
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
-#include "myoshell/render/camera.h"
-#include "myoshell/render/colormap.h"
 #include "myoshell/render/contact_sheet.h"
+#include "myoshell/render/face_picture.h"
 #include "myoshell/render/image.h"
-#include "myoshell/render/markers.h"
 #include "myoshell/render/png.h"
-#include "myoshell/render/render_mesh.h"
+#include "scene_runner.h"
 
 namespace myo::cli {
 namespace {
@@ -41,13 +37,6 @@ struct FigureOptions {
   int size = 360;    // tile width and height, pixels
   bool software = false;
 };
-
-const Rgb kBackground(0.16, 0.17, 0.20);
-const Rgb kSkin(0.93, 0.78, 0.68);
-const Rgb kMuscle(0.80, 0.18, 0.16);
-const Rgb kFree(0.85, 0.15, 0.12);    // thesis: red = free (deformed) vertices
-const Rgb kPinned(0.20, 0.35, 0.85);  // thesis: blue = statically constrained
-const Rgb kFeature(0.98, 0.85, 0.10); // thesis: yellow = fixed feature points
 
 struct Loaded {
   SceneDesc scene;
@@ -67,77 +56,15 @@ class Figures {
     return l;
   }
 
-
-
-  Camera camera(const FaceModel& model, ViewPreset preset, double yaw = 0.0) const {
-    const FaceFrame f = model.head().frame();
-    const ViewFrame vf{f.origin, f.axes, f.scale};
-    Camera c = yaw != 0.0 ? orbitCamera(vf, yaw, 0.0) : presetCamera(vf, preset);
-    if (model.head().name == "default") {
-      fitToBounds(c, model.head().mesh.V, W(), W(), 0.04);
-    } else {
-      // A whole head (ICT): frame the face — its landmarks, with room above the brows.
-      const auto named = model.head().landmarks.resolved();
-      MatX3 P(static_cast<int>(named.size()), 3);
-      int i = 0;
-      for (const auto& [name, v] : named) P.row(i++) = model.head().mesh.V.row(v);
-      fitToBounds(c, P, W(), W(), 0.22);
-    }
-    return c;
+  // The default head framed whole; a whole head (ICT) framed on its face.
+  Camera camera(const FaceModel& model, ViewPreset preset) const {
+    return faceCamera(model, preset, opt_.size, opt_.size,
+                      model.head().name == "default" ? FaceFraming::head : FaceFraming::face);
   }
 
-  int W() const { return opt_.size * kSuper; }
-
-  // One tile: the skin at positions V (colours per vertex, or skin tone), optionally the muscles
-  // (drawn first, the skin over them at `skinOpacity`), markers, and a colour bar.
-  Image tile(const FaceModel& model, const Camera& cam, const MatX3& V, const MatX3& colors,
-             const std::vector<MatX3>* muscles = nullptr, double skinOpacity = 1.0,
-             const std::vector<Marker>& markers = {}, const ColorBar* bar = nullptr) const {
-    FaceScene scene;
-    scene.camera = cam;
-    scene.width = scene.height = opt_.size;
-    scene.background = kBackground;
-    if (muscles) {
-      RenderStyle ms;
-      ms.color = kMuscle;
-      for (size_t m = 0; m < muscles->size(); ++m) scene.meshes.push_back({(*muscles)[m], &model.muscles()[m].muscle.mesh.F, ms});
-    }
-    RenderStyle style;
-    style.color = kSkin;
-    style.backColor = Rgb(0.55, 0.60, 0.75);
-    if (colors.rows() == V.rows()) style.vertexColors = colors;
-    style.opacity = skinOpacity;
-    scene.meshes.push_back({V, &model.head().mesh.F, style});
-    scene.markers = markers;
-    for (Marker& m : scene.markers) m.radius /= kSuper;  // radii below are in supersampled pixels
-    scene.markerStyle.depthTolerance = 0.02 * cam.orthoHeight;
-    scene.markerStyle.outlineWidth = 0.8;
-    if (bar) scene.colorBar = *bar;
-    return painter_->paint(scene);
-  }
-
-  // Displacement-magnitude colours over [0, maxU] cm, and the matching colour bar.
-  static MatX3 displacementColors(const MatX3& U, double maxU) {
-    return scalarColors(U.rowwise().norm(), 0.0, std::max(maxU, 1e-9), ColorMap::viridis);
-  }
-  ColorBar bar(double maxU) const {
-    ColorBar b;
-    b.x = 10;
-    b.y = opt_.size - 34;
-    b.width = opt_.size / 2;
-    b.height = 8;
-    b.max = maxU;
-    b.label = "displacement, cm";
-    b.textColor = Rgb(0.95, 0.95, 0.95);
-    return b;
-  }
-
-  // Pinned / free colouring of a vertex set.
-  static MatX3 roiColors(int n, const std::vector<int>& freeVertices) {
-    MatX3 C(n, 3);
-    for (int i = 0; i < n; ++i) C.row(i) = kPinned.transpose();
-    for (int v : freeVertices) C.row(v) = kFree.transpose();
-    return C;
+  // One tile: the face picture of `state` with `overlays`.
+  Image tile(const FaceModel& model, const Camera& cam, const FaceFrameState& state, const FaceOverlays& overlays) const {
+    return painter_->paint(faceScene(model, state, cam, opt_.size, opt_.size, overlays));
   }
 
   void save(const std::string& file, const std::vector<Image>& tiles, const std::vector<std::string>& captions,
@@ -156,8 +83,6 @@ class Figures {
 
   const std::vector<std::string>& written() const { return written_; }
 
-  static constexpr int kSuper = 2;
-
  private:
   FigureOptions opt_;
   FileBasisCache cache_;
@@ -165,10 +90,36 @@ class Figures {
   std::vector<std::string> written_;
 };
 
-std::vector<MatX3> musclesOf(const Simulator& sim) {
-  std::vector<MatX3> out;
-  for (size_t m = 0; m < sim.model().muscles().size(); ++m) out.push_back(sim.musclePositions(static_cast<int>(m)));
-  return out;
+// The player's face at time t (s): skin, displacement and muscles.
+FaceFrameState frameAt(ScenePlayer& player, double t) {
+  player.playTo(t);
+  const FrameSnapshot& s = player.snapshot();
+  return {s.positions, s.displacement, s.muscles};
+}
+
+double maxNorm(const MatX3& U) { return U.rows() ? U.rowwise().norm().maxCoeff() : 0.0; }
+
+// Overlays: the muscles through a faint skin; displacement on [0, maxU] cm; free (red) and pinned
+// (blue) vertices with feature points (yellow).
+FaceOverlays musclesThrough() {
+  FaceOverlays o;
+  o.muscles = true;
+  o.skinOpacityOverMuscles = 0.25;
+  return o;
+}
+FaceOverlays displacementOn(double maxU, bool bar = true) {
+  FaceOverlays o;
+  o.displacement = true;
+  o.displacementScale = std::max(maxU, 1e-9);
+  o.colorBar = bar;
+  return o;
+}
+FaceOverlays constraints(std::vector<int> freeVertices, std::vector<int> features = {}, double radius = 4.0) {
+  FaceOverlays o;
+  o.freeVertices = std::move(freeVertices);
+  o.features = std::move(features);
+  o.featureRadius = radius;
+  return o;
 }
 
 std::string fmtTime(double t) { return fmt::format("t = {:.2f} s", t); }
@@ -180,13 +131,13 @@ void fig17(Figures& F) {
   for (const char* name : {"fig17_contract", "fig17_relax"}) {
     const Loaded l = F.load(name);
     const Camera cam = F.camera(*l.model, ViewPreset::front);
-    Simulator sim(l.model);
+    ScenePlayer player(l.scene, l.model);
+    const bool contract = name == std::string("fig17_contract");
     for (double t : {0.0, 0.15, 0.6}) {
-      playSceneTo(l.scene, sim, t);
-      const auto mus = musclesOf(sim);
-      tiles.push_back(F.tile(*l.model, cam, l.model->head().mesh.V, {}, &mus, 0.25));
-      caps.push_back(fmt::format("({}) {} {}", name == std::string("fig17_contract") ? "a" : "b",
-                                 name == std::string("fig17_contract") ? "contraction" : "relaxation", fmtTime(t)));
+      FaceFrameState state = frameAt(player, t);
+      state.skin = l.model->head().mesh.V;  // the muscles alone move: the skin stays at rest
+      tiles.push_back(F.tile(*l.model, cam, state, musclesThrough()));
+      caps.push_back(fmt::format("({}) {} {}", contract ? "a" : "b", contract ? "contraction" : "relaxation", fmtTime(t)));
     }
   }
   F.save("fig17_muscles.png", tiles, caps, 3,
@@ -207,23 +158,17 @@ void fig18(Figures& F) {
     const FaceModel& model = *l.model;
     const Camera cam = F.camera(model, ViewPreset::front);
     const int mr = model.muscleIndex(rows[r].second + "_right");
-    Simulator sim(l.model);
-    const auto rest = musclesOf(sim);
-    tiles.push_back(F.tile(model, cam, model.head().mesh.V, {}, &rest, 0.25));
+    const FaceFrameState rest = restFrameState(model);
+    tiles.push_back(F.tile(model, cam, rest, musclesThrough()));
     caps.push_back(fmt::format("({}) {}", letter[r], rows[r].second));
-    tiles.push_back(F.tile(model, cam, model.head().mesh.V,
-                           Figures::roiColors(model.skin().vertexCount(), model.muscles()[mr].roi)));
+    tiles.push_back(F.tile(model, cam, rest, constraints(model.muscles()[mr].roi)));
     caps.push_back(fmt::format("ROI, {} free vertices", model.muscles()[mr].roi.size()));
-    playSceneTo(l.scene, sim, 0.95);
-    const MatX3 u1 = sim.skinDisplacement();
-    const MatX3 p1 = sim.skinPositions();
-    playSceneTo(l.scene, sim, 2.0);
-    const double maxU = std::max(u1.rowwise().norm().maxCoeff(), sim.skinDisplacement().rowwise().norm().maxCoeff());
-    const ColorBar bar = F.bar(maxU);
-    tiles.push_back(F.tile(model, cam, p1, Figures::displacementColors(u1, maxU), nullptr, 1.0, {}, &bar));
+    ScenePlayer player(l.scene, l.model);
+    const FaceFrameState right = frameAt(player, 0.95), both = frameAt(player, 2.0);
+    const double maxU = std::max(maxNorm(right.displacement), maxNorm(both.displacement));
+    tiles.push_back(F.tile(model, cam, right, displacementOn(maxU)));
     caps.push_back("right side only");
-    tiles.push_back(F.tile(model, cam, sim.skinPositions(),
-                           Figures::displacementColors(sim.skinDisplacement(), maxU), nullptr, 1.0, {}, &bar));
+    tiles.push_back(F.tile(model, cam, both, displacementOn(maxU)));
     caps.push_back("both sides");
   }
   F.save("fig18_roi_right_both.png", tiles, caps, 4,
@@ -235,29 +180,21 @@ void fig19_20(Figures& F) {
   const Loaded l = F.load("fig20_corrugator");
   const FaceModel& model = *l.model;
   const Camera cam = F.camera(model, ViewPreset::front);
-  Simulator sim(l.model);
   const int mr = model.muscleIndex("corrugator_supercilii_right");
   const int ml = model.muscleIndex("corrugator_supercilii_left");
   std::vector<int> roi = model.muscles()[mr].roi;
   roi.insert(roi.end(), model.muscles()[ml].roi.begin(), model.muscles()[ml].roi.end());
-  const auto rest = musclesOf(sim);
+  const FaceFrameState rest = restFrameState(model);
   F.save("fig19_corrugator_roi.png",
-         {F.tile(model, cam, model.head().mesh.V, {}, &rest, 0.25),
-          F.tile(model, cam, model.head().mesh.V, Figures::roiColors(model.skin().vertexCount(), roi))},
+         {F.tile(model, cam, rest, musclesThrough()), F.tile(model, cam, rest, constraints(roi))},
          {"(a) corrugator supercilii", "(b) ROI of (a): red free, blue pinned"}, 2,
          "Fig. 19: insertion and ROI of corrugator supercilii");
-  const MatX3 neutral = model.head().mesh.V;
-  playSceneTo(l.scene, sim, 0.95);
-  const MatX3 u1 = sim.skinDisplacement(), p1 = sim.skinPositions();
-  playSceneTo(l.scene, sim, 2.0);
-  const double maxU = std::max(u1.rowwise().norm().maxCoeff(), sim.skinDisplacement().rowwise().norm().maxCoeff());
-  const ColorBar bar = F.bar(maxU);
-  const MatX3 zero = MatX3::Zero(neutral.rows(), 3);
+  ScenePlayer player(l.scene, l.model);
+  const FaceFrameState contracted = frameAt(player, 0.95), relaxed = frameAt(player, 2.0);
+  const double maxU = std::max(maxNorm(contracted.displacement), maxNorm(relaxed.displacement));
   F.save("fig20_corrugator.png",
-         {F.tile(model, cam, p1, Figures::displacementColors(u1, maxU), nullptr, 1.0, {}, &bar),
-          F.tile(model, cam, neutral, Figures::displacementColors(zero, maxU)),
-          F.tile(model, cam, sim.skinPositions(), Figures::displacementColors(sim.skinDisplacement(), maxU), nullptr,
-                 1.0, {}, &bar)},
+         {F.tile(model, cam, contracted, displacementOn(maxU)), F.tile(model, cam, rest, displacementOn(maxU, false)),
+          F.tile(model, cam, relaxed, displacementOn(maxU))},
          {"contraction (a = 1)", "neutral", "relaxation (a = -1)"}, 3,
          "Fig. 20: corrugator supercilii, contraction (left) and relaxation (right) from the neutral face");
 }
@@ -275,17 +212,15 @@ void fig21_22(Figures& F) {
     for (int v : model.head().gravityPins) pinned[static_cast<size_t>(v)] = true;
     for (int v = 0; v < model.skin().vertexCount(); ++v)
       if (!pinned[static_cast<size_t>(v)]) freeV.push_back(v);
-    std::vector<Marker> marks;
+    std::vector<int> features;
     for (const auto& [name, v] : model.head().landmarks.resolved())
-      if (pinned[static_cast<size_t>(v)]) marks.push_back({model.head().mesh.V.row(v).transpose(), kFeature, 4.0 * Figures::kSuper});
-    F.save("fig21_gravity_pins.png",
-           {F.tile(model, cam, model.head().mesh.V, Figures::roiColors(model.skin().vertexCount(), freeV), nullptr, 1.0,
-                   marks)},
-           {fmt::format("{} pinned (blue), {} free (red), fixed feature points yellow",
-                        model.head().gravityPins.size(), freeV.size())},
-           1, "Fig. 21: static constraints of the skin for the gravity load");
+      if (pinned[static_cast<size_t>(v)]) features.push_back(v);
+    const std::string caption = fmt::format("{} pinned (blue), {} free (red), fixed feature points yellow",
+                                            model.head().gravityPins.size(), freeV.size());
+    F.save("fig21_gravity_pins.png", {F.tile(model, cam, restFrameState(model), constraints(freeV, features))},
+           {caption}, 1, "Fig. 21: static constraints of the skin for the gravity load");
   }
-  std::vector<MatX3> pos, disp;
+  std::vector<FaceFrameState> states;
   std::vector<std::shared_ptr<const FaceModel>> models;
   const std::vector<double> scales = {1.0, 0.5, 0.25};
   for (double s : scales) {
@@ -294,19 +229,16 @@ void fig21_22(Figures& F) {
       d.model.skin.kL *= s;
       d.model.skin.kB *= s;
     });
-    Simulator sim(l.model);
-    playSceneTo(l.scene, sim, l.scene.duration);
-    pos.push_back(sim.skinPositions());
-    disp.push_back(sim.skinDisplacement());
+    ScenePlayer player(l.scene, l.model);
+    states.push_back(frameAt(player, l.scene.duration));
     models.push_back(l.model);
   }
   double maxU = 0.0;
-  for (const MatX3& u : disp) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
-  const ColorBar bar = F.bar(maxU);
+  for (const FaceFrameState& st : states) maxU = std::max(maxU, maxNorm(st.displacement));
   for (size_t i = 0; i < scales.size(); ++i) {
     const Camera cam = F.camera(*models[i], ViewPreset::threeQuarter);
-    tiles.push_back(F.tile(*models[i], cam, pos[i], Figures::displacementColors(disp[i], maxU), nullptr, 1.0, {}, &bar));
-    caps.push_back(fmt::format("k_A, k_L, k_B x {:.2f}: max sag {:.2f} cm", scales[i], disp[i].rowwise().norm().maxCoeff()));
+    tiles.push_back(F.tile(*models[i], cam, states[i], displacementOn(maxU)));
+    caps.push_back(fmt::format("k_A, k_L, k_B x {:.2f}: max sag {:.2f} cm", scales[i], maxNorm(states[i].displacement)));
   }
   F.save("fig22_gravity_sweep.png", tiles, caps, 3,
          "Fig. 22: gravity load for skin with decreasing element stiffnesses");
@@ -317,27 +249,22 @@ void fig23(Figures& F) {
   const Loaded l = F.load("fig23_combined");
   const FaceModel& model = *l.model;
   const Camera cam = F.camera(model, ViewPreset::front);
-  Simulator sim(l.model);
+  ScenePlayer player(l.scene, l.model);
   const std::vector<double> times = {0.0, 0.1, 0.2, 0.3, 1.0};
-  std::vector<MatX3> P, U;
-  std::vector<std::vector<MatX3>> M;
-  for (double t : times) {
-    playSceneTo(l.scene, sim, t);
-    P.push_back(sim.skinPositions());
-    U.push_back(sim.skinDisplacement());
-    M.push_back(musclesOf(sim));
-  }
+  std::vector<FaceFrameState> states;
   double maxU = 0.0;
-  for (const MatX3& u : U) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
-  const ColorBar bar = F.bar(maxU);
+  for (double t : times) {
+    states.push_back(frameAt(player, t));
+    maxU = std::max(maxU, maxNorm(states.back().displacement));
+  }
   std::vector<Image> tiles;
   std::vector<std::string> caps;
   for (size_t i = 0; i < times.size(); ++i) {
-    tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
+    tiles.push_back(F.tile(model, cam, states[i], displacementOn(maxU)));
     caps.push_back("(a) skin, " + fmtTime(times[i]));
   }
   for (size_t i = 0; i < times.size(); ++i) {
-    tiles.push_back(F.tile(model, cam, P[i], {}, &M[i], 0.25));
+    tiles.push_back(F.tile(model, cam, states[i], musclesThrough()));
     caps.push_back("(b) muscles, " + fmtTime(times[i]));
   }
   F.save("fig23_combined.png", tiles, caps, 5,
@@ -354,27 +281,21 @@ void fig24_25(Figures& F) {
     if (model.channels()[c].kind == ChannelKind::Drag) drag = static_cast<int>(c);
   if (drag < 0) throw InputError("fig25_drag has no drag channel");
   const SkinChannel& ch = model.channels()[static_cast<size_t>(drag)];
-  std::vector<Marker> marks;
-  for (int row : ch.dragRows)
-    marks.push_back({model.head().mesh.V.row(ch.basis->freeVertices[static_cast<size_t>(row)]).transpose(), kFeature,
-                     2.5 * Figures::kSuper});
-  Simulator sim(l.model);
-  playSceneTo(l.scene, sim, l.scene.duration);
-  const MatX3 ud = sim.channelDisplacement(drag);
-  const double maxD = ud.rowwise().norm().maxCoeff();
-  const ColorBar barD = F.bar(maxD);
+  std::vector<int> gripped;
+  for (int row : ch.dragRows) gripped.push_back(ch.basis->freeVertices[static_cast<size_t>(row)]);
+  ScenePlayer player(l.scene, l.model);
+  const FaceFrameState end = frameAt(player, l.scene.duration);
+  FaceFrameState dragOnly;
+  dragOnly.displacement = player.simulator().channelDisplacement(drag);
+  dragOnly.skin = model.head().mesh.V + dragOnly.displacement;
+  const FaceFrameState rest = restFrameState(model);
   F.save("fig24_drag.png",
-         {F.tile(model, cam, model.head().mesh.V, Figures::roiColors(model.skin().vertexCount(), ch.basis->freeVertices),
-                 nullptr, 1.0, marks),
-          F.tile(model, cam, model.head().mesh.V + ud, Figures::displacementColors(ud, maxD), nullptr, 1.0, {}, &barD)},
+         {F.tile(model, cam, rest, constraints(ch.basis->freeVertices, gripped, 2.5)),
+          F.tile(model, cam, dragOnly, displacementOn(maxNorm(dragOnly.displacement)))},
          {"(a) static points (blue), dragged region (yellow)", "(b) displacement field u_ext of the drag alone"}, 2,
          "Fig. 24: static constraints and displacement field of the drag force F_ext_s1 on the right cheek");
-  const double maxU = sim.skinDisplacement().rowwise().norm().maxCoeff();
-  const ColorBar bar = F.bar(maxU);
   F.save("fig25_drag_and_zygomaticus.png",
-         {F.tile(model, cam, model.head().mesh.V, {}),
-          F.tile(model, cam, sim.skinPositions(), Figures::displacementColors(sim.skinDisplacement(), maxU), nullptr,
-                 1.0, {}, &bar)},
+         {F.tile(model, cam, rest, FaceOverlays{}), F.tile(model, cam, end, displacementOn(maxNorm(end.displacement)))},
          {"neutral", "drag on the right cheek + zygomaticus major"}, 2,
          "Fig. 25: skin deformation by the drag F_ext_s1 and the zygomaticus major together");
 }
@@ -386,20 +307,17 @@ void timelineStrip(Figures& F, const std::string& scene, const std::vector<std::
   const Loaded l = F.load(scene);
   const FaceModel& model = *l.model;
   const Camera cam = F.camera(model, ViewPreset::front);
-  Simulator sim(l.model);
-  std::vector<MatX3> P, U;
-  for (const auto& k : keys) {
-    playSceneTo(l.scene, sim, k.first);
-    P.push_back(sim.skinPositions());
-    U.push_back(sim.skinDisplacement());
-  }
+  ScenePlayer player(l.scene, l.model);
+  std::vector<FaceFrameState> states;
   double maxU = 0.0;
-  for (const MatX3& u : U) maxU = std::max(maxU, u.rowwise().norm().maxCoeff());
-  const ColorBar bar = F.bar(maxU);
+  for (const auto& k : keys) {
+    states.push_back(frameAt(player, k.first));
+    maxU = std::max(maxU, maxNorm(states.back().displacement));
+  }
   std::vector<Image> tiles;
   std::vector<std::string> caps;
   for (size_t i = 0; i < keys.size(); ++i) {
-    tiles.push_back(F.tile(model, cam, P[i], Figures::displacementColors(U[i], maxU), nullptr, 1.0, {}, &bar));
+    tiles.push_back(F.tile(model, cam, states[i], displacementOn(maxU)));
     caps.push_back(withTimes ? fmt::format("{} ({})", keys[i].second, fmtTime(keys[i].first)) : keys[i].second);
   }
   F.save(file, tiles, caps, static_cast<int>(keys.size()), title);

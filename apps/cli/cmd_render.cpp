@@ -11,16 +11,17 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
-#include "gl_face_picture.h"
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/video.h"
+#include "myoshell/render/face_picture.h"
 #include "myoshell/render/png.h"
+#include "scene_runner.h"
 
 namespace myo::cli {
 namespace {
@@ -97,13 +98,6 @@ FaceOverlays parseOverlays(const std::vector<std::string>& names) {
   return o;
 }
 
-ViewPreset parseView(const std::string& name) {
-  if (name == "front") return ViewPreset::front;
-  if (name == "three-quarter") return ViewPreset::threeQuarter;
-  if (name == "profile") return ViewPreset::profile;
-  badValue("--view", name, "unknown view (use front, three-quarter or profile)");
-}
-
 // About `count` frames of `frames`, evenly spaced, first and last included.
 std::vector<int> sheetFrames(const std::vector<int>& frames, int count) {
   std::vector<int> out;
@@ -128,9 +122,14 @@ int runRender(const RenderCommandOptions& opt) {
   // Every option is checked before any work, so a typo fails at once and writes nothing.
   const auto [width, height] = parseSize(opt.size);
   FaceOverlays overlays = parseOverlays(opt.overlays);
-  const ViewPreset view = parseView(opt.view);
+  ViewPreset view;
+  try {
+    view = parseView(opt.view);
+  } catch (const InputError&) {
+    badValue("--view", opt.view, "unknown view (use front, three-quarter, profile or back)");
+  }
   const SceneDesc scene = readScene(opt.scene);
-  const int frameCount = static_cast<int>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
+  const int frameCount = ScenePlayer::frameCount(scene.duration, scene.fps);
   const FrameRange range = parseFrames(opt.frames, frameCount);
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
@@ -150,18 +149,19 @@ int runRender(const RenderCommandOptions& opt) {
   std::vector<int> frames;
   for (int f = range.first; f <= range.last; f += range.step) frames.push_back(f);
   const std::vector<int> onSheet = sheetFrames(frames, opt.sheet);
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
   std::vector<FaceFrameState> states;
   std::vector<double> times;
   double maxDisplacement = 0.0;
   size_t next = 0;
   for (int f = 0; f <= range.last; ++f) {
-    playSceneTo(scene, sim, f / scene.fps);
-    maxDisplacement = std::max(maxDisplacement, sim.skinDisplacement().rowwise().norm().maxCoeff());
+    player.advanceTo(f);
+    const FrameSnapshot& snap = player.snapshot(overlays.muscles);
+    maxDisplacement = std::max(maxDisplacement, snap.maxDisplacement);
     if (next >= frames.size() || frames[next] != f) continue;
     ++next;
-    states.push_back(faceFrameState(sim, overlays));
-    times.push_back(sim.time());
+    states.push_back(faceFrameState(snap, overlays));
+    times.push_back(snap.time);
   }
   overlays.displacementScale = opt.colorScale > 0 ? opt.colorScale : maxDisplacement > 0 ? maxDisplacement : 1.0;
   const VecX roi = overlays.roi ? roiWeights(*model) : VecX();

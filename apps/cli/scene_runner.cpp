@@ -10,12 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
-#include "gl_face_picture.h"
+#include "myoshell/gl/gl_face_painter.h"
 #include "myoshell/render/video.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/png.h"
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -28,16 +28,6 @@ namespace myo::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-
-ViewPreset viewFromName(const std::string& name) {
-  if (name == "front") return ViewPreset::front;
-  if (name == "three-quarter") return ViewPreset::threeQuarter;
-  if (name == "profile") return ViewPreset::profile;
-  throw InputError("unknown view '" + name + "' (use front, three-quarter or profile)");
-}
-
-
 
 struct ExportFormats {
   bool obj = false, glb = false, pc2 = false;
@@ -56,6 +46,13 @@ ExportFormats parseFormats(const std::vector<std::string>& names) {
 
 }  // namespace
 
+std::unique_ptr<FacePainter> makePainter(bool software) {
+  std::string warning;
+  std::unique_ptr<FacePainter> painter = makeFacePainter(software, &warning);
+  if (!warning.empty()) fmt::print(stderr, "myoshell: warning: {}\n", warning);
+  return painter;
+}
+
 int runScene(const SceneDesc& scene, const RunOptions& opt) {
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
@@ -70,9 +67,9 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   std::error_code ec;
   fs::create_directories(formats.obj ? out / "obj" : out, ec);
   if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
   const double dt = model->settings().dt;
-  const int frames = static_cast<int>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
+  const int frames = player.frameCount();
   const auto& channels = model->channels();
   AnimationFrames animation;  // kept only for the GLB and PC2 exports
   const bool keepFrames = formats.glb || formats.pc2;
@@ -84,7 +81,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     animation.positions.reserve(frames);
   }
 
-  const ViewPreset view = viewFromName(opt.view);
+  const ViewPreset view = parseView(opt.view);
   FaceOverlays overlays;
   overlays.muscles = opt.showMuscles;
   overlays.displacement = opt.colorScale > 0.0;
@@ -108,41 +105,32 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   long long steps = 0;
   Stopwatch wall;
   for (int f = 0; f < frames; ++f) {
-    const double frameTime = f / scene.fps;
-    double frameStep = 0.0;
-    int frameSteps = 0;
-    while (sim.time() < frameTime - 0.5 * dt) {
-      applySceneTimeline(scene, sim, sim.time());
-      Stopwatch sw;
-      sim.step();
-      frameStep += sw.seconds();
-      ++frameSteps;
-    }
-    stepSeconds += frameStep;
-    steps += frameSteps;
-    const MatX3 positions = sim.skinPositions();
+    player.advanceTo(f);
+    const FrameSnapshot& snap = player.snapshot(overlays.muscles);
+    stepSeconds += snap.stepSeconds;
+    steps += snap.steps;
+    const MatX3& positions = snap.positions;
     if (formats.obj)
       writeObj((out / "obj" / fmt::format("{}_{:04d}.obj", scene.name, f)).string(), model->head().mesh, &positions);
     if (keepFrames) animation.positions.push_back(positions);
     const bool png = opt.render && f % opt.renderEvery == 0;
     const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
     if (video || png || onSheet) {
-      const Image image = painter->paint(faceScene(*model, faceFrameState(sim, overlays), view, opt.size, opt.size, overlays));
+      const Image image = painter->paint(faceScene(*model, faceFrameState(snap, overlays), view, opt.size, opt.size, overlays));
       if (video) video->addFrame(image);
       if (png) writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, f)).string(), image);
       if (onSheet) {
         sheet.push_back(image);
-        sheetCaptions.push_back(fmt::format("t = {:.2f} s", sim.time()));
+        sheetCaptions.push_back(fmt::format("t = {:.2f} s", snap.time));
       }
     }
-    nlohmann::json fs_ = {{"frame", f}, {"time", sim.time()}, {"steps", frameSteps},
-                          {"step_ms", frameSteps ? 1e3 * frameStep / frameSteps : 0.0},
-                          {"max_displacement_cm", sim.skinDisplacement().rowwise().norm().maxCoeff()}};
+    nlohmann::json fs_ = {{"frame", f}, {"time", snap.time}, {"steps", snap.steps},
+                          {"step_ms", snap.steps ? 1e3 * snap.stepSeconds / snap.steps : 0.0},
+                          {"max_displacement_cm", snap.maxDisplacement}};
     nlohmann::json perChannel = nlohmann::json::object();
     for (size_t c = 0; c < channels.size(); ++c) {
-      const double m = sim.channelDisplacement(static_cast<int>(c)).rowwise().norm().maxCoeff();
-      channelMax[c] = std::max(channelMax[c], m);
-      perChannel[channels[c].name] = m;
+      channelMax[c] = std::max(channelMax[c], snap.channelMax[c]);
+      perChannel[channels[c].name] = snap.channelMax[c];
     }
     fs_["channel_max_cm"] = perChannel;
     frameStats.push_back(fs_);

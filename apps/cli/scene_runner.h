@@ -2,10 +2,12 @@
 // (optionally) pictures. Shared by `myoshell run` and `myoshell demo`.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "myoshell/anim/scene.h"
+#include "myoshell/render/face_picture.h"
 
 namespace myo::cli {
 
@@ -32,5 +34,9 @@ struct RunOptions {
 
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.
 int runScene(const SceneDesc& scene, const RunOptions& options);
+
+// The face painter for `run`, `render` and `figures`: OpenGL unless `software` or unavailable
+// (then the software rasterizer, after one warning line on standard error saying why).
+std::unique_ptr<FacePainter> makePainter(bool software);
 
 }  // namespace myo::cli

@@ -15,6 +15,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/gl/gl_face_painter.h"
 #include "myoshell/gl/gl_renderer.h"
 #include "myoshell/render/colormap.h"
 #include "myoshell/render/png.h"
@@ -376,40 +377,20 @@ class ViewerApp {
 
   void draw() {
     const FaceModel& model = session_.model();
-    const Simulator& sim = session_.simulator();
+    FaceOverlays overlays;
+    overlays.muscles = display_.muscles;
+    overlays.skull = display_.skull;
+    overlays.displacement = display_.displacement;
+    overlays.displacementScale = display_.displacementScale;
+    overlays.roi = display_.roi && session_.muscleCount() > 0;
+    overlays.pins = display_.pins;
+    overlays.wireframe = display_.wireframe;
+    overlays.grabVertex = session_.grabbing() ? session_.grabbedVertex() : -1;
+    const VecX roi = overlays.roi ? roiWeights(model, display_.selected) : VecX();
+    const FaceScene scene = faceScene(model, faceFrameState(session_.simulator(), overlays), camera_, faceWidth_,
+                                      height_, overlays, &roi);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    renderer_->beginFrame(camera_, faceWidth_, height_, Rgb(0.16, 0.17, 0.20), faceX_, 0);
-    if (display_.skull && model.head().hasSkull()) {
-      RenderStyle bone;
-      bone.color = Rgb(0.85, 0.83, 0.76);
-      renderer_->drawMesh(model.head().skull.V, model.head().skull.F, bone);
-    }
-    if (display_.muscles) {
-      RenderStyle muscle;
-      muscle.color = Rgb(0.75, 0.18, 0.16);
-      for (int m = 0; m < static_cast<int>(model.muscles().size()); ++m)
-        renderer_->drawMesh(sim.musclePositions(m), model.muscles()[static_cast<size_t>(m)].muscle.mesh.F, muscle);
-    }
-    RenderStyle skin;
-    skin.wireframe = display_.wireframe;
-    skin.backColor = Rgb(0.45, 0.30, 0.28);
-    if (display_.muscles || display_.skull) skin.opacity = 0.55;
-    const int n = static_cast<int>(model.head().mesh.vertexCount());
-    if (display_.displacement) {
-      skin.vertexColors = scalarColors(sim.skinDisplacement().rowwise().norm(), 0.0, display_.displacementScale);
-    } else if (display_.roi && session_.muscleCount() > 0) {
-      skin.vertexColors = MatX3(n, 3);
-      skin.vertexColors.rowwise() = skin.color.transpose();
-      for (int v : model.muscles()[static_cast<size_t>(display_.selected)].roi)
-        skin.vertexColors.row(v) = Rgb(0.98, 0.62, 0.15).transpose();
-    }
-    renderer_->drawMesh(sim.skinPositions(), model.head().mesh.F, skin);
-    std::vector<Marker> markers;
-    if (display_.pins)
-      for (int v : model.gravityPins()) markers.push_back({model.head().mesh.V.row(v), Rgb(0.2, 0.5, 0.95), 2.5});
-    if (session_.grabbing())
-      markers.push_back({sim.skinPositions().row(session_.grabbedVertex()), Rgb(1.0, 0.9, 0.1), 5.0});
-    if (!markers.empty()) renderer_->drawMarkers(markers);
+    drawFaceScene(*renderer_, scene, faceX_, 0);
   }
 
   // Runs the script's commands in order; each error names the script's file and line.

@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -41,13 +40,14 @@ std::string mirrorName(const std::string& name) {
 }  // namespace
 
 ViewerSession::ViewerSession(SceneDesc scene, BasisCache* cache)
-    : scene_(std::move(scene)),
-      model_(buildSceneFace(withMouseDrag(scene_), cache)),
-      sim_(model_),
+    : model_(buildSceneFace(withMouseDrag(scene), cache)),
+      player_(std::move(scene), model_),
       sliders_(model_->muscles().size(), 0.0),
       mirror_(model_->muscles().size(), -1),
-      mouseDrag_(static_cast<int>(scene_.drags.size())),
+      mouseDrag_(static_cast<int>(player_.scene().drags.size())),
       gravityOn_(model_->gravityChannel() >= 0) {
+  player_.setControls([this](Simulator& s) { controls(s); });
+  updateTracked();
   for (int m = 0; m < muscleCount(); ++m) {
     const std::string other = mirrorName(muscleName(m));
     for (int k = 0; k < muscleCount(); ++k)
@@ -80,7 +80,7 @@ void ViewerSession::setSlider(const std::string& muscle, double activation) {
 void ViewerSession::resetSliders() {
   std::fill(sliders_.begin(), sliders_.end(), 0.0);
   release();
-  sim_.reset();
+  sim().reset();
   pending_ = 0.0;
   applyControls();
 }
@@ -88,35 +88,44 @@ void ViewerSession::resetSliders() {
 void ViewerSession::setGravity(bool on) {
   if (on && !hasGravity()) throw InputError("this scene has no gravity channel (set \"gravity\": true in its model)");
   gravityOn_ = on;
-  sim_.setGravity(on ? 1.0 : 0.0);
+  sim().setGravity(on ? 1.0 : 0.0);
 }
 
 void ViewerSession::grab(int vertex) {
-  sim_.setDragVertex(mouseDrag_, vertex);
+  sim().setDragVertex(mouseDrag_, vertex);
   grabbing_ = true;
 }
 
 void ViewerSession::pull(const Vec3& force) {
-  if (grabbing_) sim_.setDragForce(mouseDrag_, force);
+  if (grabbing_) sim().setDragForce(mouseDrag_, force);
 }
 
 void ViewerSession::release() {
   grabbing_ = false;
-  sim_.setDragForce(mouseDrag_, Vec3::Zero());
+  sim().setDragForce(mouseDrag_, Vec3::Zero());
 }
 
-// The controls of one step: the timeline while playing (the sliders then show its values), the
-// sliders of every muscle it does not track, gravity as switched, the mouse drag as set.
+void ViewerSession::updateTracked() {
+  tracked_.assign(sliders_.size(), false);
+  for (int m = 0; m < muscleCount(); ++m) tracked_[static_cast<size_t>(m)] = scene().activations.count(muscleName(m)) > 0;
+}
+
+// The controls of one step: the timeline while playing (applied by the player; the sliders then
+// show its values), the sliders of every muscle it does not track, gravity as switched, the mouse
+// drag as set.
 void ViewerSession::applyControls() {
-  if (playing) {
-    applySceneTimeline(scene_, sim_, playhead_);
-    if (!gravityOn_ && hasGravity()) sim_.setGravity(0.0);
-  }
+  if (playing) player_.applyTimeline(player_.time());
+  controls(sim());
+}
+
+// After the timeline, before a step (the player calls it while playing): what the user controls.
+void ViewerSession::controls(Simulator& s) {
+  if (playing && !gravityOn_ && hasGravity()) s.setGravity(0.0);
   for (int m = 0; m < muscleCount(); ++m) {
-    if (playing && scene_.activations.count(muscleName(m)))
-      sliders_[static_cast<size_t>(m)] = sim_.activation(m);
+    if (playing && tracked_[static_cast<size_t>(m)])
+      sliders_[static_cast<size_t>(m)] = s.activation(m);
     else
-      sim_.setActivation(m, sliders_[static_cast<size_t>(m)]);
+      s.setActivation(m, sliders_[static_cast<size_t>(m)]);
   }
 }
 
@@ -127,14 +136,15 @@ void ViewerSession::advance(double seconds) {
   pending_ -= steps * dt;
   Stopwatch wall;
   for (int s = 0; s < steps; ++s) {
-    applyControls();
-    sim_.step();
     if (playing) {
-      playhead_ += dt;
-      if (playhead_ >= scene_.duration - 0.5 * dt) {  // the end of the timeline: stop there
-        playhead_ = scene_.duration;
+      player_.step();  // timeline at the playhead, then controls(), then the step
+      if (player_.time() >= duration() - 0.5 * dt) {  // the end of the timeline: stop there
+        player_.setTime(duration());
         playing = false;
       }
+    } else {
+      controls(sim());  // live: the sliders drive the simulator, the playhead stays
+      sim().step();
     }
   }
   const double elapsed = wall.seconds();
@@ -146,55 +156,53 @@ void ViewerSession::advance(double seconds) {
 
 void ViewerSession::seek(double t) {
   if (!std::isfinite(t)) throw InputError("seek time is not finite");
-  t = std::clamp(t, 0.0, scene_.duration);
+  t = std::clamp(t, 0.0, duration());
   const bool wasPlaying = playing;
-  sim_.reset();
   pending_ = 0.0;
-  playhead_ = 0.0;
   playing = true;  // the timeline drives the replay
-  const double dt = model_->settings().dt;
-  while (playhead_ < t - 0.5 * dt) {
-    applyControls();
-    sim_.step();
-    playhead_ += dt;
-  }
-  playhead_ = t;
+  player_.restart(0.0);
+  player_.playTo(t);
+  player_.setTime(t);
   applyControls();  // the sliders show the values at t
   playing = wasPlaying;
 }
 
 int ViewerSession::setKeysAtPlayhead() {
+  SceneDesc edited = scene();
+  const double at = playhead();
   for (int m = 0; m < muscleCount(); ++m) {
     const std::string& name = muscleName(m);
     std::vector<Keyframe<double>> keys;
-    if (auto it = scene_.activations.find(name); it != scene_.activations.end()) keys = it->second.keys();
-    keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const auto& k) { return std::abs(k.time - playhead_) < 1e-9; }),
+    if (auto it = edited.activations.find(name); it != edited.activations.end()) keys = it->second.keys();
+    keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const auto& k) { return std::abs(k.time - at) < 1e-9; }),
                keys.end());
     Keyframe<double> key;
-    key.time = playhead_;
+    key.time = at;
     key.value = slider(m);
     keys.insert(std::upper_bound(keys.begin(), keys.end(), key, [](const auto& a, const auto& b) { return a.time < b.time; }),
                 key);
-    scene_.activations[name] = ScalarTrack(std::move(keys), "activation of " + name);
+    edited.activations[name] = ScalarTrack(std::move(keys), "activation of " + name);
   }
+  player_.setScene(std::move(edited));
+  updateTracked();
   return muscleCount();
 }
 
 void ViewerSession::saveScene(const std::string& path) const {
-  writeFileAtomically(path, sceneToJson(scene_), "cannot write the scene file");
+  writeFileAtomically(path, sceneToJson(scene()), "cannot write the scene file");
 }
 
 int ViewerSession::exportGlb(const std::string& path) const {
-  Simulator sim(model_);
-  const int frames = static_cast<int>(std::floor(scene_.duration * scene_.fps + 1e-9)) + 1;
+  ScenePlayer fresh(scene(), model_);  // the live face is untouched
+  const int frames = fresh.frameCount();
   AnimationFrames animation;
-  animation.name = scene_.name.empty() ? "viewer" : scene_.name;
+  animation.name = scene().name.empty() ? "viewer" : scene().name;
   animation.triangles = model_->head().mesh.F;
   animation.rest = model_->head().mesh.V;
-  animation.fps = scene_.fps;
+  animation.fps = scene().fps;
   for (int f = 0; f < frames; ++f) {
-    playSceneTo(scene_, sim, f / scene_.fps);
-    animation.positions.push_back(sim.skinPositions());
+    fresh.advanceTo(f);
+    animation.positions.push_back(fresh.snapshot(false).positions);
   }
   writeGlb(path, animation);
   return frames;

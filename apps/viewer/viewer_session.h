@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/reduce/basis_cache.h"
 
@@ -23,9 +24,9 @@ class ViewerSession {
   // gravity pins but not the landmarks, so a grip on a mouth corner moves the corner).
   ViewerSession(SceneDesc scene, BasisCache* cache);
 
-  const SceneDesc& scene() const { return scene_; }
+  const SceneDesc& scene() const { return player_.scene(); }
   const FaceModel& model() const { return *model_; }
-  const Simulator& simulator() const { return sim_; }
+  const Simulator& simulator() const { return player_.simulator(); }
 
   // --- sliders ---------------------------------------------------------------------------------
   int muscleCount() const { return static_cast<int>(sliders_.size()); }
@@ -45,7 +46,7 @@ class ViewerSession {
   bool gravity() const { return gravityOn_; }
   bool hasGravity() const { return model_->gravityChannel() >= 0; }
   // The skin stiffness slider (Simulator::setSkinStiffnessScale): s > 0.
-  void setStiffnessScale(double s) { sim_.setSkinStiffnessScale(s); }
+  void setStiffnessScale(double s) { sim().setSkinStiffnessScale(s); }
 
   // --- the mouse drag ----------------------------------------------------------------------------
   // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin).
@@ -54,11 +55,11 @@ class ViewerSession {
   void pull(const Vec3& force);
   void release();
   bool grabbing() const { return grabbing_; }
-  int grabbedVertex() const { return sim_.dragVertex(mouseDrag_); }
+  int grabbedVertex() const { return simulator().dragVertex(mouseDrag_); }
 
   // --- time ------------------------------------------------------------------------------------
-  // Playing: the scene's timeline drives every tracked muscle, gravity and drag (the sliders show
-  // the values); paused: the sliders drive. Time advances only while playing or when advance()
+  // Playing: the scene's timeline drives every tracked muscle, gravity and drag through the
+  // ScenePlayer (the sliders show the values); paused: the sliders drive the simulator directly. Time advances only while playing or when advance()
   // is called while paused (the face keeps settling under the sliders without moving the playhead).
   bool playing = false;
   // Advances `seconds` of simulated time at the model's fixed dt (an accumulator keeps the
@@ -67,8 +68,8 @@ class ViewerSession {
   // Jumps the playhead to t (s, clamped to [0, duration]): the face restarts from rest and the
   // timeline is replayed to t.
   void seek(double t);
-  double playhead() const { return playhead_; }
-  double duration() const { return scene_.duration; }
+  double playhead() const { return player_.time(); }
+  double duration() const { return scene().duration; }
 
   // --- authoring -------------------------------------------------------------------------------
   // A key at the playhead on every muscle's activation track with its slider value (a key already
@@ -85,23 +86,25 @@ class ViewerSession {
 
   // --- readouts --------------------------------------------------------------------------------
   double stepsPerSecond() const { return stepsPerSecond_; }  // simulated steps per wall second, smoothed
-  const StepTimings& lastTimings() const { return sim_.lastTimings(); }
+  const StepTimings& lastTimings() const { return simulator().lastTimings(); }
 
  private:
-  SceneDesc scene_;
   std::shared_ptr<const FaceModel> model_;
-  Simulator sim_;
+  ScenePlayer player_;  // the scene, its timeline clock (the playhead) and the simulator
   std::vector<double> sliders_;
   std::vector<int> mirror_;
+  std::vector<bool> tracked_;  // per muscle: whether the timeline has an activation track for it
   int mouseDrag_ = 0;
   bool gravityOn_ = false;
   bool grabbing_ = false;
-  double playhead_ = 0.0;
   double pending_ = 0.0;  // simulated seconds owed to the accumulator
   double stepsPerSecond_ = 0.0;
   std::vector<std::string> warnings_;
 
+  Simulator& sim() { return player_.simulator(); }
   void applyControls();
+  void controls(Simulator& sim);
+  void updateTracked();
 };
 
 }  // namespace myo::viewer

@@ -223,17 +223,28 @@ int Simulator::advance(double seconds) {
 
 MatX3 Simulator::skinPositions() const { return model_->head().mesh.V + skinU_; }
 
+void Simulator::skinPositions(MatX3& out) const { out.noalias() = model_->head().mesh.V + skinU_; }
+
 MatX3 Simulator::channelDisplacement(int channel) const {
-  MatX3 u = MatX3::Zero(skinU_.rows(), 3);
-  channelIntegrators_.at(static_cast<size_t>(channel)).addDisplacementTo(u);
+  MatX3 u;
+  channelDisplacement(channel, u);
   return u;
 }
 
+void Simulator::channelDisplacement(int channel, MatX3& out) const {
+  out.setZero(skinU_.rows(), 3);
+  channelIntegrators_.at(static_cast<size_t>(channel)).addDisplacementTo(out);
+}
+
 MatX3 Simulator::musclePositions(int muscle) const {
-  const MuscleUnit& unit = model_->muscles().at(static_cast<size_t>(muscle));
-  MatX3 x = unit.muscle.mesh.V;
-  muscleIntegrators_[static_cast<size_t>(muscle)].addDisplacementTo(x);
+  MatX3 x;
+  musclePositions(muscle, x);
   return x;
+}
+
+void Simulator::musclePositions(int muscle, MatX3& out) const {
+  out = model_->muscles().at(static_cast<size_t>(muscle)).muscle.mesh.V;
+  muscleIntegrators_[static_cast<size_t>(muscle)].addDisplacementTo(out);
 }
 
 double Simulator::muscleAmplitude(int muscle) const {

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "support/cli_runner.h"
@@ -127,9 +127,11 @@ TEST(ThesisScenes, Fig17MusclesContractAndRelax) {
   const SceneDesc relax = readScene(scenePath("fig17_relax"));
   const auto model = modelFor(contract, "fig17");  // both scenes describe the same face
   ASSERT_EQ(model->muscles().size(), 8u);
-  Simulator a(model), b(model);
-  playSceneTo(contract, a, 0.6);
-  playSceneTo(relax, b, 0.6);
+  ScenePlayer pa(contract, model), pb(relax, model);
+  pa.playTo(0.6);
+  pb.playTo(0.6);
+  const Simulator& a = pa.simulator();
+  const Simulator& b = pb.simulator();
   for (int m = 0; m < 8; ++m) {
     const double rest = restInsertionToOrigin(*model, m);
     const std::string& name = model->muscles()[static_cast<size_t>(m)].muscle.def.name;
@@ -176,15 +178,16 @@ int mostDisplaced(const Simulator& sim, double sign) {
 void checkRightThenBoth(const std::string& sceneName, double upSign) {
   const SceneDesc scene = readScene(scenePath(sceneName));
   const auto model = modelFor(scene, sceneName);
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
+  Simulator& sim = player.simulator();
   const Vec3 y = up(*model);
-  playSceneTo(scene, sim, 0.95);
+  player.playTo(0.95);
   const auto [r1, l1] = sideSums(sim);
   EXPECT_GT(r1, 1.0) << sceneName << ": the right side moves";
   EXPECT_LT(l1, 0.3 * r1) << sceneName << ": the left side stays (nearly)";
   const int vr = mostDisplaced(sim, -1.0);
   EXPECT_GT(upSign * displacementAt(sim, vr).dot(y), 0.05) << sceneName << ": direction of the right side";
-  playSceneTo(scene, sim, 2.0);
+  player.playTo(2.0);
   const auto [r2, l2] = sideSums(sim);
   EXPECT_GT(l2, 0.7 * r2) << sceneName << ": both sides move";
   EXPECT_LT(l2, 1.4 * r2) << sceneName << ": both sides move alike";
@@ -208,15 +211,16 @@ TEST(ThesisScenes, Fig18DepressorAnguliRightThenBoth) {
 TEST(ThesisScenes, Fig20CorrugatorContractsThenRelaxes) {
   const SceneDesc scene = readScene(scenePath("fig20_corrugator"));
   const auto model = modelFor(scene, "fig20_corrugator");
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
+  Simulator& sim = player.simulator();
   const int m = model->muscleIndex("corrugator_supercilii_right");
   const double rest = restInsertionToOrigin(*model, m);
   const int v = insertionSkinVertex(*model, "corrugator_supercilii_right");
-  playSceneTo(scene, sim, 0.95);
+  player.playTo(0.95);
   EXPECT_LT(insertionToOrigin(sim, m), rest);
   const Vec3 contracted = displacementAt(sim, v);
   EXPECT_GT(contracted.norm(), 0.02);
-  playSceneTo(scene, sim, 2.0);
+  player.playTo(2.0);
   EXPECT_GT(insertionToOrigin(sim, m), rest);
   const Vec3 relaxed = displacementAt(sim, v);
   EXPECT_GT(relaxed.norm(), 0.02);
@@ -236,8 +240,9 @@ TEST(ThesisScenes, Fig22GravitySagGrowsAsStiffnessFalls) {
     scene.model.skin.kB *= scale;
     const auto model = modelFor(scene, "fig22@" + std::to_string(scale));
     ASSERT_GE(model->gravityChannel(), 0);
-    Simulator sim(model);
-    playSceneTo(scene, sim, scene.duration);
+    ScenePlayer player(scene, model);
+    Simulator& sim = player.simulator();
+    player.playTo(scene.duration);
     const MatX3 u = sim.channelDisplacement(model->gravityChannel());
     const double sag = u.rowwise().norm().maxCoeff();
     const double meanDown = -(u * up(*model)).mean();
@@ -253,8 +258,9 @@ TEST(ThesisScenes, Fig22GravitySagGrowsAsStiffnessFalls) {
 TEST(ThesisScenes, Fig23CombinedSmileOpensTheLowerLip) {
   const SceneDesc scene = readScene(scenePath("fig23_combined"));
   const auto model = modelFor(scene, "fig23_combined");
-  Simulator sim(model);
-  playSceneTo(scene, sim, scene.duration);
+  ScenePlayer player(scene, model);
+  Simulator& sim = player.simulator();
+  player.playTo(scene.duration);
   const Vec3 y = up(*model);
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_right")).dot(y), -0.02);
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_left")).dot(y), -0.02);
@@ -270,8 +276,9 @@ TEST(ThesisScenes, Fig25DragMovesTheCheekAlongTheForce) {
   const SceneDesc scene = readScene(scenePath("fig25_drag"));
   const auto model = modelFor(scene, "fig25_drag");
   ASSERT_EQ(scene.drags.size(), 1u);
-  Simulator sim(model);
-  playSceneTo(scene, sim, scene.duration);
+  ScenePlayer player(scene, model);
+  Simulator& sim = player.simulator();
+  player.playTo(scene.duration);
   const Vec3 force = scene.dragForces.at(scene.drags[0].name).at(scene.duration);
   int dragChannel = -1;
   for (size_t c = 0; c < model->channels().size(); ++c)
@@ -291,16 +298,17 @@ TEST(ThesisScenes, Fig25DragMovesTheCheekAlongTheForce) {
 TEST(ThesisScenes, Fig26TransitionUpNeutralDown) {
   const SceneDesc scene = readScene(scenePath("fig26_transition"));
   const auto model = modelFor(scene, "fig26_transition");
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
+  Simulator& sim = player.simulator();
   const int corner = landmark(*model, "mouth_corner_right");
   const Vec3 y = up(*model);
-  playSceneTo(scene, sim, 0.6);
+  player.playTo(0.6);
   const Vec3 t1 = displacementAt(sim, corner);
   EXPECT_GT(t1.dot(y), 0.03) << "t1: corner up";
-  playSceneTo(scene, sim, 1.2);
+  player.playTo(1.2);
   const Vec3 t2 = displacementAt(sim, corner);
   EXPECT_LT(t2.norm(), 0.25 * t1.norm()) << "t2: back near rest";
-  playSceneTo(scene, sim, 1.8);
+  player.playTo(1.8);
   EXPECT_LT(displacementAt(sim, corner).dot(y), -0.03) << "t3: corner down";
 }
 
@@ -312,14 +320,15 @@ TEST(ThesisScenes, Fig27IctHeadSmileFrownAndCombined) {
   const SceneDesc scene = readScene(scenePath("fig27_ict_head"));
   const auto model = modelFor(scene, "fig27_ict_head");
   EXPECT_GT(model->skin().vertexCount(), 10000);
-  Simulator sim(model);
+  ScenePlayer player(scene, model);
+  Simulator& sim = player.simulator();
   const int corner = landmark(*model, "mouth_corner_right");
   const Vec3 y = up(*model);
-  playSceneTo(scene, sim, 0.6);
+  player.playTo(0.6);
   EXPECT_GT(displacementAt(sim, corner).dot(y), 0.02) << "zygomaticus major: corner up";
-  playSceneTo(scene, sim, 1.5);
+  player.playTo(1.5);
   EXPECT_LT(displacementAt(sim, corner).dot(y), -0.02) << "depressor anguli oris: corner down";
-  playSceneTo(scene, sim, scene.duration);
+  player.playTo(scene.duration);
   EXPECT_GT(displacementAt(sim, corner).dot(y), 0.02) << "combined: corner up";
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_right")).dot(y), -0.02)
       << "combined: lower lip down";

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/anim/scene_playback.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
 #include "support/free_vertex.h"
@@ -103,9 +103,9 @@ TEST(ViewerSession, PlayingFollowsTheTimelineAndSeekReplaysIt) {
   EXPECT_DOUBLE_EQ(s.playhead(), s.duration());
   // Seek = a fresh simulator played to t.
   s.seek(0.3);
-  Simulator fresh(std::shared_ptr<const FaceModel>(&s.model(), [](const FaceModel*) {}));
-  playSceneTo(s.scene(), fresh, 0.3);
-  EXPECT_LE((fresh.skinDisplacement() - s.simulator().skinDisplacement()).norm(), 1e-12);
+  ScenePlayer fresh(s.scene(), std::shared_ptr<const FaceModel>(&s.model(), [](const FaceModel*) {}));
+  fresh.playTo(0.3);
+  EXPECT_LE((fresh.simulator().skinDisplacement() - s.simulator().skinDisplacement()).norm(), 1e-12);
   EXPECT_NEAR(s.slider(left), 1.0, 1e-12);
   s.seek(0.0);
 }

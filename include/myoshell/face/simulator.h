@@ -61,10 +61,13 @@ class Simulator {
   // The skin's displacement (n×3, cm): Σ_f u_f, and positions rest + u.
   const MatX3& skinDisplacement() const { return skinU_; }
   MatX3 skinPositions() const;
+  void skinPositions(MatX3& out) const;  // into `out` (no allocation once it is n×3)
   // One channel's displacement field u_f over the full skin (n×3, cm).
   MatX3 channelDisplacement(int channel) const;
+  void channelDisplacement(int channel, MatX3& out) const;  // into `out` (no allocation once n×3)
   // A muscle's current node positions (its mesh's n×3, cm).
   MatX3 musclePositions(int muscle) const;
+  void musclePositions(int muscle, MatX3& out) const;  // into `out` (no allocation once sized)
   // The muscle's modal amplitude q_m.
   double muscleAmplitude(int muscle) const;
 
