@@ -21,6 +21,7 @@
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
 #include "myoshell/render/camera.h"
+#include "myoshell/render/face_picture.h"
 #include "myoshell/render/image.h"
 #include "myoshell/render/markers.h"
 #include "myoshell/render/png.h"
@@ -125,6 +126,7 @@ Head loadFromArgs(const HeadArgs& a) {
 nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 int runHead(const HeadArgs& a) {
+  const ViewPreset view = parseView(a.view);  // before any work: a typo fails at once
   const Head head = loadFromArgs(a);
   const TriMesh& m = head.mesh;
   const EdgeTable edges = buildEdgeTable(m.F, m.vertexCount());
@@ -173,11 +175,7 @@ int runHead(const HeadArgs& a) {
   if (!a.render.empty()) {
     RenderOptions ro;
     ro.size = a.size;
-    if (a.view == "front") ro.view = ViewPreset::front;
-    else if (a.view == "threequarter") ro.view = ViewPreset::threeQuarter;
-    else if (a.view == "side") ro.view = ViewPreset::profile;
-    else if (a.view == "back") ro.view = ViewPreset::back;
-    else throw InputError("--view must be front, threequarter, side or back, not '" + a.view + "'");
+    ro.view = view;
     ro.wire = a.wire;
     ro.markPins = a.markPins;
     ro.markLandmarks = !a.noLandmarks;
@@ -218,7 +216,7 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--pins", args->pins, "vertex-set file of gravity pins (default: the rim rule)");
   sub->add_flag("--json", args->json, "print the report as JSON");
   sub->add_option("--render", args->render, "write a PNG picture with the landmarks marked");
-  sub->add_option("--view", args->view, "front, threequarter, side or back")->capture_default_str();
+  sub->add_option("--view", args->view, "front, three-quarter, profile or back")->capture_default_str();
   sub->add_option("--size", args->size, "picture size in pixels")->check(CLI::Range(64, 4096));
   sub->add_flag("--wire", args->wire, "draw the triangle edges");
   sub->add_flag("--pins-marked", args->markPins, "mark the gravity pins (green)");

@@ -122,12 +122,7 @@ int runRender(const RenderCommandOptions& opt) {
   // Every option is checked before any work, so a typo fails at once and writes nothing.
   const auto [width, height] = parseSize(opt.size);
   FaceOverlays overlays = parseOverlays(opt.overlays);
-  ViewPreset view;
-  try {
-    view = parseView(opt.view);
-  } catch (const InputError&) {
-    badValue("--view", opt.view, "unknown view (use front, three-quarter, profile or back)");
-  }
+  const ViewPreset view = parseView(opt.view);
   const SceneDesc scene = readScene(opt.scene);
   const int frameCount = ScenePlayer::frameCount(scene.duration, scene.fps);
   const FrameRange range = parseFrames(opt.frames, frameCount);
@@ -233,7 +228,7 @@ const CommandRegistrar renderRegistrar("render", [](CLI::App& app) {
   sub->add_option("--out", opt->outDir, "Output folder")->required();
   sub->add_option("--frames", opt->frames, "Frames A:B or A:B:STEP (frame numbers, B included; default all)");
   sub->add_option("--size", opt->size, "Picture size WxH, pixels")->capture_default_str();
-  sub->add_option("--view", opt->view, "front, three-quarter or profile")->capture_default_str();
+  sub->add_option("--view", opt->view, "front, three-quarter, profile or back")->capture_default_str();
   sub->add_option("--overlay", opt->overlays, "Comma-separated: muscles, roi, displacement, pins")->delimiter(',');
   sub->add_option("--color-scale", opt->colorScale, "Displacement colour scale [0, CM] (default: the run's largest |u|)")
       ->check(CLI::PositiveNumber);

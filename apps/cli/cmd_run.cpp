@@ -23,7 +23,7 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_flag("--render", opt->render, "Write PNG frames (DIR/png/) and a contact sheet");
   sub->add_option("--render-every", opt->renderEvery, "Render every N-th frame")->check(CLI::PositiveNumber);
   sub->add_option("--size", opt->size, "Picture size, pixels")->check(CLI::Range(64, 4096));
-  sub->add_option("--view", opt->view, "front, three-quarter or profile")->capture_default_str();
+  sub->add_option("--view", opt->view, "front, three-quarter, profile or back")->capture_default_str();
   sub->add_flag("--muscles", opt->showMuscles, "Show the muscles through the skin");
   sub->add_flag("--video", opt->video, "Write DIR/<name>.mp4 and DIR/<name>.gif of every frame (ffmpeg)");
   sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");

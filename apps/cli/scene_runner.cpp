@@ -57,6 +57,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
   const ExportFormats formats = parseFormats(opt.formats);  // before any work: a typo fails at once
+  const ViewPreset view = parseView(opt.view);
   FileBasisCache cache(opt.cacheDir);
 
   const bool tty = !opt.json && isatty(STDOUT_FILENO);
@@ -81,7 +82,6 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     animation.positions.reserve(frames);
   }
 
-  const ViewPreset view = parseView(opt.view);
   FaceOverlays overlays;
   overlays.muscles = opt.showMuscles;
   overlays.displacement = opt.colorScale > 0.0;

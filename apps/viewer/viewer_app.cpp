@@ -442,8 +442,9 @@ class ViewerApp {
       *flag = on(1);
     } else if (c.verb == "select") display_.selected = session_.model().muscleIndex(c.args[0]);
     else if (c.verb == "view") {
+      const ViewPreset v = parseView(c.args[0]);  // the views of `run` and `render`
       display_.pitch = 0;
-      display_.yaw = c.args[0] == "front" ? 0 : c.args[0] == "three-quarter" ? 35 : 90;
+      display_.yaw = v == ViewPreset::front ? 0 : v == ViewPreset::threeQuarter ? 35 : v == ViewPreset::profile ? 90 : 180;
     } else if (c.verb == "orbit") {
       display_.yaw = c.number(0);
       display_.pitch = std::clamp(c.number(1), -85.0, 85.0);

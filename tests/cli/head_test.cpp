@@ -55,7 +55,7 @@ TEST(HeadCommand, DefaultHeadFromAnyFolder) {
 
 TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
   const fs::path dir = scratch("pictures");
-  for (const char* view : {"front", "threequarter", "side", "back"}) {
+  for (const char* view : {"front", "three-quarter", "profile", "back"}) {
     const test::CliResult r =
         runIn(dir, std::string("head --levels 0 --wire --pins-marked --size 96 --view ") + view +
                        " --render " + view + ".png");
@@ -73,7 +73,7 @@ TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
   EXPECT_THAT(r.out, HasSubstr("folder.png: cannot write picture"));
   r = runIn(dir, "head --levels 0 --view top --render x.png");
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_THAT(r.out, HasSubstr("--view must be front, threequarter, side or back"));
+  EXPECT_THAT(r.out, HasSubstr("unknown view 'top' (use front, three-quarter, profile or back)"));
 }
 
 TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
