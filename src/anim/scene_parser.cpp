@@ -70,6 +70,9 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   SceneDesc scene;
   scene.path = path;
   scene.name = root.string("name", fs::path(path).stem().string());
+  // The name names the output files (DIR/NAME.glb, DIR/obj/NAME_0000.obj): it must stay in DIR.
+  if (scene.name.find_first_of("/\\") != std::string::npos || scene.name.find("..") != std::string::npos)
+    root.fail("name", "must not contain '/', '\\', or '..' (it names the output files inside --out)");
 
   if (root.has("head")) {
     DocReader h = root.child("head");
