@@ -22,6 +22,7 @@
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/basis_cache_file.h"
+#include "myoshell/io/output_manifest.h"
 #include "myoshell/mesh/obj_reader.h"
 
 namespace myo::cli {
@@ -68,6 +69,9 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   std::error_code ec;
   fs::create_directories(formats.obj ? out / "obj" : out, ec);
   if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
+  // What the last run here wrote: whatever of it this run does not rewrite goes at the end.
+  const std::vector<std::string> previous = readOutputManifest(out);
+  std::vector<std::string> written;  // relative to out
   ScenePlayer player(scene, model);
   const double dt = model->settings().dt;
   const int frames = player.frameCount();
@@ -110,15 +114,22 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     stepSeconds += snap.stepSeconds;
     steps += snap.steps;
     const MatX3& positions = snap.positions;
-    if (formats.obj)
-      writeObj((out / "obj" / fmt::format("{}_{:04d}.obj", scene.name, f)).string(), model->head().mesh, &positions);
+    if (formats.obj) {
+      const std::string rel = fmt::format("obj/{}_{:04d}.obj", scene.name, f);
+      writeObj((out / rel).string(), model->head().mesh, &positions);
+      written.push_back(rel);
+    }
     if (keepFrames) animation.positions.push_back(positions);
     const bool png = opt.render && f % opt.renderEvery == 0;
     const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
     if (video || png || onSheet) {
       const Image image = painter->paint(faceScene(*model, faceFrameState(snap, overlays), view, opt.size, opt.size, overlays));
       if (video) video->addFrame(image);
-      if (png) writePng((out / "png" / fmt::format("{}_{:04d}.png", scene.name, f)).string(), image);
+      if (png) {
+        const std::string rel = fmt::format("png/{}_{:04d}.png", scene.name, f);
+        writePng((out / rel).string(), image);
+        written.push_back(rel);
+      }
       if (onSheet) {
         sheet.push_back(image);
         sheetCaptions.push_back(fmt::format("t = {:.2f} s", snap.time));
@@ -145,9 +156,17 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   if (video) {
     video->finish();
     makeGif(videoPath.string(), gifPath.string(), std::min(opt.size, 480), std::min(scene.fps, 15.0));
+    written.push_back(scene.name + ".mp4");
+    written.push_back(scene.name + ".gif");
   }
-  if (formats.glb) writeGlb(out / (scene.name + ".glb"), animation);
-  if (formats.pc2) writePc2(out / (scene.name + ".pc2"), animation);
+  if (formats.glb) {
+    writeGlb(out / (scene.name + ".glb"), animation);
+    written.push_back(scene.name + ".glb");
+  }
+  if (formats.pc2) {
+    writePc2(out / (scene.name + ".pc2"), animation);
+    written.push_back(scene.name + ".pc2");
+  }
 
   nlohmann::json stats;
   stats["scene"] = scene.name;
@@ -177,16 +196,23 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   stats["muscles"] = mus;
   stats["per_frame"] = frameStats;
   writeFileAtomically((out / "stats.json").string(), stats.dump(2) + "\n");
+  written.push_back("stats.json");
   if (!sheet.empty()) {
     ContactSheetStyle style;
     style.columns = std::min<int>(3, static_cast<int>(sheet.size()));
     writePng((out / (scene.name + "_sheet.png")).string(), contactSheet(sheet, sheetCaptions, style));
+    written.push_back(scene.name + "_sheet.png");
   }
+  // A shorter rerun leaves no stale frames or exports: what the last run wrote and this one did
+  // not goes (and nothing else: the user's own files are in no manifest).
+  const std::vector<std::string> stale = removeStaleOutputs(out, previous, written);
+  writeOutputManifest(out, written);
 
   if (opt.json) {
     nlohmann::json summary = stats;
     summary.erase("per_frame");
     summary["out"] = out.string();
+    summary["removed_stale"] = stale;
     fmt::print("{}\n", summary.dump(2));
   } else {
     fmt::print("{}: {} frames, {} steps at {:.0f} steps/s (precompute {:.2f} s, {} cached bases)\n", scene.name,
@@ -196,6 +222,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     if (formats.pc2) fmt::print("wrote {}/{}.pc2\n", out.string(), scene.name);
     if (video) fmt::print("wrote {} and {}\n", videoPath.string(), gifPath.string());
     fmt::print("wrote {}/stats.json\n", out.string());
+    if (!stale.empty()) fmt::print("removed {} stale file(s) of the previous run in {}\n", stale.size(), out.string());
   }
   return kExitOk;
 }
