@@ -31,7 +31,7 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   sub->add_flag("--json", opt->json, "Print a JSON summary");
   return std::function<int()>([opt] {
     const int code = runScene(parseScene(detail::kDemoSceneJson, "<built-in scenes/demo.json>"), *opt);
-    if (!opt->json) {
+    if (!opt->json && code == kExitOk) {
       if (!opt->video) fmt::print(stderr, "myoshell: warning: no ffmpeg on PATH, so no demo.mp4 or demo.gif\n");
       fmt::print("open {}/demo.mp4 or {}/demo_sheet.png; {}/png/ holds the frames\n", opt->outDir, opt->outDir,
                  opt->outDir);

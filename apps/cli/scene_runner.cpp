@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "command.h"
+#include "interrupt.h"
 #include "myoshell/gl/gl_face_painter.h"
 #include "myoshell/render/video.h"
 #include "myoshell/render/contact_sheet.h"
@@ -73,6 +75,8 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   const std::vector<std::string> previous = readOutputManifest(out);
   std::vector<std::string> written;  // relative to out
   ScenePlayer player(scene, model);
+  const std::atomic<bool>& interrupted = installInterruptHandlers();
+  player.watch(&interrupted);
   const double dt = model->settings().dt;
   const int frames = player.frameCount();
   const auto& channels = model->channels();
@@ -108,8 +112,9 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   double stepSeconds = 0.0;
   long long steps = 0;
   Stopwatch wall;
+  int framesDone = 0;
   for (int f = 0; f < frames; ++f) {
-    player.advanceTo(f);
+    if (interrupted.load() || !player.advanceTo(f)) break;  // Ctrl-C: stop at the next step
     const FrameSnapshot& snap = player.snapshot(overlays.muscles);
     stepSeconds += snap.stepSeconds;
     steps += snap.steps;
@@ -145,6 +150,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     }
     fs_["channel_max_cm"] = perChannel;
     frameStats.push_back(fs_);
+    framesDone = f + 1;
     if (tty) {
       const double rate = steps / std::max(stepSeconds, 1e-12);
       const double eta = wall.seconds() / (f + 1) * (frames - f - 1);
@@ -153,6 +159,22 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     }
   }
   if (tty) fmt::print("\n");
+  if (framesDone < frames) {
+    // Interrupted: no video (ffmpeg killed and reaped, its temporary file gone), no GLB, PC2 or
+    // stats; the frames written stay and the manifest names them (and the previous run's files) so
+    // the next run here cleans up.
+    if (video) video->abort();
+    std::vector<std::string> listed = previous;
+    listed.insert(listed.end(), written.begin(), written.end());
+    std::sort(listed.begin(), listed.end());
+    listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+    writeOutputManifest(out, listed);
+    fmt::print(stderr,
+               "myoshell: interrupted ({}) at frame {} of {}: kept the {} frame file(s) written in {}; no stats.json, "
+               "GLB, PC2 or video\n",
+               interruptName(), framesDone, frames, written.size(), out.string());
+    return 128 + interruptSignal();
+  }
   if (video) {
     video->finish();
     makeGif(videoPath.string(), gifPath.string(), std::min(opt.size, 480), std::min(scene.fps, 15.0));

@@ -256,6 +256,10 @@ VideoWriter::~VideoWriter() {
   if (!done_) discard();
 }
 
+void VideoWriter::abort() noexcept {
+  if (!done_) discard();
+}
+
 void VideoWriter::discard() noexcept {
   if (stdinFd_ >= 0) ::close(stdinFd_);
   stdinFd_ = -1;

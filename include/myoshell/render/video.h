@@ -52,6 +52,10 @@ class VideoWriter {
   // rename failed (no file is left then), CheckError when no frame was added or when called twice.
   void finish();
 
+  // Stops without a video (an interrupted run): kills ffmpeg, waits for it (no zombie) and removes
+  // the temporary files. Never throws; the writer is then done.
+  void abort() noexcept;
+
   int frameCount() const { return frameCount_; }  // frames sent so far
   const std::string& path() const { return path_; }
 
