@@ -132,7 +132,7 @@ TEST_F(RenderCommand, BadOptionValuesExitTwoNamingOptionAndValueAndWriteNothing)
        "myoshell: error: --overlay 'wrinkles': unknown overlay (use muscles, roi, displacement, pins)"},
       {"--overlay roi,displacement",
        "myoshell: error: --overlay 'roi,displacement': both colour the skin; choose one"},
-      {"--view top", "myoshell: error: --view 'top': unknown view (use front, three-quarter or profile)"},
+      {"--view top", "myoshell: error: unknown view 'top' (use front, three-quarter, profile or back)"},
   };
   for (const auto& c : cases) {
     const auto r = test::runCli(render("out", c.args));
