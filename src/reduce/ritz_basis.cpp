@@ -1,0 +1,97 @@
+#include "myoshell/reduce/ritz_basis.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/reduce/rotation_operator.h"
+
+namespace myo {
+
+RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, const MatX3& rest,
+                                   const MatX3i& F, const RitzSettings& settings)
+    : K_(K), settings_(settings) {
+  const Eigen::Index n = rest.rows();
+  if (K.rows() != 3 * n || K.cols() != 3 * n || vertexMass.size() != n)
+    throw InputError("Ritz basis: K must be 3n×3n and the masses n (n = " + std::to_string(n) + ")");
+  if (settings.modes.modeCount < 0 || settings.modes.modeCount > 3 * n)
+    throw InputError("Ritz basis: mode count must lie in [0, 3n]");
+  if (!(vertexMass.minCoeff() > 0.0)) throw InputError("Ritz basis: every vertex mass must be > 0");
+  ldlt_.compute(K_);
+  if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0))
+    throw NumericalError("Ritz basis: K is not positive definite");
+  W_ = rotationOperator(rest, F);
+  mass3_.resize(3 * n);
+  for (Eigen::Index i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(vertexMass(i));
+  basis_.fullVertexCount = static_cast<int>(n);
+  basis_.freeVertices.resize(static_cast<size_t>(n));
+  std::iota(basis_.freeVertices.begin(), basis_.freeVertices.end(), 0);
+  basis_.freeMass = vertexMass;
+  basis_.solver = "ritz";
+  if (settings.modes.modeCount > 0) {
+    lowestModes(K_, mass3_, settings.modes, basis_.lambda, basis_.Phi, nullptr);
+    basis_.solver += "+modes";
+  } else {
+    basis_.Phi.resize(3 * n, 0);
+    basis_.lambda.resize(0);
+  }
+  basis_.Psi = W_ * basis_.Phi;
+}
+
+MatX3 RitzBasisBuilder::staticResponse(const MatX3& f) const {
+  VecX r = ldlt_.solve(flat(f));
+  MatX3 out = rows3(r);
+  return out;
+}
+
+bool RitzBasisBuilder::addLoad(const MatX3& f) {
+  if (f.rows() * 3 != K_.rows()) throw InputError("Ritz basis: the load must be n×3");
+  VecX r = ldlt_.solve(flat(f));
+  const double before = std::sqrt(r.dot(mass3_.cwiseProduct(r)));
+  if (!(before > 0.0)) {
+    ++deflated_;
+    return false;
+  }
+  const MatX& Phi = basis_.Phi;
+  for (int pass = 0; pass < 2; ++pass) r -= Phi * (Phi.transpose() * mass3_.cwiseProduct(r));
+  const double after = std::sqrt(r.dot(mass3_.cwiseProduct(r)));
+  if (!(after > settings_.deflationTolerance * before)) {
+    ++deflated_;
+    return false;
+  }
+  r /= after;
+  const Eigen::Index d = Phi.cols();
+  basis_.Phi.conservativeResize(Eigen::NoChange, d + 1);
+  basis_.Phi.col(d) = r;
+  basis_.Psi.conservativeResize(Eigen::NoChange, d + 1);
+  basis_.Psi.col(d) = W_ * r;
+  basis_.lambda.conservativeResize(d + 1);
+  basis_.lambda(d) = r.dot(K_ * r);
+  diagonal_ = false;
+  ++appended_;
+  return true;
+}
+
+void RitzBasisBuilder::diagonalize() {
+  if (diagonal_) return;
+  const MatX KPhi = K_ * basis_.Phi;
+  MatX Kr = basis_.Phi.transpose() * KPhi;
+  Kr = 0.5 * (Kr + Kr.transpose()).eval();
+  Eigen::SelfAdjointEigenSolver<MatX> eig(Kr);
+  if (eig.info() != Eigen::Success) throw NumericalError("Ritz basis: the reduced eigenproblem failed");
+  const MatX& Z = eig.eigenvectors();  // ascending eigenvalues
+  basis_.Phi = (basis_.Phi * Z).eval();
+  basis_.Psi = (basis_.Psi * Z).eval();
+  basis_.lambda = eig.eigenvalues();
+  diagonal_ = true;
+}
+
+bool RitzBasisBuilder::addLoadAndDiagonalize(const MatX3& f) {
+  const bool added = addLoad(f);
+  diagonalize();
+  return added;
+}
+
+}  // namespace myo
