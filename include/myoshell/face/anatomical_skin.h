@@ -1,0 +1,152 @@
+// The anatomical face's one skin system (docs/anatomical_model.md; METHOD.md §9): the skin shell
+// held by the skull (tissue_attachment.h), coupled to feed-forward muscles at their closest skin
+// points (muscle_coupling.h), loaded by gravity relative to the rest pose and by drags, all on one
+// basis of load-dependent Ritz vectors (ritz_basis.h), warped (modal_warping.h).
+//
+//   K̂ = K_shell + K_att + Σ_m K_c,m   (3n×3n, dyn/cm, positive definite: no pins)
+//   M = diag(ρ h_i A_i) ⊗ I₃           (the skin and the soft tissue it carries, g)
+//   loads (n×3, dyn, world = head space): a_m F_m (muscle m at activation a_m ∈ [0, 1]),
+//   gravity relative to the rest pose (GravityReading), drags.
+//
+// Precompute once (constructor); settle() solves the reduced static equilibrium directly;
+// AnatomicalStepper steps it in time with the per-mode exact stepper.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/core/types.h"
+#include "myoshell/face/head.h"
+#include "myoshell/face/muscle_coupling.h"
+#include "myoshell/face/tissue_attachment.h"
+#include "myoshell/reduce/modal_warping.h"
+#include "myoshell/reduce/ritz_basis.h"
+#include "myoshell/shell/discrete_shell.h"
+
+namespace myo {
+
+// How gravity loads the warped skin, relative to the rest pose (METHOD.md §9). The rest mesh is in
+// equilibrium under M g_rest (upright); both readings give zero load upright.
+enum class GravityReading {
+  RotatedPrestress,  // (a): Φᵀ Rᵀ M g(t) − Φᵀ M g_rest (the rest pre-stress turns with the tissue)
+  ChangeOnly,        // (b): Φᵀ Rᵀ M (g(t) − g_rest) (only the change of gravity is a load)
+};
+
+struct AnatomicalSettings {
+  // Skin (dermis) as a membrane + bending shell from a Young's modulus and thickness (ν = 0.5):
+  // k_A = E h/6, k_L = 0.385 E h ℓ̄ (ℓ̄ the mean edge length), k_B = E h³/(12(1 − ν²))
+  // (docs/anatomical_model.md derives the factors for an equilateral mesh).
+  double skinYoungModulus = 1.0e6;  // dyn/cm² (0.1 MPa)
+  double skinThickness = 0.15;      // cm
+  AttachmentSettings attachment;
+  std::vector<AttachmentOverride> attachmentOverrides;
+  MuscleCouplingSettings coupling;
+  int skinModes = 30;               // d lowest modes in the Ritz basis
+  double gravity = 981.0;           // cm/s²; the rest pose is upright: g_rest = −gravity·ŷ (head space)
+  GravityReading gravityReading = GravityReading::ChangeOnly;
+  bool warping = true;
+  double dampingMass = 8.0;         // ξ, 1/s (Rayleigh)
+  double dampingStiffness = 2e-4;   // ζ, s
+  double dt = 1.0 / 240.0;          // s
+  void validate() const;            // InputError naming the field
+};
+
+// The skin material AnatomicalSettings describes, for a mesh of mean edge length ℓ̄ (cm).
+ShellMaterial anatomicalSkinMaterial(const AnatomicalSettings& s, double meanEdgeLength);
+
+// Gravity in the head's space (cm/s²) for a head pose [pitch, yaw, roll] in degrees about the face
+// frame's x, y, z (applied in that order): g = −|g|·R(pose)ᵀ ŷ_world with the world's up = the head's
+// +y at rest. Face-down is +90° pitch (gravity along the face frame's +z, out of the face).
+Vec3 gravityForPose(const FaceFrame& frame, const Vec3& pitchYawRollDeg, double gravity);
+
+// Loads of the one skin system: activations (one per muscle, [0, 1]) and gravity (head space).
+struct SkinLoads {
+  VecX activations;                 // m
+  Vec3 gravity = Vec3::Zero();      // g(t), cm/s² (head space); the rest value is g_rest
+  std::vector<Vec3> drags;          // one force per registered drag (dyn, spread over its vertices)
+};
+
+struct SettledSkin {
+  MatX3 u;              // n×3 displacement, cm
+  VecX q;               // d modal amplitudes
+  int iterations = 0;   // Newton iterations (0 for linear)
+  double residual = 0;  // |r(q)| / |force scale|
+  bool converged = true;
+};
+
+class AnatomicalSkin {
+ public:
+  // Throws InputError (bad settings, muscles, landmarks), NumericalError (solves).
+  AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& muscles, const AnatomicalSettings& settings = {});
+
+  const Head& head() const { return head_; }
+  const AnatomicalSettings& settings() const { return settings_; }
+  const DiscreteShell& shell() const { return *shell_; }
+  const TissueMap& tissue() const { return tissue_; }
+  const std::vector<CoupledMuscle>& muscles() const { return muscles_; }
+  int muscleIndex(const std::string& name) const;  // InputError naming the unknown muscle
+  // K_att + Σ K_c (3n×3n, dyn/cm): the quadratic terms the full-space reference adds to the shell.
+  const SparseMat& extraStiffness() const { return Kextra_; }
+  const SparseMat& stiffness() const { return builder_->stiffness(); }  // K̂
+  const VecX& vertexMass() const { return mass_; }                     // n, g
+  std::shared_ptr<const ModalBasis> basis() const { return basis_; }
+  const Vec3& restGravity() const { return gRest_; }
+  const MatX3& muscleLoad(int m) const { return muscleLoads_[static_cast<size_t>(m)]; }  // a = 1, dyn
+
+  // Registers a drag: a force spread equally over the vertices within radius (cm) of `vertex`; adds
+  // its unit patterns' static responses (x, y, z) to the basis from the kept factorisation and
+  // re-diagonalises. Returns the drag index; `seconds` receives the wall time (the grab latency).
+  int addDrag(int vertex, double radius, double* seconds = nullptr);
+  int dragCount() const { return static_cast<int>(drags_.size()); }
+
+  // The world load (n×3, dyn) the loads put on the skin: Σ a_m F_m + M(g − g_rest) + drags.
+  // activations must lie in [0, 1] (InputError naming the anatomical model otherwise).
+  MatX3 worldLoad(const SkinLoads& loads) const;
+  // The reduced static equilibrium: linear (q = Λ⁻¹(ΦᵀF + c)) or warped (Newton on q,
+  // Λq = Φᵀ R(Ψq)ᵀ F + c, from the linear solution), c the rest-gravity term of reading (a).
+  SettledSkin settle(const SkinLoads& loads, bool warped) const;
+  // The full-space linear response K̂⁻¹F (n×3, cm) of the world load (reading (b)).
+  MatX3 linearFullResponse(const SkinLoads& loads) const;
+
+ private:
+  friend class AnatomicalStepper;
+  void validateLoads(const SkinLoads& loads) const;
+  Head head_;
+  AnatomicalSettings settings_;
+  std::unique_ptr<DiscreteShell> shell_;
+  TissueMap tissue_;
+  std::vector<CoupledMuscle> muscles_;
+  std::vector<MatX3> muscleLoads_;
+  struct Drag {
+    std::vector<int> vertices;
+  };
+  std::vector<Drag> drags_;
+  SparseMat Kextra_;
+  VecX mass_;
+  Vec3 gRest_ = Vec3::Zero();
+  std::unique_ptr<RitzBasisBuilder> builder_;
+  std::shared_ptr<const ModalBasis> basis_;
+};
+
+// Time stepping of one AnatomicalSkin: each muscle's activation level follows its target with a
+// critically damped second-order response at the muscle's natural frequency (its one mode), the
+// skin with the per-mode exact stepper of modal_warping. Gravity reading (b). step() allocates
+// nothing.
+class AnatomicalStepper {
+ public:
+  explicit AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin);
+  // Advances one dt under the loads (activation targets, gravity, drag forces).
+  void step(const SkinLoads& loads);
+  const MatX3& displacement() const { return integrator_.freeDisplacement(); }  // n×3, cm
+  const VecX& muscleLevels() const { return level_; }
+  bool isAtRest(double tol) const;
+
+ private:
+  std::shared_ptr<const AnatomicalSkin> skin_;
+  ModalWarpingIntegrator integrator_;
+  VecX level_, levelRate_;
+  MatX3 force_;
+};
+
+}  // namespace myo

@@ -1,0 +1,83 @@
+// Muscles that pull where they insert (docs/anatomical_model.md; METHOD.md §9 "coupling at a
+// surface point"). Each muscle node m is tied to the closest point s = Σ_j b_j x_j of the skin
+// surface (barycentric in its rest triangle) by a zero-length linear spring on the relative
+// displacement:
+//   E_c = ½ k_c ‖u_m − Σ_j b_j u_j‖²
+// The muscle is fed forward (u_m known), so on the skin side K_c = k_c b bᵀ ⊗ I₃ joins the skin's
+// stiffness and the load is f_j = k_c b_j u_m. The muscle moves in one shape, its static response
+// to the activation load, u_m = a·U_m (a ∈ [0, 1]): the skin load is linear in a.
+//
+// Stiffness: k_c = G(t)·A_node/depth (dyn/cm) with A_node the muscle's surface area per node (cm²),
+// depth the node's distance to the skin (cm) and G(t) (dyn/cm²) a profile along the muscle,
+// t = 0 at the origin, 1 at the insertion: none at the origin, weak along the belly (loose areolar
+// tissue), strong at the insertion (fibres into the dermis). A head twice as large keeps G and the
+// strain, so its muscles move twice as far.
+//
+// Strength: one head-independent rule: at a = 1 the muscle shortens by `shortening` × its rest
+// length (the insertion ring's mean motion along the muscle), whatever the muscle and head.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "myoshell/core/types.h"
+#include "myoshell/face/head.h"
+#include "myoshell/face/muscle.h"
+#include "myoshell/shell/shell_material.h"
+
+namespace myo {
+
+struct CouplingProfile {
+  double insertionModulus = 3.0e5;  // G at the insertion, dyn/cm² (30 kPa: muscle/dense tissue)
+  double bellyModulus = 1.0e4;      // G along the belly, dyn/cm² (1 kPa: subcutaneous fat)
+  double originEnd = 0.15;          // t below which there is no coupling (the origin)
+  double bellyStart = 0.30;         // G ramps 0 → belly over [originEnd, bellyStart]
+  double insertionStart = 0.70;     // G ramps belly → insertion over [insertionStart, 1]
+  // G at position t ∈ [0, 1] along the muscle (smooth ramps), dyn/cm².
+  double modulus(double t) const;
+  void validate() const;            // InputError naming the field
+};
+
+struct MuscleCouplingSettings {
+  CouplingProfile profile;
+  // Shortening at a = 1 as a fraction of the rest length: zygomaticus major in a joyful expression
+  // shortens to 85.6 % of its rest length (MRI, Rams et al. 2024, Aesthetic Plast Surg 48:2722).
+  double shortening = 0.144;
+  ShellMaterial muscle = [] {  // as the thesis face's muscles (docs/face_model.md)
+    ShellMaterial m;
+    m.kA = 1.0e3;
+    m.kL = 1.0e2;
+    m.kB = 1.0e5;
+    m.density = 1.06;
+    m.thickness = 0.2;
+    return m;
+  }();
+};
+
+// One muscle, fed forward: its shape at a = 1 and its springs to the skin.
+struct CoupledMuscle {
+  Muscle muscle;
+  MatX3 fullShape;       // U_m: the muscle's displacement at a = 1 (nodes×3, cm), origin rows 0
+  double naturalFrequency = 0.0;  // ω = √(φᵀKφ/φᵀMφ) of that shape (rad/s), for its dynamics
+  struct Spring {
+    int node = -1;               // muscle node
+    Eigen::Vector3i skin = Eigen::Vector3i::Constant(-1);  // the skin triangle's vertices
+    Vec3 barycentric = Vec3::Zero();
+    double t = 0.0;              // position along the muscle (0 origin, 1 insertion)
+    double depth = 0.0;          // distance to the skin at rest, cm
+    double stiffness = 0.0;      // k_c, dyn/cm (> 0)
+  };
+  std::vector<Spring> springs;   // nodes with k_c > 0 only
+};
+
+// Builds the muscle (buildMuscle), its static shape at a = 1 scaled to the shortening rule, and its
+// skin springs. Throws InputError naming the muscle for bad settings, NumericalError if the pinned
+// muscle is singular.
+CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings = {});
+
+// Σ over springs of K_c = k_c b bᵀ ⊗ I₃ into a 3n×3n triplet list (dyn/cm).
+void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets);
+// The skin load at a = 1 (n×3, dyn): f_j = Σ_springs k_c b_j U_m(node).
+MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount);
+
+}  // namespace myo

@@ -1,0 +1,270 @@
+#include "myoshell/face/anatomical_skin.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/mesh/edge_table.h"
+#include "myoshell/reduce/rotation_operator.h"
+
+namespace myo {
+
+namespace {
+
+Mat3 skew(const Vec3& v) {
+  Mat3 S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+double meanEdgeLength(const MatX3& V, const MatX3i& F) {
+  double sum = 0.0;
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) sum += (V.row(F(t, k)) - V.row(F(t, (k + 1) % 3))).norm();
+  return sum / (3.0 * static_cast<double>(F.rows()));
+}
+
+}  // namespace
+
+void AnatomicalSettings::validate() const {
+  auto bad = [](const std::string& what) { throw InputError("anatomical model: " + what); };
+  if (!(skinYoungModulus > 0) || !std::isfinite(skinYoungModulus)) bad("skin Young's modulus must be > 0 dyn/cm²");
+  if (!(skinThickness > 0) || !std::isfinite(skinThickness)) bad("skin thickness must be > 0 cm");
+  if (skinModes < 0) bad("skin modes must be ≥ 0");
+  if (!std::isfinite(gravity)) bad("gravity is not finite");
+  if (!(dt > 0) || !std::isfinite(dt)) bad("dt must be > 0");
+  if (!(dampingMass >= 0) || !(dampingStiffness >= 0)) bad("damping must be ≥ 0");
+}
+
+ShellMaterial anatomicalSkinMaterial(const AnatomicalSettings& s, double meanEdge) {
+  const double Eh = s.skinYoungModulus * s.skinThickness;
+  ShellMaterial m;
+  m.kA = Eh / 6.0;
+  m.kL = 0.385 * Eh * meanEdge;
+  m.kB = s.skinYoungModulus * std::pow(s.skinThickness, 3) / (12.0 * (1.0 - 0.25));
+  m.density = s.attachment.tissueDensity;
+  m.thickness = s.skinThickness;
+  return m;
+}
+
+Vec3 gravityForPose(const FaceFrame& frame, const Vec3& pyr, double gravity) {
+  const double d = M_PI / 180.0;
+  // Rotation of the head in face-frame coordinates, x then y then z: R = R_z R_y R_x.
+  const Mat3 Rf = (Eigen::AngleAxisd(pyr.z() * d, Vec3::UnitZ()) * Eigen::AngleAxisd(pyr.y() * d, Vec3::UnitY()) *
+                   Eigen::AngleAxisd(pyr.x() * d, Vec3::UnitX()))
+                      .toRotationMatrix();
+  const Mat3 R = frame.axes * Rf * frame.axes.transpose();  // in head space
+  return -gravity * (R.transpose() * Vec3::UnitY());
+}
+
+AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& defs, const AnatomicalSettings& settings)
+    : head_(head), settings_(settings) {
+  settings_.validate();
+  const MatX3& V = head_.mesh.V;
+  const MatX3i& F = head_.mesh.F;
+  const int n = head_.mesh.vertexCount();
+  shell_ = std::make_unique<DiscreteShell>(V, F, buildEdgeTable(F, n),
+                                           anatomicalSkinMaterial(settings_, meanEdgeLength(V, F)));
+  tissue_ = tissueMap(head_, settings_.attachment);
+  applyAttachmentOverrides(tissue_, settings_.attachmentOverrides);
+  mass_ = tissue_.vertexMass();
+  for (int i = 0; i < n; ++i)  // a vertex in no triangle carries nothing: give it a tiny mass
+    if (!(mass_(i) > 0)) mass_(i) = 1e-12;
+
+  std::vector<Triplet> trip;
+  for (const MuscleDef& def : defs) {
+    for (const CoupledMuscle& m : muscles_)
+      if (m.muscle.def.name == def.name) throw InputError("anatomical model: muscle '" + def.name + "' is defined twice");
+    muscles_.push_back(coupleMuscle(def, head_, settings_.coupling));
+    addCouplingStiffness(muscles_.back(), trip);
+    muscleLoads_.push_back(couplingLoad(muscles_.back(), n));
+  }
+  SparseMat Kc(3 * n, 3 * n);
+  Kc.setFromTriplets(trip.begin(), trip.end());
+  Kextra_ = tissue_.stiffness() + Kc;
+  for (int i = 0; i < n; ++i)  // isolated vertices: hold them so K̂ stays positive definite
+    if (!(tissue_.area(i) > 0))
+      for (int c = 0; c < 3; ++c) Kextra_.coeffRef(3 * i + c, 3 * i + c) += 1.0;
+  const SparseMat Khat = shell_->stiffnessAtRest() + Kextra_;
+  gRest_ = Vec3(0.0, -settings_.gravity, 0.0);
+
+  RitzSettings rs;
+  rs.modes.modeCount = std::min(settings_.skinModes, 3 * n);
+  builder_ = std::make_unique<RitzBasisBuilder>(Khat, mass_, V, F, rs);
+  for (const MatX3& f : muscleLoads_) builder_->addLoad(f);
+  for (int a = 0; a < 3; ++a) {  // gravity along x, y, z: M·ê_a
+    MatX3 g = MatX3::Zero(n, 3);
+    g.col(a) = mass_;
+    builder_->addLoad(g);
+  }
+  builder_->diagonalize();
+  basis_ = std::make_shared<const ModalBasis>(builder_->basis());
+}
+
+int AnatomicalSkin::muscleIndex(const std::string& name) const {
+  for (size_t m = 0; m < muscles_.size(); ++m)
+    if (muscles_[m].muscle.def.name == name) return static_cast<int>(m);
+  throw InputError("anatomical model: unknown muscle '" + name + "'");
+}
+
+int AnatomicalSkin::addDrag(int vertex, double radius, double* seconds) {
+  Stopwatch clock;
+  const MatX3& V = head_.mesh.V;
+  const int n = head_.mesh.vertexCount();
+  if (vertex < 0 || vertex >= n)
+    throw InputError("drag: vertex " + std::to_string(vertex) + " is outside [0, " + std::to_string(n) + ")");
+  Drag d;
+  for (int v = 0; v < n; ++v)
+    if ((V.row(v) - V.row(vertex)).norm() <= radius) d.vertices.push_back(v);
+  for (int a = 0; a < 3; ++a) {
+    MatX3 f = MatX3::Zero(n, 3);
+    for (int v : d.vertices) f(v, a) = 1.0 / static_cast<double>(d.vertices.size());
+    builder_->addLoad(f);
+  }
+  builder_->diagonalize();
+  basis_ = std::make_shared<const ModalBasis>(builder_->basis());
+  drags_.push_back(std::move(d));
+  if (seconds) *seconds = clock.seconds();
+  return static_cast<int>(drags_.size()) - 1;
+}
+
+void AnatomicalSkin::validateLoads(const SkinLoads& loads) const {
+  if (loads.activations.size() != static_cast<Eigen::Index>(muscles_.size()))
+    throw InputError("anatomical model: " + std::to_string(loads.activations.size()) + " activations for " +
+                     std::to_string(muscles_.size()) + " muscles");
+  for (size_t m = 0; m < muscles_.size(); ++m) {
+    const double a = loads.activations(static_cast<Eigen::Index>(m));
+    if (!(a >= 0.0 && a <= 1.0))
+      throw InputError("muscle '" + muscles_[m].muscle.def.name + "': activation " + std::to_string(a) +
+                       " is outside [0, 1] (model: anatomical; relaxing (a < 0) is model: thesis only)");
+  }
+  if (loads.drags.size() > drags_.size()) throw InputError("anatomical model: more drag forces than drags");
+}
+
+MatX3 AnatomicalSkin::worldLoad(const SkinLoads& loads) const {
+  validateLoads(loads);
+  const int n = head_.mesh.vertexCount();
+  MatX3 f = MatX3::Zero(n, 3);
+  for (size_t m = 0; m < muscles_.size(); ++m) {
+    const double a = loads.activations(static_cast<Eigen::Index>(m));
+    if (a != 0.0) f += a * muscleLoads_[m];
+  }
+  const Vec3 dg = loads.gravity - gRest_;
+  if (dg.squaredNorm() > 0)
+    for (int i = 0; i < n; ++i) f.row(i) += mass_(i) * dg.transpose();
+  for (size_t k = 0; k < loads.drags.size(); ++k) {
+    const auto& vs = drags_[k].vertices;
+    for (int v : vs) f.row(v) += loads.drags[k].transpose() / static_cast<double>(vs.size());
+  }
+  return f;
+}
+
+MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const {
+  return builder_->staticResponse(worldLoad(loads));
+}
+
+SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
+  const ModalBasis& B = *basis_;
+  const int n = B.fullVertexCount;
+  const Eigen::Index d = B.modeCount();
+  MatX3 F = worldLoad(loads);
+  VecX c = VecX::Zero(d);
+  if (settings_.gravityReading == GravityReading::RotatedPrestress) {
+    // (a): the world force holds M g(t); the rest pre-stress −Φᵀ M g_rest is a constant modal term.
+    MatX3 gr(n, 3);
+    for (int i = 0; i < n; ++i) gr.row(i) = mass_(i) * gRest_.transpose();
+    F += gr;
+    c = -(B.Phi.transpose() * flat(gr));
+  }
+  SettledSkin out;
+  const VecX f0 = B.Phi.transpose() * flat(F) + c;
+  out.q = (f0.array() / B.lambda.array()).matrix();
+  const double scale = std::max(f0.norm(), 1e-300);
+  if (warped) {
+    auto residual = [&](const VecX& q, MatX* J) {
+      VecX r = (B.lambda.array() * q.array()).matrix() - c;
+      if (J) *J = B.lambda.asDiagonal();
+      for (int i = 0; i < n; ++i) {
+        const Vec3 Fi = F.row(i);
+        if (Fi.squaredNorm() == 0.0) continue;
+        const auto Phi_i = B.Phi.middleRows(3 * i, 3);
+        const auto Psi_i = B.Psi.middleRows(3 * i, 3);
+        const Vec3 w = Psi_i * q;
+        const Mat3 R = rotationFromVector(w);
+        r.noalias() -= Phi_i.transpose() * (R.transpose() * Fi);
+        if (J) J->noalias() -= Phi_i.transpose() * ((R.transpose() * skew(Fi) * warpMatrix(w)) * Psi_i);
+      }
+      return r;
+    };
+    MatX J;
+    VecX r = residual(out.q, &J);
+    for (int it = 0; it < 50 && r.norm() > 1e-12 * scale; ++it) {
+      const VecX step = J.partialPivLu().solve(-r);
+      double alpha = 1.0;
+      VecX qt, rt;
+      for (int ls = 0; ls < 30; ++ls, alpha *= 0.5) {
+        qt = out.q + alpha * step;
+        rt = residual(qt, nullptr);
+        if (rt.norm() < (1.0 - 1e-4 * alpha) * r.norm()) break;
+      }
+      out.q = qt;
+      r = residual(out.q, &J);
+      out.iterations = it + 1;
+    }
+    out.residual = r.norm() / scale;
+    out.converged = out.residual <= 1e-8;
+    out.u = warpedDisplacement(B, out.q);
+  } else {
+    out.u = linearDisplacement(B, out.q);
+  }
+  return out;
+}
+
+AnatomicalStepper::AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin)
+    : skin_(std::move(skin)),
+      integrator_(skin_->basis(), [&] {
+        ModalWarpingSettings s;
+        s.dt = skin_->settings().dt;
+        s.stepper = ModalStepper::Exact;
+        s.warping = skin_->settings().warping;
+        s.rayleighMass = skin_->settings().dampingMass;
+        s.rayleighStiffness = skin_->settings().dampingStiffness;
+        s.precision = ModalPrecision::Double;
+        s.channel = "anatomical skin";
+        return s;
+      }()) {
+  const Eigen::Index m = static_cast<Eigen::Index>(skin_->muscles().size());
+  level_ = VecX::Zero(m);
+  levelRate_ = VecX::Zero(m);
+  force_ = MatX3::Zero(skin_->basis()->fullVertexCount, 3);
+}
+
+void AnatomicalStepper::step(const SkinLoads& loads) {
+  skin_->validateLoads(loads);
+  const double h = skin_->settings().dt;
+  // Muscles: critically damped follow of the target at ω (implicit Euler: stable for any ω).
+  for (Eigen::Index m = 0; m < level_.size(); ++m) {
+    const double w = skin_->muscles()[static_cast<size_t>(m)].naturalFrequency;
+    const double a = loads.activations(m);
+    levelRate_(m) = (levelRate_(m) + h * w * w * (a - level_(m))) / (1.0 + 2.0 * h * w + h * h * w * w);
+    level_(m) += h * levelRate_(m);
+  }
+  // Reading (b): Σ level_m F_m + M(g − g_rest) + drags, built in place.
+  const Vec3 dg = loads.gravity - skin_->gRest_;
+  const VecX& mass = skin_->mass_;
+  for (Eigen::Index i = 0; i < force_.rows(); ++i) force_.row(i) = mass(i) * dg.transpose();
+  for (Eigen::Index m = 0; m < level_.size(); ++m)
+    if (level_(m) != 0.0) force_.noalias() += level_(m) * skin_->muscleLoads_[static_cast<size_t>(m)];
+  for (size_t k = 0; k < loads.drags.size(); ++k) {
+    const auto& vs = skin_->drags_[k].vertices;
+    for (int v : vs) force_.row(v) += loads.drags[k].transpose() / static_cast<double>(vs.size());
+  }
+  integrator_.step(force_);
+}
+
+bool AnatomicalStepper::isAtRest(double tol) const {
+  return integrator_.isAtRest(tol) && (levelRate_.size() == 0 || levelRate_.cwiseAbs().maxCoeff() < tol);
+}
+
+}  // namespace myo

@@ -1,0 +1,128 @@
+#include "myoshell/face/muscle_coupling.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/edge_table.h"
+#include "myoshell/mesh/geometry.h"
+#include "myoshell/reduce/modal_analysis.h"
+#include "myoshell/shell/discrete_shell.h"
+
+namespace myo {
+
+namespace {
+double smooth(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+}  // namespace
+
+double CouplingProfile::modulus(double t) const {
+  if (t <= originEnd) return 0.0;
+  if (t < bellyStart) return bellyModulus * smooth((t - originEnd) / (bellyStart - originEnd));
+  return bellyModulus + (insertionModulus - bellyModulus) * smooth((t - insertionStart) / (1.0 - insertionStart));
+}
+
+void CouplingProfile::validate() const {
+  auto bad = [](const std::string& what) { throw InputError("muscle coupling: " + what); };
+  if (!(insertionModulus > 0) || !std::isfinite(insertionModulus)) bad("insertion modulus must be > 0 dyn/cm²");
+  if (!(bellyModulus >= 0) || !std::isfinite(bellyModulus)) bad("belly modulus must be ≥ 0 dyn/cm²");
+  if (!(originEnd >= 0 && originEnd < bellyStart && bellyStart <= insertionStart && insertionStart < 1.0))
+    bad("profile positions must satisfy 0 ≤ origin_end < belly_start ≤ insertion_start < 1");
+}
+
+CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings) {
+  settings.profile.validate();
+  settings.muscle.validate();
+  if (!(settings.shortening > 0.0 && settings.shortening < 1.0))
+    throw InputError("muscle '" + def.name + "': shortening must lie in (0, 1)");
+  CoupledMuscle cm;
+  cm.muscle = buildMuscle(def, head);
+  const Muscle& mu = cm.muscle;
+  const TriMesh& mm = mu.mesh;
+  const int nm = mm.vertexCount();
+  const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), settings.muscle);
+
+  // The static response of the pinned muscle to its activation load (unit forces along the
+  // contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's static-shape variant).
+  const std::vector<int> freeV = freeVerticesOf(nm, mu.originNodes, mm.F);
+  std::vector<int> toFree(static_cast<size_t>(nm), -1);
+  for (size_t k = 0; k < freeV.size(); ++k) toFree[static_cast<size_t>(freeV[k])] = static_cast<int>(k);
+  const SparseMat Kff = restrictToFree(shell.stiffnessAtRest(), freeV, nm);
+  VecX P = VecX::Zero(Kff.rows());
+  for (size_t c = 0; c < mu.centralNodes.size(); ++c) {
+    const int r = toFree[static_cast<size_t>(mu.centralNodes[c])];
+    if (r >= 0) P.segment<3>(3 * r) += mu.contractDirection.row(static_cast<Eigen::Index>(c)).transpose();
+  }
+  Eigen::SimplicialLDLT<SparseMat> ldlt(Kff);
+  if (ldlt.info() != Eigen::Success) throw NumericalError("muscle '" + def.name + "': stiffness is singular");
+  const VecX x = ldlt.solve(P);
+  // Scale: the insertion ring's mean motion along the muscle is shortening × length.
+  const Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
+  double along = 0.0;
+  for (int v : mu.insertionNodes) {
+    const int r = toFree[static_cast<size_t>(v)];
+    if (r >= 0) along += x.segment<3>(3 * r).dot(axis);
+  }
+  along /= static_cast<double>(mu.insertionNodes.size());
+  if (!(along > 0.0))
+    throw NumericalError("muscle '" + def.name + "': its activation load does not move the insertion towards the origin");
+  const double scale = settings.shortening * mu.restLength / along;
+  cm.fullShape = MatX3::Zero(nm, 3);
+  for (int v = 0; v < nm; ++v) {
+    const int r = toFree[static_cast<size_t>(v)];
+    if (r >= 0) cm.fullShape.row(v) = scale * x.segment<3>(3 * r).transpose();
+  }
+  {
+    const VecX& mass = shell.lumpedMass();
+    double mm2 = 0.0;
+    for (size_t k = 0; k < freeV.size(); ++k) mm2 += mass(freeV[k]) * x.segment<3>(3 * static_cast<Eigen::Index>(k)).squaredNorm();
+    cm.naturalFrequency = std::sqrt(x.dot(Kff * x) / mm2);
+  }
+
+  // Springs to the closest skin points.
+  const MatX3& S = head.mesh.V;
+  const MatX3i& F = head.mesh.F;
+  const MatX3 normals = vertexNormals(S, F);
+  const double areaPerNode = surfaceArea(mm.V, mm.F) / nm;
+  const double L = mu.restLength;
+  for (int v = 0; v < nm; ++v) {
+    const Vec3 p = mm.V.row(v);
+    const double t = std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
+    const double G = settings.profile.modulus(t);
+    if (G <= 0.0) continue;
+    const SurfacePoint sp = closestSurfacePoint(S, F, normals, p);
+    if (!(sp.distance > 1e-9 * L))
+      throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
+    CoupledMuscle::Spring s;
+    s.node = v;
+    s.skin = F.row(sp.triangle).transpose();
+    s.barycentric = sp.barycentric;
+    s.t = t;
+    s.depth = sp.distance;
+    s.stiffness = G * areaPerNode / sp.distance;
+    cm.springs.push_back(s);
+  }
+  return cm;
+}
+
+void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets) {
+  for (const auto& s : m.springs)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const double k = s.stiffness * s.barycentric(a) * s.barycentric(b);
+        for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin(a) + c, 3 * s.skin(b) + c, k);
+      }
+}
+
+MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount) {
+  MatX3 f = MatX3::Zero(skinVertexCount, 3);
+  for (const auto& s : m.springs)
+    for (int a = 0; a < 3; ++a) f.row(s.skin(a)) += s.stiffness * s.barycentric(a) * m.fullShape.row(s.node);
+  return f;
+}
+
+}  // namespace myo
