@@ -65,7 +65,7 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
   const Vec3 menton = at("chin_menton");                                           // y −1.25
   const double browY = 0.25 * (at("right_brow_inner").y() + at("left_brow_inner").y() +
                                at("right_brow_outer").y() + at("left_brow_outer").y());  // 0.22
-  const double lipTopY = at("upper_lip_top").y(), lipBottomY = at("lower_lip_bottom").y();
+  const double lipTopY = at("upper_lip_top").y();
 
   const int n = static_cast<int>(V.rows());
   TissueMap map;
@@ -119,7 +119,6 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
     map.thickness(i) = h;
     map.attachment(i) = (1.0 - w) * s.fatShearModulus / h + w * s.heldStiffness;
   }
-  (void)lipBottomY;
   return map;
 }
 
