@@ -29,7 +29,7 @@
 #include "myoshell/face/head.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
-#include "myoshell/reduce/reference_solver.h"
+#include "myoshell/verify/reference_solver.h"
 
 namespace myo::cli {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "command.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/reduce/validation.h"
+#include "myoshell/verify/validation.h"
 
 namespace myo::cli {
 

@@ -15,7 +15,8 @@
 #include <fstream>
 #include <unistd.h>
 #include "myoshell/reduce/modal_warping.h"
-#include "myoshell/reduce/reference_solver.h"
+#include "myoshell/verify/modal_statics.h"
+#include "myoshell/verify/reference_solver.h"
 #include "support/free_vertex.h"
 
 #include <sstream>

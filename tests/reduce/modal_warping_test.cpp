@@ -9,6 +9,7 @@
 #include "myoshell/mesh/primitives.h"
 #include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/reduce/modal_warping.h"
+#include "myoshell/verify/modal_statics.h"
 #include "myoshell/shell/discrete_shell.h"
 
 namespace myo {

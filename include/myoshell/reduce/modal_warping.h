@@ -20,7 +20,7 @@
 namespace myo {
 
 // ---------------------------------------------------------------------------------------------
-// Displacement maps and static solves (used by the reference comparisons of `myoshell validate`).
+// Displacement maps (the static modal solves built on them are in verify/modal_statics.h).
 
 // Linear modal displacement u = Φq, free f×3 (cm). q: d (cm·g^1/2).
 MatX3 linearDisplacement(const ModalBasis& basis, const VecX& q);
@@ -29,31 +29,6 @@ MatX3 warpedDisplacement(const ModalBasis& basis, const VecX& q);
 // Projected modal force Φᵀ R(Ψq)ᵀ F (d, dyn·g^-1/2) of a free force F (f×3, dyn); with
 // warped = false it is ΦᵀF.
 VecX modalForce(const ModalBasis& basis, const VecX& q, const MatX3& freeForce, bool warped = true);
-
-struct StaticSolveSettings {
-  int maxIterations = 100;   // Newton iterations in total (over all load steps)
-  int loadSteps = 1;         // continuation: the load is applied in this many equal increments
-  double tolerance = 1e-12;  // stop when |Λq − Φᵀ R(Ψq)ᵀ F| ≤ tolerance·|ΦᵀF|
-};
-
-struct StaticSolveResult {
-  VecX q;                    // d modal amplitudes at equilibrium
-  MatX3 u;                   // free displacement f×3 (cm): warped or linear
-  int iterations = 0;        // Newton iterations used (0 for the linear solve)
-  double residual = 0.0;     // final |Λq − Φᵀ R(Ψq)ᵀ F| / |ΦᵀF| (0 when F = 0)
-  bool converged = true;
-};
-
-// Linear static response q = Λ⁻¹ΦᵀF, u = Φq (the baseline of METHOD.md §5.1). F: free f×3 (dyn).
-// Needs a constrained basis: throws NumericalError if some λ_j ≤ 1e-9·λ_max (rigid modes).
-StaticSolveResult solveStaticLinear(const ModalBasis& basis, const MatX3& freeForce);
-
-// Static modal-warping equilibrium Λq = Φᵀ R(Ψq)ᵀ F (METHOD.md §5.3), by Newton's method with
-// the exact Jacobian Λ − Σ_i Φ_iᵀ R_iᵀ [F_i]× R̃(w_i) Ψ_i, a backtracking line search on the
-// residual, and optional load continuation; then u = R̃(Ψq)Φq. Returns converged = false (never
-// throws for non-convergence) with the last iterate. Same rigid-mode precondition as the linear solve.
-StaticSolveResult solveStaticWarped(const ModalBasis& basis, const MatX3& freeForce,
-                                    const StaticSolveSettings& settings = {});
 
 // ---------------------------------------------------------------------------------------------
 // The time integrator.

@@ -1,7 +1,7 @@
 // Accuracy cases: the reduced solutions (modal warping, linear modal) against the full-space
 // nonlinear reference (reference_solver.h) and against beam theory, on a clamped strip
 // (METHOD.md §5.3). Library functions returning structured results; `myoshell validate` prints
-// them and tests/reduce/accuracy_test.cpp asserts their bounds. docs/validation.md has the table.
+// them and tests/verify/accuracy_test.cpp asserts their bounds. docs/validation.md has the table.
 //
 // Error metrics (all relative, dimensionless):
 //   field error   e = ‖u − u_ref‖_M / ‖u_ref‖_M over the free vertices (lumped M; METHOD.md §5.1)
@@ -16,7 +16,7 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/mesh/tri_mesh.h"
-#include "myoshell/reduce/reference_solver.h"
+#include "myoshell/verify/reference_solver.h"
 #include "myoshell/shell/discrete_shell.h"
 #include "myoshell/shell/shell_material.h"
 

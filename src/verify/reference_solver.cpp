@@ -1,4 +1,4 @@
-#include "myoshell/reduce/reference_solver.h"
+#include "myoshell/verify/reference_solver.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>

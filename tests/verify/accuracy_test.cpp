@@ -1,6 +1,6 @@
 // Accuracy of the reduced solutions against the full-space reference and beam theory on a clamped
 // strip (validation.h; numbers in docs/validation.md). Asserts the bounds of the validation issue.
-#include "myoshell/reduce/validation.h"
+#include "myoshell/verify/validation.h"
 
 #include <gtest/gtest.h>
 

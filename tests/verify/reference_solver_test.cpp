@@ -1,6 +1,6 @@
 // The full-space reference solvers (METHOD.md §5.1): static Newton with load stepping, and the
 // implicit dynamic integrator.
-#include "myoshell/reduce/reference_solver.h"
+#include "myoshell/verify/reference_solver.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "myoshell/reduce/validation.h"
+#include "myoshell/verify/validation.h"
 
 #include <Eigen/SparseCholesky>
 #include <cmath>
@@ -13,7 +13,8 @@
 #include "myoshell/mesh/primitives.h"
 #include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/reduce/modal_warping.h"
-#include "myoshell/reduce/reference_solver.h"
+#include "myoshell/verify/modal_statics.h"
+#include "myoshell/verify/reference_solver.h"
 
 namespace myo {
 
