@@ -1,5 +1,6 @@
 #include "myoshell/io/basis_cache_file.h"
 
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -104,21 +105,23 @@ void writeBasisFile(const std::filesystem::path& path, const BasisKey& key, cons
   const std::filesystem::path tmp = path.parent_path() / tmpName.str();
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("cannot write the basis cache file " + tmp.string());
+    if (!out) throw InputError("cannot write the basis cache file " + tmp.string() + " (" + std::strerror(errno) + ")");
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
     out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
     out.flush();
     if (!out) {
+      const std::string reason = std::strerror(errno);
       std::error_code ec;
       std::filesystem::remove(tmp, ec);
-      throw InputError("cannot write the basis cache file " + tmp.string());
+      throw InputError("cannot write the basis cache file " + tmp.string() + " (" + reason + ")");
     }
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
+    const std::string reason = ec.message();
     std::filesystem::remove(tmp, ec);
-    throw InputError("cannot rename the basis cache file into " + path.string());
+    throw InputError("cannot rename the basis cache file into " + path.string() + " (" + reason + ")");
   }
 }
 
@@ -181,8 +184,8 @@ std::optional<ModalBasis> readBasisFile(const std::filesystem::path& path, const
 FileBasisCache::FileBasisCache(std::filesystem::path directory) : dir_(std::move(directory)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
-  if (ec || !std::filesystem::is_directory(dir_))
-    throw InputError("cannot create the basis cache directory " + dir_.string());
+  if (!ec && !std::filesystem::is_directory(dir_)) ec = std::make_error_code(std::errc::not_a_directory);
+  if (ec) throw InputError("cannot create the basis cache directory " + dir_.string() + " (" + ec.message() + ")");
 }
 
 std::filesystem::path FileBasisCache::pathFor(const BasisKey& key) const {
@@ -210,8 +213,9 @@ void FileBasisCache::store(const BasisKey& key, const ModalBasis& basis) {
   try {
     writeBasisFile(pathFor(key), key, basis);
     ++stats_.stores;
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
     // A cache is an optimization: a read-only or full disk must not stop a build.
+    lastStoreError_ = e.what();
   }
 }
 

@@ -28,7 +28,7 @@ std::optional<ModalBasis> readBasisFile(const std::filesystem::path& path, const
 
 class FileBasisCache : public BasisCache {
  public:
-  // Creates the directory if needed (throws InputError if it cannot).
+  // Creates the directory if needed (throws InputError naming it and the OS's reason if it cannot).
   explicit FileBasisCache(std::filesystem::path directory);
 
   std::optional<ModalBasis> load(const BasisKey& key) override;
@@ -46,11 +46,15 @@ class FileBasisCache : public BasisCache {
   const Stats& stats() const { return stats_; }
   // Why the last rejected file was rejected ("" if none was).
   const std::string& lastRejection() const { return lastRejection_; }
+  // Why the last store failed, naming the file and the OS's reason ("" if none did). A failed
+  // store is not an error: the basis is simply not kept.
+  const std::string& lastStoreError() const { return lastStoreError_; }
 
  private:
   std::filesystem::path dir_;
   Stats stats_;
   std::string lastRejection_;
+  std::string lastStoreError_;
 };
 
 }  // namespace myo
