@@ -28,8 +28,8 @@
 #include "myoshell/core/timer.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/simulator.h"
-#include "myoshell/io/basis_cache_file.h"
 #include "myoshell/verify/reference_solver.h"
+#include "resources.h"
 
 namespace myo::cli {
 namespace {
@@ -41,8 +41,9 @@ struct BenchOptions {
   int threads = 1;
   double seconds = 1.0;    // timed seconds per row (split over `runs`)
   int runs = 5;
-  std::string scenesDir = "scenes/thesis";
-  std::string cacheDir = ".cache/bases";
+  std::string scenesDir;   // --scenes; "" = the shipped scenes/thesis (resources.h)
+  std::string cacheDir;    // --cache; "" = the default basis cache (resources.h)
+  std::string dataDir;     // --data; "" = $MYOSHELL_DATA or the build tree's ../shared/data
   std::string heads = "default,ict";
   std::string rows;        // comma-separated row ids; empty = all
   bool reference = true;
@@ -113,6 +114,14 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 
+// fig27_ict_head.json with its head paths re-rooted at the data folder (resources.h).
+// Without a data folder (an installed program, no --data) the paths stay as the scene wrote them.
+SceneDesc ictHead(const BenchOptions& opt) {
+  SceneDesc s = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string());
+  if (const fs::path data = dataDir(opt.dataDir).dir; !data.empty()) useDataDir(s, data);
+  return s;
+}
+
 // The row's scene on the given head: the ICT head is the one fig27_ict_head.json names (its paths
 // are relative to the same folder), the default head the built-in one.
 SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::string& head) {
@@ -120,7 +129,7 @@ SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::stri
   if (head == "default") {
     scene.head = HeadDesc{};
   } else {
-    scene.head = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string()).head;
+    scene.head = ictHead(opt).head;
     // Drags name default-head vertex ids: move each to the ICT vertex nearest the same point of
     // the face frame (so the drag still grabs the right cheek).
     if (!scene.drags.empty()) {
@@ -278,9 +287,10 @@ std::string machineName() {
   return "unknown";
 }
 
-int runBench(const BenchOptions& opt) {
+int runBench(BenchOptions opt) {
   if (opt.seconds <= 0.0) throw InputError("--seconds must be > 0");
   if (opt.runs < 1) throw InputError("--runs must be >= 1");
+  if (opt.scenesDir.empty()) opt.scenesDir = (shippedScenesDir().dir / "thesis").string();
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
     throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
   std::vector<BenchRow> rows = thesisRows();
@@ -300,7 +310,7 @@ int runBench(const BenchOptions& opt) {
   nlohmann::json notes = nlohmann::json::array();
   if (opt.threads != 1)
     notes.push_back(fmt::format("--threads {}: the simulator is single-threaded; measured with 1 thread", opt.threads));
-  FileBasisCache cache(opt.cacheDir);
+  const auto cache = openBasisCache(opt.cacheDir);
 
   nlohmann::json out;
   out["machine"] = {{"cpu", machineName()}, {"hardware_threads", std::thread::hardware_concurrency()}};
@@ -311,20 +321,20 @@ int runBench(const BenchOptions& opt) {
   nlohmann::json references = nlohmann::json::array();
   for (const std::string& head : heads) {
     if (head == "ict") {
-      bool present = false;
+      std::string obj = (fs::path(opt.scenesDir) / "fig27_ict_head.json").string();
       try {
-        const SceneDesc s = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string());
-        present = fs::exists(fs::path(opt.scenesDir) / s.head.obj) || fs::exists(s.head.obj);
+        obj = (fs::path(opt.scenesDir) / ictHead(opt).head.obj).string();  // the head path if absolute
       } catch (const InputError&) {
       }
-      if (!present) {
-        notes.push_back("ICT head skipped: ../shared/data/ict not found");
-        if (!opt.json) fmt::print("ICT head skipped: ../shared/data/ict not found\n");
+      if (!fs::exists(obj)) {
+        const std::string note = "ICT head skipped: " + obj + " not found (give --data DIR or set MYOSHELL_DATA)";
+        notes.push_back(note);
+        if (!opt.json) fmt::print("{}\n", note);
         continue;
       }
     }
     for (const BenchRow& row : rows) {
-      nlohmann::json j = benchRow(opt, row, head, cache);
+      nlohmann::json j = benchRow(opt, row, head, *cache);
       if (!opt.json)
         fmt::print("{:7} T{} {:<48} {:>10.0f} steps/s  thesis {:>4.0f}  x{:>6.1f}{}\n", head, row.table, row.label,
                    j["steps_per_second"].get<double>(), row.thesisFps, j["ratio"].get<double>(),
@@ -332,7 +342,7 @@ int runBench(const BenchOptions& opt) {
       results.push_back(std::move(j));
     }
     if (opt.reference) {
-      nlohmann::json r = benchReference(opt, head, cache);
+      nlohmann::json r = benchReference(opt, head, *cache);
       if (!opt.json)
         fmt::print("{:7} reference: one implicit-Euler step of the full skin ({} free vertices, gravity): {:.3f} s "
                    "({:.1f} Newton iterations)\n",
@@ -361,8 +371,9 @@ const CommandRegistrar benchRegistrar("bench", [](CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--seconds", opt->seconds, "Timed seconds per row (split over --runs)")->capture_default_str();
   sub->add_option("--runs", opt->runs, "Timed runs per row (the median is reported)")->capture_default_str();
-  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes")->capture_default_str();
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes (default: the shipped scenes/thesis)");
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
+  sub->add_option("--data", opt->dataDir, "Data folder holding ict/ (default: $MYOSHELL_DATA, or ../shared/data beside the source tree)");
   sub->add_option("--heads", opt->heads, "Heads to run: default, ict (comma-separated)")->capture_default_str();
   sub->add_option("--rows", opt->rows, "Only these row ids (comma-separated; see --json output)");
   sub->add_option("--reference-steps", opt->referenceSteps, "Implicit-Euler steps timed for the reference solver")

@@ -10,14 +10,16 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include "command.h"
+#include "resources.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/io/basis_cache_file.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/face_picture.h"
 #include "myoshell/render/image.h"
@@ -31,8 +33,9 @@ namespace fs = std::filesystem;
 
 struct FigureOptions {
   std::string outDir = "docs/figures";
-  std::string scenesDir = "scenes/thesis";
-  std::string cacheDir = ".cache/bases";
+  std::string scenesDir;  // --scenes; "" = the shipped scenes/thesis (resources.h)
+  std::string cacheDir;   // --cache; "" = the default basis cache (resources.h)
+  std::string dataDir;    // --data; "" = $MYOSHELL_DATA or the build tree's ../shared/data
   std::string only;  // comma-separated figure keys (fig17, fig18, …); empty = all
   int size = 360;    // tile width and height, pixels
   bool software = false;
@@ -46,13 +49,14 @@ struct Loaded {
 class Figures {
  public:
   explicit Figures(const FigureOptions& opt)
-      : opt_(opt), cache_(opt.cacheDir), painter_(makePainter(opt.software)) {}
+      : opt_(opt), cache_(openBasisCache(opt.cacheDir)), painter_(makePainter(opt.software)) {}
 
   Loaded load(const std::string& name, const std::function<void(SceneDesc&)>& edit = {}) {
     Loaded l;
     l.scene = readScene((fs::path(opt_.scenesDir) / (name + ".json")).string());
+    if (const fs::path data = dataDir(opt_.dataDir).dir; !data.empty()) useDataDir(l.scene, data);
     if (edit) edit(l.scene);
-    l.model = buildSceneFace(l.scene, &cache_);
+    l.model = buildSceneFace(l.scene, cache_.get());
     return l;
   }
 
@@ -85,7 +89,7 @@ class Figures {
 
  private:
   FigureOptions opt_;
-  FileBasisCache cache_;
+  std::unique_ptr<BasisCache> cache_;
   std::unique_ptr<FacePainter> painter_;
   std::vector<std::string> written_;
 };
@@ -332,10 +336,11 @@ void fig26(Figures& F) {
 
 // Fig. 27: the ICT head (a user-specific mesh).
 void fig27(Figures& F, const FigureOptions& opt) {
-  const SceneDesc probe = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string());
-  const fs::path obj = fs::path(opt.scenesDir) / probe.head.obj;
-  if (!fs::exists(obj) && !fs::exists(probe.head.obj)) {
-    fmt::print("fig27 skipped: the ICT head ({}) is absent\n", obj.string());
+  SceneDesc probe = readScene((fs::path(opt.scenesDir) / "fig27_ict_head.json").string());
+  if (const fs::path data = dataDir(opt.dataDir).dir; !data.empty()) useDataDir(probe, data);
+  const fs::path obj = fs::path(opt.scenesDir) / probe.head.obj;  // the head path if absolute
+  if (!fs::exists(obj)) {
+    fmt::print("fig27 skipped: the ICT head ({}) is absent (give --data DIR or set MYOSHELL_DATA)\n", obj.string());
     return;
   }
   timelineStrip(F, "fig27_ict_head",
@@ -343,13 +348,14 @@ void fig27(Figures& F, const FigureOptions& opt) {
                 false, "fig27_ict_head.png", "Fig. 27: facial animation with a user-specific mesh (ICT-FaceKit head)");
 }
 
-int runFigures(const FigureOptions& opt) {
+int runFigures(FigureOptions opt) {
   if (opt.size < 64 || opt.size > 2048) throw InputError("--size must be in [64, 2048]");
-  Figures F(opt);
-  const std::vector<std::pair<std::string, std::function<void()>>> all = {
-      {"fig17", [&] { fig17(F); }},    {"fig18", [&] { fig18(F); }},       {"fig20", [&] { fig19_20(F); }},
-      {"fig22", [&] { fig21_22(F); }}, {"fig23", [&] { fig23(F); }},       {"fig25", [&] { fig24_25(F); }},
-      {"fig26", [&] { fig26(F); }},    {"fig27", [&] { fig27(F, opt); }}};
+  if (opt.scenesDir.empty()) opt.scenesDir = (shippedScenesDir().dir / "thesis").string();
+  const std::vector<std::pair<std::string, std::function<void(Figures&)>>> all = {
+      {"fig17", [](Figures& F) { fig17(F); }},    {"fig18", [](Figures& F) { fig18(F); }},
+      {"fig20", [](Figures& F) { fig19_20(F); }}, {"fig22", [](Figures& F) { fig21_22(F); }},
+      {"fig23", [](Figures& F) { fig23(F); }},    {"fig25", [](Figures& F) { fig24_25(F); }},
+      {"fig26", [](Figures& F) { fig26(F); }},    {"fig27", [&](Figures& F) { fig27(F, opt); }}};
   std::set<std::string> want;
   std::stringstream ss(opt.only);
   std::string item;
@@ -361,9 +367,12 @@ int runFigures(const FigureOptions& opt) {
     }
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
     throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
-  fs::create_directories(opt.outDir);  // only once the arguments are known good
+  std::error_code ec;
+  fs::create_directories(opt.outDir, ec);  // only once the arguments are known good
+  if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", opt.outDir);
+  Figures F(opt);  // opens the basis cache: after every check
   for (const auto& [key, fn] : all)
-    if (want.empty() || want.count(key)) fn();
+    if (want.empty() || want.count(key)) fn(F);
   return kExitOk;
 }
 
@@ -371,8 +380,9 @@ const CommandRegistrar figuresRegistrar("figures", [](CLI::App& app) {
   auto opt = std::make_shared<FigureOptions>();
   CLI::App* sub = app.add_subcommand("figures", "Render the thesis's Figures 17-27 from scenes/thesis into PNGs");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
-  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes")->capture_default_str();
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes (default: the shipped scenes/thesis)");
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
+  sub->add_option("--data", opt->dataDir, "Data folder holding ict/ for fig27 (default: $MYOSHELL_DATA, or ../shared/data beside the source tree)");
   sub->add_option("--only", opt->only, "Only these figures (comma-separated: fig17, fig18, fig20, fig22, ...)");
   sub->add_option("--size", opt->size, "Tile size, pixels")->capture_default_str();
   sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");

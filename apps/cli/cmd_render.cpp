@@ -11,12 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
+#include "resources.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
-#include "myoshell/io/basis_cache_file.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/video.h"
 #include "myoshell/render/face_picture.h"
@@ -40,7 +40,7 @@ struct RenderCommandOptions {
   bool software = false;
   bool video = false;            // DIR/<scene>.mp4 and .gif of the drawn frames
   bool json = false;
-  std::string cacheDir = ".cache/bases";
+  std::string cacheDir;            // --cache; "" = the default (resources.h)
 };
 
 [[noreturn]] void badValue(const std::string& option, const std::string& value, const std::string& why) {
@@ -132,8 +132,8 @@ int runRender(const RenderCommandOptions& opt) {
   if (opt.video && !ffmpegAvailable())
     throw InputError("--video needs the ffmpeg program, which is not on PATH (scripts/setup installs it)");
 
-  FileBasisCache cache(opt.cacheDir);
-  const auto model = buildSceneFace(scene, &cache);
+  const auto cache = openBasisCache(opt.cacheDir);
+  const auto model = buildSceneFace(scene, cache.get());
   std::error_code ec;
   fs::create_directories(out / "png", ec);
   if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
@@ -237,7 +237,7 @@ const CommandRegistrar renderRegistrar("render", [](CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--video", opt->video, "Also write DIR/<scene>.mp4 and DIR/<scene>.gif of the drawn frames (ffmpeg)");
   sub->add_flag("--software", opt->software, "Use the software renderer even where OpenGL is available");
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
   sub->add_flag("--json", opt->json, "Print a JSON summary");
   return std::function<int()>([opt] { return runRender(*opt); });
 });

@@ -15,7 +15,7 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "Simulate a scene file and write an OBJ sequence and stats.json");
   sub->add_option("scene", opt->scene, "Scene file (JSON or YAML)")->required();
   sub->add_option("--out", opt->outDir, "Output folder")->required();
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder")->capture_default_str();
+  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
   sub->add_flag("--json", opt->json, "Print a JSON summary");
   sub->add_option("--format", opt->formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')

@@ -13,6 +13,7 @@
 #include "command.h"
 #include "interrupt.h"
 #include "myoshell/gl/gl_face_painter.h"
+#include "resources.h"
 #include "myoshell/render/video.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/png.h"
@@ -23,7 +24,6 @@
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/animation_export.h"
-#include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/output_manifest.h"
 #include "myoshell/mesh/obj_reader.h"
 
@@ -61,11 +61,11 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
   const ExportFormats formats = parseFormats(opt.formats);  // before any work: a typo fails at once
   const ViewPreset view = parseView(opt.view);
-  FileBasisCache cache(opt.cacheDir);
+  const auto cache = openBasisCache(opt.cacheDir);
 
   const bool tty = !opt.json && isatty(STDOUT_FILENO);
   Stopwatch buildClock;
-  const auto model = buildSceneFace(scene, &cache);
+  const auto model = buildSceneFace(scene, cache.get());
   const double buildSeconds = buildClock.seconds();
   // Folders only once the scene has built: a bad scene leaves nothing behind.
   std::error_code ec;

@@ -14,7 +14,7 @@ namespace myo::cli {
 struct RunOptions {
   std::string scene;                     // scene file (`run`); unused by runScene itself
   std::string outDir;
-  std::string cacheDir = ".cache/bases";
+  std::string cacheDir;                  // --cache; "" = the default (resources.h)
   bool json = false;
   // Animation exports, any subset of "obj" (DIR/obj/<name>_NNNN.obj), "glb" (DIR/<name>.glb) and
   // "pc2" (DIR/<name>.pc2); see io/animation_export.h. An unknown name is an InputError.

@@ -8,7 +8,7 @@
 
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/io/basis_cache_file.h"
+#include "resources.h"  // apps/cli: where the cache is
 #include "viewer_app.h"
 #include "viewer_session.h"
 
@@ -19,7 +19,7 @@ constexpr int kExitOk = 0, kExitFailure = 1, kExitBadInput = 2;
 
 int main(int argc, char** argv) {
   CLI::App app{"myoshell-view: a live face with a slider per muscle"};
-  std::string scenePath, cacheDir = ".cache/bases", size = "1280x800";
+  std::string scenePath, cacheDir, size = "1280x800";
   myo::viewer::ViewerOptions options;
   app.add_option("scene", scenePath, "scene file (JSON or YAML); default: the built-in head and its eight muscles");
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 16));
   app.add_flag("--stay", options.stay, "keep the window open after --script");
   app.add_option("--size", size, "window size WxH in pixels (default 1280x800)");
-  app.add_option("--cache", cacheDir, "folder of cached modal bases (default .cache/bases)");
+  app.add_option("--cache", cacheDir, "folder of cached modal bases (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
   app.set_version_flag("--version", "myoshell-view 0.1.0");
   try {
     app.parse(argc, argv);
@@ -50,8 +50,8 @@ int main(int argc, char** argv) {
     myo::SceneDesc scene;
     if (!scenePath.empty()) scene = myo::readScene(scenePath);
     else scene.name = "default";
-    myo::FileBasisCache cache(cacheDir);
-    myo::viewer::ViewerSession session(scene, &cache);
+    const auto cache = myo::cli::openBasisCache(cacheDir, "myoshell-view");
+    myo::viewer::ViewerSession session(scene, cache.get());
     const myo::viewer::ViewerStats stats = myo::viewer::runViewer(session, options);
     if (!options.screenshot.empty()) fmt::print("wrote {}\n", options.screenshot);
     fmt::print("myoshell-view: {} frames in {:.2f} s ({:.1f} frames/s), simulation {:.0f} steps/s\n", stats.frames,

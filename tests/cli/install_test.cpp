@@ -6,6 +6,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "support/test_data.h"
 
@@ -32,6 +34,19 @@ TEST(Install, AnInstalledMyoshellBuildsAndRunsTheEmbedExample) {
       << "see " << log;
   EXPECT_TRUE(fs::exists(prefix / "include" / "myoshell" / "face" / "simulator.h"));
   EXPECT_TRUE(fs::exists(prefix / "lib" / "cmake" / "Myoshell" / "MyoshellConfig.cmake"));
+  EXPECT_TRUE(fs::exists(prefix / "include" / "myoshell" / "verify" / "validation.h"));
+  EXPECT_TRUE(fs::exists(prefix / "lib" / "libmyo_verify.a"));
+  // The installed program finds the installed scenes, from any folder, and no data folder.
+  EXPECT_TRUE(fs::exists(prefix / "share" / "myoshell" / "scenes" / "thesis" / "fig17_contract.json"));
+  const fs::path pathsJson = dir / "paths.json";
+  ASSERT_EQ(shell("cd / && env -u MYOSHELL_DATA '" + (prefix / "bin" / "myoshell").string() + "' paths --json > '" +
+                  pathsJson.string() + "'"),
+            0);
+  std::ifstream in(pathsJson);
+  const auto paths = nlohmann::json::parse(in);
+  EXPECT_EQ(fs::path(paths["scenes"]["path"].get<std::string>()), prefix / "share" / "myoshell" / "scenes");
+  EXPECT_EQ(paths["scenes"]["source"], "installed");
+  EXPECT_EQ(paths["data"]["path"], "");
   ASSERT_EQ(shell(cmake + " -S '" + (test::sourceDir() / "examples").string() + "' -B '" + build.string() +
                   "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH='" + prefix.string() + "'" + quiet),
             0)

@@ -9,6 +9,7 @@
 namespace myo::test {
 
 inline std::filesystem::path sharedDataDir() {
+  if (const char* env = std::getenv("MYOSHELL_DATA")) return env;  // as the CLI's --data
   if (const char* env = std::getenv("MYOSHELL_SHARED_DATA")) return env;
   return std::filesystem::path(MYO_SHARED_DIR) / "data";
 }
