@@ -39,7 +39,8 @@ void ScenePlayer::resolveNames() {
     muscleTracks_.push_back({m, &track});
   }
   const std::vector<DragDef>& drags = model_->settings().drags;
-  for (const auto& [name, track] : scene_.dragForces) {
+  for (const auto& [dragName, track] : scene_.dragForces) {
+    const std::string& name = dragName;  // a plain reference: clang 14 cannot capture a structured binding
     auto it = std::find_if(drags.begin(), drags.end(), [&](const DragDef& d) { return d.name == name; });
     if (it == drags.end()) {
       std::string known;
