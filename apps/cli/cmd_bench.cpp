@@ -22,11 +22,11 @@
 #include <thread>
 
 #include "command.h"
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/head.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/verify/reference_solver.h"
 #include "resources.h"

@@ -17,7 +17,7 @@
 
 #include "command.h"
 #include "resources.h"
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/render/contact_sheet.h"

@@ -11,13 +11,15 @@
 #include <fmt/core.h>
 
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "command.h"
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/head.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
 #include "myoshell/render/camera.h"
@@ -156,20 +158,18 @@ int runHead(const HeadArgs& a) {
 
   if (!a.writeObj.empty()) {
     // The head's triangles as OBJ; the resolved landmarks go into "# landmark NAME ID" comments.
-    std::ofstream out(a.writeObj);
-    if (!out) throw InputError("cannot write OBJ", a.writeObj);
+    std::ostringstream out;
     out << "# " << head.name << " head written by myoshell head\n";
     for (const auto& [name, v] : head.landmarks.resolved()) out << "# landmark " << name << " " << v << "\n";
     for (int i = 0; i < m.vertexCount(); ++i)
       out << fmt::format("v {:.9g} {:.9g} {:.9g}\n", m.V(i, 0), m.V(i, 1), m.V(i, 2));
     for (int t = 0; t < m.triangleCount(); ++t)
       out << "f " << m.F(t, 0) + 1 << ' ' << m.F(t, 1) + 1 << ' ' << m.F(t, 2) + 1 << "\n";
+    writeFileAtomically(a.writeObj, out.str(), "cannot write OBJ");
     j["obj"] = a.writeObj;
   }
   if (!a.writeLandmarks.empty()) {
-    std::ofstream out(a.writeLandmarks);
-    if (!out) throw InputError("cannot write landmark file", a.writeLandmarks);
-    out << landmarksToJson(head.landmarks);
+    writeFileAtomically(a.writeLandmarks, landmarksToJson(head.landmarks), "cannot write landmark file");
     j["landmark_file"] = a.writeLandmarks;
   }
   if (!a.render.empty()) {

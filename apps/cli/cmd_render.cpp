@@ -12,7 +12,7 @@
 
 #include "command.h"
 #include "resources.h"
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"

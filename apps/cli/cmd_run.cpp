@@ -4,7 +4,7 @@
 #include <fmt/core.h>
 
 #include "command.h"
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "scene_runner.h"
 
 namespace myo::cli {
@@ -36,7 +36,9 @@ const CommandRegistrar checkRegistrar("check", [](CLI::App& app) {
   CLI::App* sub = app.add_subcommand("check", "Validate a scene file and print it with every default filled in");
   sub->add_option("scene", *path, "Scene file (JSON or YAML)")->required();
   return std::function<int()>([path] {
-    fmt::print("{}", sceneToJson(readScene(*path)));
+    const SceneDesc scene = readScene(*path);
+    readSceneInputs(scene);  // every file it names and every name checked, as `run` does; nothing built
+    fmt::print("{}", sceneToJson(scene));
     return kExitOk;
   });
 });

@@ -17,7 +17,7 @@
 #include "myoshell/render/video.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/png.h"
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -25,7 +25,7 @@
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/output_manifest.h"
-#include "myoshell/mesh/obj_reader.h"
+#include "myoshell/io/obj_writer.h"
 
 namespace myo::cli {
 namespace {

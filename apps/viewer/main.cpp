@@ -6,7 +6,7 @@
 #include <exception>
 #include <string>
 
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/core/errors.h"
 #include "resources.h"  // apps/cli: where the cache is
 #include "viewer_app.h"

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 
 namespace myo::viewer {
 namespace {
@@ -70,11 +71,7 @@ std::vector<ScriptCommand> parseViewerScript(const std::string& text, const std:
 }
 
 std::vector<ScriptCommand> readViewerScript(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open the script", path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseViewerScript(text.str(), path);
+  return parseViewerScript(readWholeFile(path, "cannot open the script"), path);
 }
 
 }  // namespace myo::viewer

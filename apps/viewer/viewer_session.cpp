@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"

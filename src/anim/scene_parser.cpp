@@ -2,15 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head.h"
-#include "myoshell/mesh/obj_reader.h"
-#include "myoshell/mesh/vertex_set.h"
 
 namespace myo {
 
@@ -63,7 +58,54 @@ Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std
   return Track<Value>(std::move(keys), path);
 }
 
+SourceLocation locationOf(const YAML::Node& n) {
+  const YAML::Mark m = n.Mark();
+  if (m.line < 0 || m.pos < 0) return {};
+  return {m.line + 1, m.column + 1};
+}
+
+[[noreturn]] void failAtKey(const SceneDesc& scene, const std::string& keyPath, const std::string& what) {
+  const auto it = scene.locations.find(keyPath);
+  const SourceLocation at = it != scene.locations.end() ? it->second : SourceLocation{};
+  throw InputError("key '" + keyPath + "': " + what, scene.path, at.line, at.column);
+}
+
+// Every timeline muscle must be one of `muscles` (the scene's, after selection).
+void checkTimelineMuscles(const SceneDesc& scene, const std::vector<MuscleDef>& muscles) {
+  for (const auto& activation : scene.activations) {
+    const std::string& name = activation.first;  // a plain reference: clang 14 cannot capture a structured binding
+    const bool known = std::any_of(muscles.begin(), muscles.end(), [&](const MuscleDef& d) { return d.name == name; });
+    if (known) continue;
+    const std::string hint = scene.muscles.empty() ? "" : " (it is not in 'muscles.use' nor in 'muscles.extra')";
+    failAtKey(scene, "timeline.activations." + name, "the scene has no muscle '" + name + "'" + hint);
+  }
+}
+
 }  // namespace
+
+std::vector<MuscleDef> sceneMuscles(const SceneDesc& scene, const std::vector<MuscleDef>& library) {
+  std::vector<MuscleDef> muscles;
+  if (scene.muscles.empty()) {
+    muscles = library;
+  } else {
+    for (size_t i = 0; i < scene.muscles.size(); ++i) {
+      const std::string& name = scene.muscles[i];
+      auto it = std::find_if(library.begin(), library.end(), [&](const MuscleDef& d) { return d.name == name; });
+      if (it == library.end()) {
+        std::string known;
+        for (const auto& d : library) known += (known.empty() ? "" : ", ") + d.name;
+        const auto at = scene.locations.find("muscles.use[" + std::to_string(i) + "]");
+        const SourceLocation loc = at != scene.locations.end() ? at->second : SourceLocation{};
+        throw InputError("key 'muscles.use': unknown muscle '" + name + "' (the library has: " + known + ")",
+                         scene.path, loc.line, loc.column);
+      }
+      muscles.push_back(*it);
+    }
+  }
+  for (const MuscleDef& d : scene.extraMuscles) muscles.push_back(d);
+  checkTimelineMuscles(scene, muscles);
+  return muscles;
+}
 
 SceneDesc parseScene(const std::string& text, const std::string& path) {
   DocReader root(loadDocument(text, path), path);
@@ -91,6 +133,8 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     DocReader m = root.child("muscles");
     scene.muscleLibrary = m.string("library", scene.muscleLibrary);
     scene.muscles = m.strings("use");
+    for (size_t i = 0; i < scene.muscles.size(); ++i)
+      scene.locations["muscles.use[" + std::to_string(i) + "]"] = locationOf(m.node("use")[i]);
     if (m.has("extra")) {
       const YAML::Node extra = m.node("extra");
       if (!extra.IsSequence()) m.failAt(extra, m.keyPath("extra"), "must be a list of muscles");
@@ -186,6 +230,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
       DocReader a = t.child("activations");
       for (auto it = a.self().begin(); it != a.self().end(); ++it) {
         const std::string muscle = a.asString(it->first, a.keyPath(it->first.Scalar()));
+        scene.locations[a.keyPath(muscle)] = locationOf(it->first);
         scene.activations[muscle] = readTrack<double>(a, a.node(muscle), a.keyPath(muscle), -1.0, 1.0);
       }
       a.finish();
@@ -206,15 +251,17 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   }
   root.finish();
   s.validate();
+  // The muscle names: against the built-in library here; a library file is io's to read, so here
+  // only the timeline against an explicit selection (io checks the rest: readSceneInputs).
+  if (scene.muscleLibrary == "builtin") {
+    sceneMuscles(scene, thesisMuscleDefs());
+  } else if (!scene.muscles.empty()) {
+    std::vector<MuscleDef> named(scene.muscles.size());
+    for (size_t i = 0; i < named.size(); ++i) named[i].name = scene.muscles[i];
+    for (const MuscleDef& d : scene.extraMuscles) named.push_back(d);
+    checkTimelineMuscles(scene, named);
+  }
   return scene;
-}
-
-SceneDesc readScene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open scene file", path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScene(text.str(), path);
 }
 
 namespace {
@@ -296,55 +343,6 @@ std::string sceneToJson(const SceneDesc& scene) {
   timeline["drags"] = dragTracks;
   j["timeline"] = timeline;
   return j.dump(2) + "\n";
-}
-
-std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCache* cache) {
-  const fs::path base = scene.path.empty() || scene.path.front() == '<' ? fs::path() : fs::path(scene.path).parent_path();
-  auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).string(); };
-  Head head = scene.head.obj.empty()
-                  ? loadDefaultHead()
-                  : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),
-                             scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins));
-  if (!scene.head.skull.empty()) head.skull = readObj(resolve(scene.head.skull));
-
-  std::vector<MuscleDef> library = scene.muscleLibrary == "builtin" ? thesisMuscleDefs()
-                                                                     : readMuscleDefs(resolve(scene.muscleLibrary));
-  std::vector<MuscleDef> muscles;
-  if (scene.muscles.empty()) {
-    muscles = library;
-  } else {
-    for (const std::string& name : scene.muscles) {
-      auto it = std::find_if(library.begin(), library.end(), [&](const MuscleDef& d) { return d.name == name; });
-      if (it == library.end()) {
-        std::string known;
-        for (const auto& d : library) known += (known.empty() ? "" : ", ") + d.name;
-        throw InputError("key 'muscles.use': unknown muscle '" + name + "' (the library has: " + known + ")", scene.path);
-      }
-      muscles.push_back(*it);
-    }
-  }
-  for (const MuscleDef& d : scene.extraMuscles) muscles.push_back(d);
-  for (const auto& activation : scene.activations) {
-    const std::string& name = activation.first;  // a plain reference: clang 14 cannot capture a structured binding
-    const bool known = std::any_of(muscles.begin(), muscles.end(), [&](const MuscleDef& d) { return d.name == name; });
-    if (!known) throw InputError("key 'timeline.activations." + name + "': the scene has no muscle '" + name + "'", scene.path);
-  }
-
-  FaceModelSettings settings = scene.model;
-  for (const DragDesc& d : scene.drags) {
-    DragDef def;
-    def.name = d.name;
-    def.vertex = d.landmark.empty() ? d.vertex : head.landmarks.vertex(d.landmark);
-    if (def.vertex >= head.mesh.vertexCount())
-      throw InputError("drag '" + d.name + "': vertex " + std::to_string(def.vertex) + " is outside [0, " +
-                           std::to_string(head.mesh.vertexCount()) + ") of head '" + head.name + "'",
-                       scene.path);
-    def.radius = d.radius;
-    if (!d.pins.empty()) def.pins = readVertexSet(resolve(d.pins), head.mesh.vertexCount());
-    else if (!d.pinLandmarks && !head.gravityPins.empty()) def.pins = head.gravityPins;  // rim only
-    settings.drags.push_back(def);
-  }
-  return std::make_shared<const FaceModel>(std::move(head), muscles, settings, cache);
 }
 
 }  // namespace myo

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <fstream>
 #include <sstream>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 
 namespace myo {
 
@@ -82,12 +82,9 @@ YAML::Node loadDocument(const std::string& text, const std::string& file) {
 }
 
 YAML::Node loadDocumentFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open file", path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (text.str().empty()) throw InputError("file is empty", path);
-  return loadDocument(text.str(), path);
+  const std::string text = readWholeFile(path, "cannot open file");
+  if (text.empty()) throw InputError("file is empty", path);
+  return loadDocument(text, path);
 }
 
 DocReader::DocReader(YAML::Node node, std::string file, std::string path)

@@ -1,14 +1,11 @@
 #include "myoshell/face/head.h"
 
 #include <algorithm>
-#include <filesystem>
 
 #include "default_head_data.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/mediapipe_mesh.h"
-#include "myoshell/mesh/obj_reader.h"
 #include "myoshell/mesh/subdivision.h"
-#include "myoshell/mesh/vertex_set.h"
 
 namespace myo {
 
@@ -62,23 +59,6 @@ Head loadDefaultHead(const DefaultHeadOptions& options) {
   head.mesh = std::move(mesh);
   head.gravityPins = defaultGravityPins(head.mesh, head.landmarks);
   head.pinsSource = "outer rim + nasion_approx + Multi-PIE 28";
-  return head;
-}
-
-Head loadHead(const std::string& objPath, const std::string& landmarkPath,
-              const std::string& pinPath) {
-  Head head;
-  head.name = std::filesystem::path(objPath).stem().string();
-  head.mesh = readObj(objPath);
-  head.landmarks = readLandmarks(landmarkPath, head.mesh.vertexCount());
-  head.landmarks.requireAll();
-  if (!pinPath.empty()) {
-    head.gravityPins = readVertexSet(pinPath, head.mesh.vertexCount());
-    head.pinsSource = std::filesystem::path(pinPath).filename().string();
-  } else {
-    head.gravityPins = defaultGravityPins(head.mesh, head.landmarks);
-    head.pinsSource = "longest boundary loop + nasion_approx + Multi-PIE 28";
-  }
   return head;
 }
 

@@ -1,7 +1,6 @@
 #include "myoshell/face/landmarks.h"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -146,14 +145,6 @@ Landmarks parseLandmarks(const std::string& jsonText, int vertexCount, const std
     }
   }
   return lm;
-}
-
-Landmarks readLandmarks(const std::string& path, int vertexCount) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open landmark file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parseLandmarks(ss.str(), vertexCount, path);
 }
 
 std::string landmarksToJson(const Landmarks& landmarks) {

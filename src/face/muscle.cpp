@@ -3,10 +3,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
-#include "myoshell/mesh/obj_reader.h"
 
 #include <algorithm>
 
@@ -36,7 +36,9 @@ namespace {
 Muscle importMuscle(const MuscleDef& def) {
   Muscle muscle;
   muscle.def = def;
-  muscle.mesh = readObj(def.obj);
+  MYO_CHECK(def.shell, "muscle '" << def.name << "': its OBJ " << def.obj
+                                   << " was not read (io/muscle_library_file.h: readMuscleShells)");
+  muscle.mesh = *def.shell;
   const int n = muscle.mesh.vertexCount();
   auto check = [&](const std::vector<int>& ids, const char* what) {
     for (int v : ids)

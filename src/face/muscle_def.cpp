@@ -107,8 +107,7 @@ MuscleDef readMuscleDef(DocReader& r) {
   return d;
 }
 
-namespace {
-std::vector<MuscleDef> readLibrary(const YAML::Node& root, const std::string& file) {
+std::vector<MuscleDef> readMuscleLibrary(const YAML::Node& root, const std::string& file) {
   DocReader top(root, file);
   top.string("note", "");
   const YAML::Node list = top.node("muscles");
@@ -124,14 +123,9 @@ std::vector<MuscleDef> readLibrary(const YAML::Node& root, const std::string& fi
   }
   return defs;
 }
-}  // namespace
 
 std::vector<MuscleDef> parseMuscleDefs(const std::string& text, const std::string& name) {
-  return readLibrary(loadDocument(text, name), name);
-}
-
-std::vector<MuscleDef> readMuscleDefs(const std::string& path) {
-  return readLibrary(loadDocumentFile(path), path);
+  return readMuscleLibrary(loadDocument(text, name), name);
 }
 
 const std::string& thesisMuscleJson() {

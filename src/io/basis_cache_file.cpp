@@ -1,14 +1,12 @@
 #include "myoshell/io/basis_cache_file.h"
 
-#include <cerrno>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <random>
-#include <sstream>
-#include <system_error>
 #include <vector>
 
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 #include "myoshell/reduce/modal_analysis.h"
 
 namespace myo {
@@ -98,41 +96,23 @@ void writeBasisFile(const std::filesystem::path& path, const BasisKey& key, cons
   h.payloadBytes = payload.size();
   h.checksum = fnv1a64(payload.data(), payload.size());
 
-  // Unique temporary name in the same directory, then an atomic rename.
-  std::random_device rd;
-  std::ostringstream tmpName;
-  tmpName << path.filename().string() << ".tmp." << std::hex << rd() << rd();
-  const std::filesystem::path tmp = path.parent_path() / tmpName.str();
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("cannot write the basis cache file " + tmp.string() + " (" + std::strerror(errno) + ")");
-    out.write(reinterpret_cast<const char*>(&h), sizeof h);
-    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
-    out.flush();
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InputError("cannot write the basis cache file " + tmp.string() + " (" + reason + ")");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    const std::string reason = ec.message();
-    std::filesystem::remove(tmp, ec);
-    throw InputError("cannot rename the basis cache file into " + path.string() + " (" + reason + ")");
-  }
+  writeFileAtomically(
+      path.string(),
+      [&](std::FILE* out) {
+        std::fwrite(&h, sizeof h, 1, out);
+        std::fwrite(payload.data(), 1, payload.size(), out);
+      },
+      "cannot write the basis cache file");
 }
 
 std::optional<ModalBasis> readBasisFile(const std::filesystem::path& path, const BasisKey& key,
                                         std::string* why) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const std::optional<std::string> bytes = tryReadWholeFile(path.string());
+  if (!bytes) {
     reject(why, "no file");
     return std::nullopt;
   }
-  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string& data = *bytes;
   if (data.size() < kHeaderSize) {
     reject(why, "truncated header");
     return std::nullopt;

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "export_file.h"
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
@@ -195,7 +196,7 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   tinygltf::TinyGLTF gltf;
   if (!gltf.WriteGltfSceneToStream(&model, out, false, true))
     throw InputError("cannot serialise the GLB", path.string());
-  detail::writeFileAtomically(path, out.str());
+  writeFileAtomically(path.string(), out.str());
 }
 
 }  // namespace myo

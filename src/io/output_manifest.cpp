@@ -8,6 +8,7 @@
 
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 
 namespace myo {
 
@@ -31,10 +32,7 @@ std::vector<std::string> readOutputManifest(const fs::path& dir) {
   const fs::path path = dir / kOutputManifestName;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return {};
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  const nlohmann::json j = nlohmann::json::parse(readWholeFile(path.string()), nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("files") || !j["files"].is_array())
     throw InputError("not a myoshell output manifest (expected {\"files\": [...]}); remove it to start afresh",
                      path.string());

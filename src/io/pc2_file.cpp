@@ -2,12 +2,12 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "export_file.h"
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 #include "myoshell/io/animation_export.h"
 
 namespace myo {
@@ -48,15 +48,11 @@ void writePc2(const std::filesystem::path& path, const AnimationFrames& frames) 
   for (const MatX3& P : frames.positions)
     for (int32_t i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) put(out, static_cast<float>(P(i, c)));
-  detail::writeFileAtomically(path, out);
+  writeFileAtomically(path.string(), out);
 }
 
 PointCache readPc2(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError("cannot open point cache", path.string());
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  const std::string in = ss.str();
+  const std::string in = readWholeFile(path.string(), "cannot open point cache");
   if (in.size() < kHeaderBytes || std::memcmp(in.data(), kSignature, sizeof kSignature) != 0)
     throw InputError("not a PC2 point cache (no POINTCACHE2 signature)", path.string());
   if (const auto version = get<int32_t>(in, 12); version != kVersion)

@@ -14,16 +14,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
-#include <unistd.h>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/mesh/mesh_stats.h"
@@ -593,17 +592,6 @@ std::vector<MeshFault> meshFaults(const TriMesh& mesh, const std::vector<int>* p
   return faults;
 }
 
-std::string readWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError("cannot open: is a directory", path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(std::string("cannot open (") + std::strerror(errno) + ")", path);
-  std::ostringstream os;
-  os << in.rdbuf();
-  if (in.bad()) throw InputError("cannot read", path);
-  return os.str();
-}
-
 void throwFirst(const std::vector<MeshFault>& faults, const std::string& name) {
   if (!faults.empty()) throw InputError(faults.front().message, name, faults.front().line);
 }
@@ -749,60 +737,6 @@ TriMesh readObjLikeFromString(const std::string& text, const TriMesh& rest, cons
 void validateMesh(const TriMesh& mesh) {
   throwFirst(meshFaults(mesh, nullptr, /*checkFinite=*/true),
              mesh.sourcePath.empty() ? std::string("<mesh>") : mesh.sourcePath);
-}
-
-void writeObj(const std::string& path, const TriMesh& mesh, const MatX3* V) {
-  const MatX3& X = V ? *V : mesh.V;
-  MYO_CHECK_EQ(X.rows(), mesh.V.rows());
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path tmp = target.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::FILE* out = std::fopen(tmp.c_str(), "wb");
-    if (!out) throw InputError(std::string("cannot write (") + std::strerror(errno) + ")", tmp.string());
-    auto num = [](double x, char* buf) {  // shortest text that reads back to the same double
-      auto r = std::to_chars(buf, buf + 32, x);
-      *r.ptr = '\0';
-      return buf;
-    };
-    char a[40], b[40], c[40];
-    std::fprintf(out, "# written by myoshell: %d vertices, %zu faces\n", static_cast<int>(X.rows()),
-                 mesh.polygons.empty() ? static_cast<size_t>(mesh.F.rows()) : mesh.polygons.size());
-    for (Eigen::Index i = 0; i < X.rows(); ++i)
-      std::fprintf(out, "v %s %s %s\n", num(X(i, 0), a), num(X(i, 1), b), num(X(i, 2), c));
-    const bool uv = mesh.UV.rows() == X.rows() && X.rows() > 0;
-    if (uv)
-      for (Eigen::Index i = 0; i < mesh.UV.rows(); ++i)
-        std::fprintf(out, "vt %s %s\n", num(mesh.UV(i, 0), a), num(mesh.UV(i, 1), b));
-    auto face = [&](auto begin, auto end) {
-      std::fputc('f', out);
-      for (auto it = begin; it != end; ++it) {
-        if (uv) std::fprintf(out, " %d/%d", *it + 1, *it + 1);
-        else std::fprintf(out, " %d", *it + 1);
-      }
-      std::fputc('\n', out);
-    };
-    if (!mesh.polygons.empty()) {
-      for (const auto& p : mesh.polygons) face(p.begin(), p.end());
-    } else {
-      for (Eigen::Index t = 0; t < mesh.F.rows(); ++t) {
-        const int tri[3] = {mesh.F(t, 0), mesh.F(t, 1), mesh.F(t, 2)};
-        face(tri, tri + 3);
-      }
-    }
-    const bool failed = std::ferror(out) != 0;
-    if (std::fclose(out) != 0 || failed) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError("cannot write", tmp.string());
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError("cannot rename the temporary file into place (" + ec.message() + ")", path);
-  }
 }
 
 }  // namespace myo

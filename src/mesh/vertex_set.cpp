@@ -5,11 +5,11 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 
 namespace myo {
 
@@ -158,13 +158,7 @@ std::vector<int> parseVertexSet(const std::string& jsonText, int vertexCount, co
 }
 
 std::vector<int> readVertexSet(const std::string& path, int vertexCount) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError("cannot open: is a directory", path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(std::string("cannot open (") + std::strerror(errno) + ")", path);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return parseVertexSet(os.str(), vertexCount, path);
+  return parseVertexSet(readWholeFile(path), vertexCount, path);
 }
 
 }  // namespace myo

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 
@@ -50,14 +51,7 @@ std::string makeLogFile(int& fd) {
   return fd < 0 ? std::string() : std::string(name.data());
 }
 
-void removeQuietly(const std::string& path) noexcept {
-  if (path.empty()) return;
-  try {
-    std::error_code ec;
-    fs::remove(path, ec);
-  } catch (...) {
-  }
-}
+
 
 // Starts `args` (args[0] looked up on PATH) with standard input from stdinFd (/dev/null when -1),
 // standard output to /dev/null and standard error to stderrFd (/dev/null when -1); SIGPIPE at its
@@ -184,13 +178,6 @@ std::string runFfmpeg(const std::vector<std::string>& args) {
   return result;
 }
 
-// A temporary name beside `path`: ".NAME.PID.SUFFIX" in the same folder (so rename is atomic).
-std::string siblingTemp(const fs::path& path, const std::string& suffix) {
-  std::ostringstream name;  // (ostringstream: gcc 12 warns falsely on chained string appends)
-  name << '.' << path.filename().string() << '.' << ::getpid() << '.' << suffix;
-  return (path.parent_path() / name.str()).string();
-}
-
 // Throws InputError naming `path` unless it can become a file: its folder exists, it is no folder,
 // and a file can be created beside it (tried with `probe`, which is removed again).
 void checkWritable(const std::string& path, const std::string& probe, const std::string& what) {
@@ -220,7 +207,7 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
   MYO_CHECK_GE(height, 1);
   MYO_CHECK(std::isfinite(options.fps) && options.fps > 0, "fps must be positive, not " << options.fps);
   MYO_CHECK(options.crf >= 0 && options.crf <= 51, "crf must lie in [0, 51], not " << options.crf);
-  tmpPath_ = siblingTemp(path_, "tmp.mp4");
+  tmpPath_ = temporaryPathBeside(path_, ".mp4");
   checkWritable(path_, tmpPath_, "video");
   if (!ffmpegAvailable())
     throw InputError("cannot write video: ffmpeg not found on PATH (install the Debian package ffmpeg)", path_);
@@ -324,9 +311,12 @@ void VideoWriter::finish() {
   const int status = waitChild(pid_);
   pid_ = -1;
   if (!succeeded(status)) fail("ffmpeg " + describeStatus(status) + "; " + lastLines(logPath_));
-  std::error_code ec;
-  fs::rename(tmpPath_, path_, ec);
-  if (ec) fail("cannot rename " + tmpPath_ + " (" + ec.message() + ")");
+  try {
+    renameIntoPlace(tmpPath_, path_, "cannot write video");
+  } catch (...) {
+    discard();
+    throw;
+  }
   removeQuietly(logPath_);
   done_ = true;
 }
@@ -336,8 +326,8 @@ void makeGif(const std::string& mp4Path, const std::string& gifPath, int width, 
   MYO_CHECK(std::isfinite(fps) && fps > 0, "fps must be positive, not " << fps);
   std::error_code ec;
   if (!fs::is_regular_file(mp4Path, ec)) throw InputError("cannot make a GIF: no such video", mp4Path);
-  const std::string tmpGif = siblingTemp(gifPath, "tmp.gif");
-  const std::string palette = siblingTemp(gifPath, "palette.png");
+  const std::string tmpGif = temporaryPathBeside(gifPath, ".gif");
+  const std::string palette = temporaryPathBeside(gifPath, ".palette.png");
   checkWritable(gifPath, tmpGif, "GIF");
   if (!ffmpegAvailable())
     throw InputError("cannot make a GIF: ffmpeg not found on PATH (install the Debian package ffmpeg)", gifPath);
@@ -357,8 +347,7 @@ void makeGif(const std::string& mp4Path, const std::string& gifPath, int width, 
                    "-loop", "0", "-f", "gif", ffmpegFile(tmpGif)});
   if (!why.empty()) failWith(why);
   removeQuietly(palette);
-  fs::rename(tmpGif, gifPath, ec);
-  if (ec) failWith("cannot rename " + tmpGif + " (" + ec.message() + ")");
+  renameIntoPlace(tmpGif, gifPath, "cannot make a GIF from " + mp4Path);
 }
 
 }  // namespace myo

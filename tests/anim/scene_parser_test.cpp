@@ -98,25 +98,48 @@ TEST(SceneParser, RoundTripsThroughJson) {
   EXPECT_FALSE(b.drags[0].pinLandmarks);
 }
 
-TEST(SceneParser, BuildRejectsUnknownMusclesByName) {
-  const SceneDesc s = parseScene(R"({"muscles": {"use": ["buccinator"]}})", "b.json");
+std::string parseError(const std::string& text, const std::string& name) {
   try {
-    buildSceneFace(s);
-    FAIL();
+    parseScene(text, name);
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("b.json: key 'muscles.use': unknown muscle 'buccinator'"), std::string::npos)
-        << e.what();
+    return e.what();
   }
-  const SceneDesc t = parseScene(
-      R"({"muscles": {"use": ["zygomaticus_major_right"]}, "timeline": {"activations": {"corrugator_supercilii_left": [{"t": 0, "value": 1}]}}})",
-      "t.json");
-  try {
-    buildSceneFace(t);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("the scene has no muscle 'corrugator_supercilii_left'"), std::string::npos)
-        << e.what();
-  }
+  return "(no error)";
+}
+
+TEST(SceneParser, RejectsUnknownMusclesOfTheBuiltInLibraryAtTheirPlace) {
+  EXPECT_EQ(parseError(R"({"muscles": {"use": ["zygomaticus_major_right", "buccinator"]}})", "b.json"),
+            "b.json:1:49: key 'muscles.use': unknown muscle 'buccinator' (the library has: zygomaticus_major_right, "
+            "zygomaticus_major_left, corrugator_supercilii_right, corrugator_supercilii_left, "
+            "depressor_labii_inferioris_right, depressor_labii_inferioris_left, depressor_anguli_oris_right, "
+            "depressor_anguli_oris_left)");
+  // A timeline muscle the library lacks, and one the selection leaves out.
+  EXPECT_EQ(parseError("timeline:\n  activations:\n    buccinator: [{t: 0, value: 1}]\n", "u.yaml"),
+            "u.yaml:3:5: key 'timeline.activations.buccinator': the scene has no muscle 'buccinator'");
+  EXPECT_EQ(
+      parseError(
+          R"({"muscles": {"use": ["zygomaticus_major_right"]}, "timeline": {"activations": {"corrugator_supercilii_left": [{"t": 0, "value": 1}]}}})",
+          "t.json"),
+      "t.json:1:80: key 'timeline.activations.corrugator_supercilii_left': the scene has no muscle "
+      "'corrugator_supercilii_left' (it is not in 'muscles.use' nor in 'muscles.extra')");
+  // With a library file the selection is still checked against the timeline at parse time.
+  EXPECT_EQ(
+      parseError(R"({"muscles": {"library": "lib.json", "use": ["a"]}, "timeline": {"activations": {"b": [{"t": 0, "value": 1}]}}})",
+                 "l.json"),
+      "l.json:1:81: key 'timeline.activations.b': the scene has no muscle 'b' (it is not in 'muscles.use' nor in "
+      "'muscles.extra')");
+}
+
+TEST(SceneParser, SceneMusclesSelectsInUseOrderThenExtras) {
+  const SceneDesc s = parseScene(
+      R"({"muscles": {"use": ["corrugator_supercilii_left", "zygomaticus_major_right"], "extra": [{"name": "x", "origin": {"landmark": "nose_tip"}, "insertion": {"landmark": "chin_menton"}}]}})",
+      "s.json");
+  const std::vector<MuscleDef> m = sceneMuscles(s, thesisMuscleDefs());
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m[0].name, "corrugator_supercilii_left");
+  EXPECT_EQ(m[1].name, "zygomaticus_major_right");
+  EXPECT_EQ(m[2].name, "x");
+  EXPECT_EQ(sceneMuscles(parseScene("{}", "e.json"), thesisMuscleDefs()).size(), thesisMuscleDefs().size());
 }
 
 }  // namespace

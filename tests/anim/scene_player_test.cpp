@@ -6,6 +6,7 @@
 #include <atomic>
 
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"  // buildSceneFace for the fixture
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 

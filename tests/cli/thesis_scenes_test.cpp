@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"

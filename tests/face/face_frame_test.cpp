@@ -4,6 +4,7 @@
 
 #include "myoshell/face/face_frame.h"
 #include "myoshell/face/head.h"
+#include "myoshell/io/head_files.h"
 #include "support/test_data.h"
 
 namespace myo {

@@ -11,6 +11,7 @@
 #include "myoshell/face/simulator.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/test_data.h"
 

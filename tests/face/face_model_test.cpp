@@ -9,6 +9,8 @@
 #include "myoshell/face/face_model.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/mesh/edge_table.h"
+#include "myoshell/io/muscle_library_file.h"
+#include "myoshell/io/obj_writer.h"
 #include "myoshell/mesh/obj_reader.h"
 
 #include <filesystem>

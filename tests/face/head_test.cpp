@@ -3,6 +3,7 @@
 #include <set>
 
 #include "myoshell/face/head.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/face/mediapipe_mesh.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"

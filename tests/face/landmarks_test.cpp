@@ -4,6 +4,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/head.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/face/landmarks.h"
 #include "support/test_data.h"
 

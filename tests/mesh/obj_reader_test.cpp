@@ -347,41 +347,5 @@ TEST(ValidateMesh, AcceptsPrimitivesAndNamesFaults) {
               ::testing::ThrowsMessage<InputError>(HasSubstr("is degenerate")));
 }
 
-// ---- writing ----
-
-TEST(WriteObj, RoundTripKeepsQuadsUvsAndExactPositions) {
-  TempDir dir;
-  const std::string src = dir.write(
-      "quad.obj",
-      "v 0.1 0.2 0.3\nv 1.0000000000000002 0 0\nv 1 1 1e-300\nv 0 1 0\nv 2 0.5 0\n"
-      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
-      "f 1/1 2/2 3/3 4/4\nf 2/2 5/5 3/3\n");
-  const TriMesh m = readObj(src);
-  const std::string out = (dir.path() / "out.obj").string();
-  writeObj(out, m);
-  const TriMesh back = readObj(out);
-  EXPECT_TRUE(back.V == m.V);  // bitwise: shortest round-trip formatting
-  EXPECT_TRUE(back.UV == m.UV);
-  EXPECT_EQ(back.polygons, m.polygons);
-  EXPECT_TRUE(back.F == m.F);
-
-  MatX3 moved = m.V;
-  moved.col(2).array() += 1.5;
-  writeObj(out, m, &moved);
-  EXPECT_TRUE(readObj(out).V == moved);
-  for (const auto& entry : fs::directory_iterator(dir.path()))
-    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "temporary file left behind";
-
-  // Without polygons the triangles are written as they are.
-  TriMesh grid = gridMesh(1, 1, 2, 1);
-  grid.polygons.clear();
-  writeObj(out, grid);
-  EXPECT_TRUE(readObj(out).F == grid.F);
-}
-
-TEST(WriteObj, UnwritableDirectoryIsAnInputError) {
-  EXPECT_THROW(writeObj("/nonexistent/dir/out.obj", gridMesh(1, 1, 1, 1)), InputError);
-}
-
 }  // namespace
 }  // namespace myo

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "myoshell/anim/scene_parser.h"
+#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"

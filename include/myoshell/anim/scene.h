@@ -32,6 +32,12 @@ struct DragDesc {
   bool pinLandmarks = true;
 };
 
+// Where a key or value was written in the scene file: 1-based line and column, 0 when unknown.
+struct SourceLocation {
+  int line = 0;
+  int column = 0;
+};
+
 struct SceneDesc {
   std::string path;                 // the file it was read from ("" when built in code)
   std::string name;                 // defaults to the file's stem
@@ -48,6 +54,9 @@ struct SceneDesc {
   std::map<std::string, ScalarTrack> activations;  // muscle name → activation track (−1 … 1)
   ScalarTrack gravity;              // gravity scale track (empty = constant 1 when gravity is on)
   std::map<std::string, VectorTrack> dragForces;   // drag name → force track (dyn)
+  // Where the names checked after parsing were written (key path → location): "muscles.use[i]"
+  // and "timeline.activations.NAME" (sceneMuscles). Empty for a scene built in code.
+  std::map<std::string, SourceLocation> locations;
 };
 
 }  // namespace myo

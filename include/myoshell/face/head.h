@@ -45,11 +45,7 @@ std::string defaultHeadLandmarkJson();
 // SHA-256 (hex) of the embedded binarypb slice, checked by scripts/fetch_default_head and at configure.
 std::string defaultHeadSourceSha256();
 
-// Any OBJ head: readObj(objPath), readLandmarks(landmarkPath) with requireAll(), and pins from
-// pinPath (a vertex-set file, e.g. ICT's rigid_vertices.json) or, when pinPath is empty,
-// defaultGravityPins. Errors are InputError naming the file and the fault.
-Head loadHead(const std::string& objPath, const std::string& landmarkPath,
-              const std::string& pinPath = "");
+// Any OBJ head with its landmark file: io/head_files.h (loadHead).
 
 // Pins for a face without a back of the head: every vertex of the longest boundary loop (by
 // length; the outer rim of a face mask) plus the bone-backed nose-bridge landmarks nasion_approx

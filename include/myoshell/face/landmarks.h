@@ -68,8 +68,7 @@ struct Landmarks {
 // names (see Landmarks::requireAll, which loadHead calls).
 Landmarks parseLandmarks(const std::string& jsonText, int vertexCount,
                          const std::string& name = "<string>");
-// Reads a landmark file (InputError "cannot open landmark file" when it cannot be read).
-Landmarks readLandmarks(const std::string& path, int vertexCount);
+// (Reading a landmark file: io/head_files.h, readLandmarks.)
 
 // Writes landmarks in the file layout above (multipie68, then named as {"vertex": id}).
 std::string landmarksToJson(const Landmarks& landmarks);

@@ -28,8 +28,8 @@ struct Muscle {
   int insertionCentre(int k = 0) const;  // a vertex of the insertion ring (k in [0, ringNodes))
 };
 
-// Builds a muscle on a head from its definition. An imported muscle (def.obj) is read as it is, with
-// its node sets; the contraction direction of a central node points to the origin nodes' centroid.
+// Builds a muscle on a head from its definition. An imported muscle takes its shell (def.shell, read
+// by io) as it is, with its node sets; the contraction direction of a central node points to the origin nodes' centroid.
 // A generated muscle: the centre line runs from the origin anchor to the
 // insertion anchor, each station is pushed under the skin along the skin normal at an interpolated
 // depth, and a flat elliptic ring (width × thickness) is placed across it; the ends are closed

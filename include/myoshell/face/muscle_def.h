@@ -3,10 +3,16 @@
 // The thesis's eight muscles ship in assets/muscles/thesis_muscles.json (docs/muscles.md).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/mesh/tri_mesh.h"
+
+namespace YAML {
+class Node;
+}
 
 namespace myo {
 class DocReader;
@@ -49,6 +55,8 @@ struct MuscleDef {
   std::vector<int> centralNodes;    // where the activation force acts
   std::vector<int> insertionNodes;  // the moving end used for calibration; empty = the quarter of
                                     // the central nodes farthest from the origin
+  // The OBJ's mesh, read by io (io/muscle_library_file.h: readMuscleShells); buildMuscle needs it.
+  std::shared_ptr<const TriMesh> shell;
   bool imported() const { return !obj.empty(); }
 
   // Throws InputError naming the muscle and the field for impossible values.
@@ -59,8 +67,10 @@ struct MuscleDef {
 // snake_case (name, side, facs, origin {landmark, offset, depth}, insertion {…}, width, thickness,
 // stations, ring_nodes, contraction, spring_stiffness, roi_alpha, note). Errors (InputError) name
 // `name:line:col`, the key path and the fault; unknown keys are errors.
+// Imported muscles' OBJs are not read here (def.shell stays empty; io reads them).
 std::vector<MuscleDef> parseMuscleDefs(const std::string& jsonText, const std::string& name = "<string>");
-std::vector<MuscleDef> readMuscleDefs(const std::string& path);
+// The same over a document already loaded (io reads library files with it).
+std::vector<MuscleDef> readMuscleLibrary(const YAML::Node& root, const std::string& name);
 // One muscle definition from a mapping being read (scene files reuse this for their own muscles).
 MuscleDef readMuscleDef(DocReader& reader);
 

@@ -1,4 +1,4 @@
-// Reading Wavefront OBJ meshes (through tinyobjloader) and validating them.
+// Reading Wavefront OBJ meshes (through tinyobjloader) and validating them (writing: io/obj_writer.h).
 //
 // Triangulation: a triangle is kept; a quad is split along the shorter diagonal of the *rest*
 // positions (ties: the v0–v2 diagonal); larger polygons are fanned from their first vertex.
@@ -49,9 +49,5 @@ TriMesh readObjLikeFromString(const std::string& text, const TriMesh& rest,
 // Checks a triangle mesh for the simulation faults (NaN/Inf, degenerate triangles, non-manifold
 // edges, inconsistent orientation) and throws InputError naming the first one.
 void validateMesh(const TriMesh& mesh);
-
-// Writes an OBJ (positions, optional UVs, the mesh's polygons when present, else its triangles),
-// through a temporary file renamed into place. V overrides the positions when non-null.
-void writeObj(const std::string& path, const TriMesh& mesh, const MatX3* V = nullptr);
 
 }  // namespace myo

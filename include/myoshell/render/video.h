@@ -4,7 +4,7 @@
 // ffmpeg runs as a child process started with posix_spawn (no shell, so any path is safe: spaces,
 // quotes, colons, a leading '-'), reading raw rgb24 frames on its standard input; its standard
 // error goes to a temporary log whose last lines are quoted in errors. The output is written to a
-// temporary file next to the final one (".NAME.PID.tmp.mp4") that is renamed into place only when
+// temporary file next to the final one (core/atomic_file.h: ".NAME.PID.N.tmp.mp4") that is renamed into place only when
 // ffmpeg has succeeded, so a reader never sees a half-written video and a failure leaves nothing.
 //
 // yuv420p needs even sizes: a frame of odd width (height) gets one more column (row) repeating its

@@ -1,0 +1,36 @@
+// Scenes from files, and the face a scene describes (DESIGN.md: parse → describe → build).
+// anim/scene_parser.h parses a scene's text into a SceneDesc and reads no file; here the scene file
+// is read, then every file the scene names, then the face is built.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/anim/scene_parser.h"
+#include "myoshell/face/face_model.h"
+#include "myoshell/face/head.h"
+#include "myoshell/reduce/basis_cache.h"
+
+namespace myo {
+
+// Reads and parses a scene file (InputError "cannot open scene file" when it cannot be read).
+SceneDesc readScene(const std::string& path);
+
+// Everything a scene's face is built from, read and checked, nothing built.
+struct SceneInputs {
+  Head head;                     // built-in, or OBJ + landmarks + pins (+ skull)
+  std::vector<MuscleDef> muscles;  // sceneMuscles of its library; imported shells read
+  FaceModelSettings settings;    // scene.model with the drags resolved to vertices and pins
+};
+
+// Reads every file a scene names (paths relative to the scene's folder): the head's OBJ,
+// landmarks, pins and skull, the muscle library and imported muscles' OBJs, drag pin sets; checks
+// every name (muscles against the library: sceneMuscles; drag landmarks and vertices against the
+// head). `myoshell check` runs this, so it rejects what `run` rejects. Errors are InputError.
+SceneInputs readSceneInputs(const SceneDesc& scene);
+
+// Builds the face a scene describes: readSceneInputs, then the FaceModel (bases from `cache`).
+std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCache* cache = nullptr);
+
+}  // namespace myo

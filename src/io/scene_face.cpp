@@ -1,0 +1,58 @@
+#include "myoshell/io/scene_face.h"
+
+#include <filesystem>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/io/muscle_library_file.h"
+#include "myoshell/mesh/obj_reader.h"
+#include "myoshell/mesh/vertex_set.h"
+
+namespace myo {
+
+namespace fs = std::filesystem;
+
+SceneDesc readScene(const std::string& path) {
+  return parseScene(readWholeFile(path, "cannot open scene file"), path);
+}
+
+SceneInputs readSceneInputs(const SceneDesc& scene) {
+  const fs::path base = scene.path.empty() || scene.path.front() == '<' ? fs::path() : fs::path(scene.path).parent_path();
+  auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).string(); };
+  SceneInputs in;
+  in.head = scene.head.obj.empty()
+                ? loadDefaultHead()
+                : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),
+                           scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins));
+  const Head& head = in.head;
+  if (!scene.head.skull.empty()) in.head.skull = readObj(resolve(scene.head.skull));
+
+  const std::vector<MuscleDef> library = scene.muscleLibrary == "builtin" ? thesisMuscleDefs()
+                                                                           : readMuscleDefs(resolve(scene.muscleLibrary));
+  in.muscles = sceneMuscles(scene, library);
+  readMuscleShells(in.muscles);  // the scene's own imported muscles
+
+  in.settings = scene.model;
+  for (const DragDesc& d : scene.drags) {
+    DragDef def;
+    def.name = d.name;
+    def.vertex = d.landmark.empty() ? d.vertex : head.landmarks.vertex(d.landmark);
+    if (def.vertex >= head.mesh.vertexCount())
+      throw InputError("drag '" + d.name + "': vertex " + std::to_string(def.vertex) + " is outside [0, " +
+                           std::to_string(head.mesh.vertexCount()) + ") of head '" + head.name + "'",
+                       scene.path);
+    def.radius = d.radius;
+    if (!d.pins.empty()) def.pins = readVertexSet(resolve(d.pins), head.mesh.vertexCount());
+    else if (!d.pinLandmarks && !head.gravityPins.empty()) def.pins = head.gravityPins;  // rim only
+    in.settings.drags.push_back(def);
+  }
+  return in;
+}
+
+std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCache* cache) {
+  SceneInputs in = readSceneInputs(scene);
+  return std::make_shared<const FaceModel>(std::move(in.head), in.muscles, in.settings, cache);
+}
+
+}  // namespace myo
