@@ -13,6 +13,7 @@
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/face/shape_metric.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/test_data.h"
 

@@ -9,6 +9,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/head_checks.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/mesh/closest_point.h"
 #include "support/test_data.h"
 
