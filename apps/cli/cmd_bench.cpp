@@ -137,7 +137,8 @@ SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::stri
       const auto resolve = [&](const std::string& p) {
         return p.empty() ? p : (fs::path(opt.scenesDir) / p).string();
       };
-      const Head to = loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks), resolve(scene.head.gravityPins));
+      const Head to = loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks), resolve(scene.head.gravityPins),
+                               scene.head.units);
       const FaceFrame ff = from.frame(), tf = to.frame();
       for (DragDesc& d : scene.drags) {
         if (d.vertex < 0) continue;

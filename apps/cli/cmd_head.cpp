@@ -1,4 +1,5 @@
-// `myoshell head [default|OBJ|DIR] [--landmarks FILE] [--pins FILE] [--json] [--render PNG]`:
+// `myoshell head [default|OBJ|DIR] [--landmarks FILE] [--pins FILE] [--units m|mm|cm] [--json]
+// [--render PNG]`:
 // loads a head, reports its counts, landmarks, face frame and gravity pins, and renders a picture
 // with the landmarks (and optionally the pins) marked.
 //
@@ -19,6 +20,7 @@
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/head.h"
+#include "myoshell/face/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
@@ -85,6 +87,7 @@ struct HeadArgs {
   std::string head = "default";
   std::string landmarks;
   std::string pins;
+  std::string units = "cm";  // the OBJ's length unit: m, mm or cm
   bool json = false;
   std::string render;
   std::string view = "front";
@@ -99,9 +102,15 @@ struct HeadArgs {
 };
 
 Head loadFromArgs(const HeadArgs& a) {
+  LengthUnit unit;
+  try {
+    unit = parseLengthUnit(a.units);
+  } catch (const InputError& e) {
+    throw InputError("--units: " + e.message());
+  }
   if (a.head == "default") {
-    if (!a.landmarks.empty() || !a.pins.empty())
-      throw InputError("--landmarks and --pins apply to an OBJ head, not the default head");
+    if (!a.landmarks.empty() || !a.pins.empty() || unit != LengthUnit::cm)
+      throw InputError("--landmarks, --pins and --units apply to an OBJ head, not the default head");
     DefaultHeadOptions o;
     o.subdivisionLevels = a.levels;
     o.openMouth = !a.closedMouth;
@@ -121,7 +130,7 @@ Head loadFromArgs(const HeadArgs& a) {
                      obj.string());
   if (landmarks.empty())
     throw InputError("an OBJ head needs --landmarks FILE (layout of docs/heads.md)", obj.string());
-  Head h = loadHead(obj.string(), landmarks, pins);
+  Head h = loadHead(obj.string(), landmarks, pins, unit);
   return h;
 }
 
@@ -214,6 +223,7 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
                                       "landmarks_multipie68.json and rigid_vertices.json");
   sub->add_option("--landmarks", args->landmarks, "landmark file (layout: docs/heads.md)");
   sub->add_option("--pins", args->pins, "vertex-set file of gravity pins (default: the rim rule)");
+  sub->add_option("--units", args->units, "the OBJ's length unit, m, mm or cm (default cm); scaled to cm on load");
   sub->add_flag("--json", args->json, "print the report as JSON");
   sub->add_option("--render", args->render, "write a PNG picture with the landmarks marked");
   sub->add_option("--view", args->view, "front, three-quarter, profile or back")->capture_default_str();

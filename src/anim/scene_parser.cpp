@@ -6,6 +6,7 @@
 
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/face/head_checks.h"
 
 namespace myo {
 
@@ -123,8 +124,17 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     scene.head.landmarks = h.string("landmarks", "");
     scene.head.gravityPins = h.string("gravity_pins", "");
     scene.head.skull = h.string("skull", "");
+    if (h.has("units")) {
+      try {
+        scene.head.units = parseLengthUnit(h.string("units", "cm"));
+      } catch (const InputError& e) {
+        h.fail("units", e.message());
+      }
+    }
     if (!scene.head.obj.empty() && scene.head.landmarks.empty())
       h.fail("landmarks", "a head OBJ needs a landmark file");
+    if (scene.head.obj.empty() && scene.head.units != LengthUnit::cm)
+      h.fail("units", "applies to a head OBJ (head.obj); the built-in head is in cm");
     if (scene.head.obj.empty() && scene.head.builtin != "default")
       h.fail("builtin", "unknown built-in head '" + scene.head.builtin + "' (there is \"default\")");
     h.finish();
@@ -293,6 +303,7 @@ std::string sceneToJson(const SceneDesc& scene) {
                   ? json{{"builtin", scene.head.builtin}}
                   : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}, {"gravity_pins", scene.head.gravityPins}};
   if (!scene.head.skull.empty()) j["head"]["skull"] = scene.head.skull;
+  if (scene.head.units != LengthUnit::cm) j["head"]["units"] = lengthUnitName(scene.head.units);
   json extra = json::array();
   for (const MuscleDef& d : scene.extraMuscles) {
     if (d.imported()) {

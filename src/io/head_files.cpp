@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "myoshell/core/whole_file.h"
+#include "myoshell/face/head_checks.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/mesh/vertex_set.h"
 
@@ -12,12 +13,15 @@ Landmarks readLandmarks(const std::string& path, int vertexCount) {
   return parseLandmarks(readWholeFile(path, "cannot open landmark file"), vertexCount, path);
 }
 
-Head loadHead(const std::string& objPath, const std::string& landmarkPath, const std::string& pinPath) {
+Head loadHead(const std::string& objPath, const std::string& landmarkPath, const std::string& pinPath,
+              LengthUnit unit) {
   Head head;
   head.name = std::filesystem::path(objPath).stem().string();
   head.mesh = readObj(objPath);
   head.landmarks = readLandmarks(landmarkPath, head.mesh.vertexCount());
   head.landmarks.requireAll();
+  rescaleToCentimetres(head.mesh, unit);
+  checkLoadedHead(head, unit);
   if (!pinPath.empty()) {
     head.gravityPins = readVertexSet(pinPath, head.mesh.vertexCount());
     head.pinsSource = std::filesystem::path(pinPath).filename().string();

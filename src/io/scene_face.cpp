@@ -4,6 +4,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
+#include "myoshell/face/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -24,9 +25,12 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
   in.head = scene.head.obj.empty()
                 ? loadDefaultHead()
                 : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),
-                           scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins));
+                           scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins), scene.head.units);
   const Head& head = in.head;
-  if (!scene.head.skull.empty()) in.head.skull = readObj(resolve(scene.head.skull));
+  if (!scene.head.skull.empty()) {
+    in.head.skull = readObj(resolve(scene.head.skull));
+    rescaleToCentimetres(in.head.skull, scene.head.units);  // written in the head's unit
+  }
 
   const std::vector<MuscleDef> library = scene.muscleLibrary == "builtin" ? thesisMuscleDefs()
                                                                            : readMuscleDefs(resolve(scene.muscleLibrary));

@@ -19,6 +19,7 @@ struct HeadDesc {
   std::string landmarks;            // its landmark file (required with obj)
   std::string gravityPins;          // its gravity pin set (vertex-set JSON); empty = rim + landmarks
   std::string skull;                // a skull OBJ in the head's space (optional): muscle origins sit on it
+  LengthUnit units = LengthUnit::cm;  // the unit obj and skull are written in (scaled to cm on load)
 };
 
 struct DragDesc {

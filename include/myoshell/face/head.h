@@ -16,6 +16,10 @@
 
 namespace myo {
 
+// The length unit a head file is written in; heads are used in cm (DESIGN.md, "Units").
+// Conversions and checks: face/head_checks.h.
+enum class LengthUnit { cm, m, mm };
+
 struct Head {
   std::string name;              // "default", or the OBJ file's stem
   TriMesh mesh;                  // the skin, cm, +y up, +z out of the face, +x subject's left

@@ -14,9 +14,6 @@
 
 namespace myo {
 
-// The length unit a head file is written in. Heads are used in cm (DESIGN.md, "Units").
-enum class LengthUnit { cm, m, mm };
-
 // "cm", "m" or "mm" → the unit; anything else throws InputError("unknown length unit 'X' (use m,
 // mm or cm)", file) — `file` names where the text came from (an argument, a scene file).
 LengthUnit parseLengthUnit(std::string_view text, const std::string& file = {});

@@ -1,0 +1,166 @@
+// Heads checked where they are loaded (docs/heads.md, "Checks on load"): ICT written in metres is
+// refused with the --units proposal, accepted with --units m (the same head and the same motion as
+// in cm), and the built-in head's landmarks on ICT's mesh are refused naming a landmark.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/cli_runner.h"
+
+namespace myo {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::path(testing::TempDir()) / ("myo_head_units_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+fs::path ictDir() { return test::sharedDataDir() / "ict"; }
+
+// Copies an OBJ with every vertex position multiplied by `factor` (17 significant digits).
+void writeScaledObj(const fs::path& from, const fs::path& to, double factor) {
+  std::ifstream in(from);
+  std::ofstream out(to);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream s(line.substr(2));
+      double x, y, z;
+      s >> x >> y >> z;
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g", x * factor, y * factor, z * factor);
+      out << buf << "\n";
+    } else {
+      out << line << "\n";
+    }
+  }
+}
+
+// The vertex positions of an OBJ, in file order.
+std::vector<double> objVertices(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<double> v;
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream s(line.substr(2));
+      double x, y, z;
+      s >> x >> y >> z;
+      v.insert(v.end(), {x, y, z});
+    }
+  return v;
+}
+
+// max |a − b| / max |b|.
+double relativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double diff = 0.0, scale = 0.0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  return diff / scale;
+}
+
+TEST(HeadUnits, IctInMetresIsRefusedThenAcceptedWithUnitsM) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path dir = scratch("ict_m");
+  writeScaledObj(ictDir() / "head_skin.obj", dir / "ict_m.obj", 0.01);
+  const std::string lm = " --landmarks '" + (ictDir() / "landmarks_multipie68.json").string() + "'";
+
+  const test::CliResult refused = test::runCli("head '" + (dir / "ict_m.obj").string() + "'" + lm + " --json");
+  EXPECT_EQ(refused.exitCode, 2) << refused.merged;
+  EXPECT_THAT(refused.err, HasSubstr("ict_m.obj: head scale: outer-canthus distance (right_eye_outer to "
+                                     "left_eye_outer) is 0.0892 cm with the mesh read in cm"));
+  EXPECT_THAT(refused.err, HasSubstr("in m it would be 8.92 cm"));
+  EXPECT_THAT(refused.err, HasSubstr("--units m|mm|cm (scene key head.units): probably --units m"));
+  EXPECT_EQ(refused.out, "");
+
+  // With --units m the loaded head is ICT in cm (to the digits the OBJ writer keeps).
+  const test::CliResult cm = test::runCli("head '" + (ictDir() / "head_skin.obj").string() + "'" + lm +
+                                          " --json --write-obj '" + (dir / "cm.obj").string() + "'");
+  const test::CliResult m = test::runCli("head '" + (dir / "ict_m.obj").string() + "'" + lm +
+                                         " --units m --json --write-obj '" + (dir / "m.obj").string() + "'");
+  ASSERT_EQ(cm.exitCode, 0) << cm.merged;
+  ASSERT_EQ(m.exitCode, 0) << m.merged;
+  EXPECT_LE(relativeDifference(objVertices(dir / "m.obj"), objVertices(dir / "cm.obj")), 1e-6);
+  const auto jm = nlohmann::json::parse(m.out), jcm = nlohmann::json::parse(cm.out);
+  EXPECT_NEAR(jm["frame"]["scale"].get<double>(), jcm["frame"]["scale"].get<double>(),
+              1e-6 * jcm["frame"]["scale"].get<double>());
+}
+
+TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path dir = scratch("ict_motion");
+  writeScaledObj(ictDir() / "head_skin.obj", dir / "ict_m.obj", 0.01);
+  auto scene = [&](const std::string& obj, const std::string& units) {
+    nlohmann::json j = {
+        {"name", "u"},
+        {"head", {{"obj", obj}, {"landmarks", (ictDir() / "landmarks_multipie68.json").string()},
+                  {"gravity_pins", (ictDir() / "rigid_vertices.json").string()}}},
+        {"muscles", {{"use", {"zygomaticus_major_left"}}}},
+        {"gravity", {{"enabled", false}}},
+        {"numerics", {{"skin_modes", 6}, {"precision", "double"}}},
+        {"duration", 0.1},
+        {"fps", 10},
+        {"timeline", {{"activations", {{"zygomaticus_major_left", {{{"t", 0}, {"value", 1}}}}}}}}};
+    if (!units.empty()) j["head"]["units"] = units;
+    const fs::path p = dir / ("scene_" + (units.empty() ? std::string("cm") : units) + ".json");
+    std::ofstream(p) << j.dump(2);
+    return p;
+  };
+  const fs::path sceneCm = scene((ictDir() / "head_skin.obj").string(), "");
+  const fs::path sceneM = scene((dir / "ict_m.obj").string(), "m");
+  for (const auto& [s, out] : {std::pair{sceneCm, dir / "out_cm"}, std::pair{sceneM, dir / "out_m"}}) {
+    const test::CliResult r = test::runCli("run '" + s.string() + "' --out '" + out.string() + "' --cache '" +
+                                           (dir / "cache").string() + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.merged;
+  }
+  // The last frame's displacement from the rest head, in cm, agrees to 1e-6 relative.
+  const std::vector<double> rest = objVertices(ictDir() / "head_skin.obj");
+  auto displacement = [&](const fs::path& out) {
+    std::vector<fs::path> frames;
+    for (const auto& e : fs::directory_iterator(out / "obj")) frames.push_back(e.path());
+    std::sort(frames.begin(), frames.end());
+    std::vector<double> u = objVertices(frames.back());
+    for (size_t i = 0; i < u.size() && i < rest.size(); ++i) u[i] -= rest[i];
+    return u;
+  };
+  const std::vector<double> uCm = displacement(dir / "out_cm"), uM = displacement(dir / "out_m");
+  double peak = 0.0;
+  for (double x : uCm) peak = std::max(peak, std::abs(x));
+  EXPECT_GT(peak, 0.01);  // the muscle moved the skin (cm)
+  EXPECT_LE(relativeDifference(uM, uCm), 1e-6);
+}
+
+TEST(HeadUnits, TheBuiltInLandmarksOnTheIctMeshAreRefused) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path dir = scratch("builtin_lm");
+  ASSERT_EQ(test::runCli("head --write-landmarks '" + (dir / "builtin.json").string() + "'").exitCode, 0);
+  const test::CliResult r = test::runCli("head '" + (ictDir() / "head_skin.obj").string() + "' --landmarks '" +
+                                         (dir / "builtin.json").string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.merged;
+  EXPECT_THAT(r.err, HasSubstr("builtin.json: landmark 'right_eye_inner' (vertex 133) does not fit mesh "));
+  EXPECT_THAT(r.err, HasSubstr("is this the landmark file of another mesh?"));
+}
+
+TEST(HeadUnits, UnitsApplyToOBJHeadsOnly) {
+  const test::CliResult r = test::runCli("head --units m");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("--landmarks, --pins and --units apply to an OBJ head, not the default head"));
+}
+
+}  // namespace
+}  // namespace myo
