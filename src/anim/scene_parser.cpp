@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
@@ -44,6 +45,10 @@ Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std
       k.node("value");
       key.value = k.vec3("value", Vec3::Zero());
     }
+    // `interp` shapes the segment from this key to the next: the last key starts none.
+    if (i + 1 == list.size() && k.has("interp"))
+      k.fail("interp", "a track's last key starts no segment ('interp' says how the value goes from its key to the "
+                       "next; put it on the key that starts the eased segment)");
     const std::string interp = k.string("interp", "linear");
     try {
       key.interpolation = interpolationFromString(interp);
@@ -57,6 +62,36 @@ Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std
     keys.push_back(key);
   }
   return Track<Value>(std::move(keys), path);
+}
+
+std::string numberText(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// Frames closer together than one step, or a scene shorter than one step, would show a face that
+// does not move (ScenePlayer steps whole dt's between frames). The error sits at the key the user
+// wrote: `fps` / `duration`, or `numerics.dt` when only that one was written.
+void checkFramesAgainstStep(const DocReader& root, const SceneDesc& scene) {
+  const double dt = scene.model.dt;
+  YAML::Node dtNode;
+  if (root.has("numerics")) {
+    const YAML::Node numerics = root.self()["numerics"];
+    if (numerics.IsMap() && numerics["dt"].IsDefined()) dtNode = numerics["dt"];
+  }
+  const bool dtWritten = dtNode.IsDefined() && !dtNode.IsNull();
+  const std::string dtText = "numerics.dt = " + numberText(dt) + " s";
+  auto failAtWritten = [&](const std::string& key, const std::string& what) {
+    if (root.has(key) || !dtWritten) root.fail(key, what);
+    root.failAt(dtNode, "numerics.dt", what);
+  };
+  if (scene.fps * dt > 1.0 + 1e-9)
+    failAtWritten("fps", "fps = " + numberText(scene.fps) + " is above 1/dt = " + numberText(1.0 / dt) + " (" + dtText +
+                             "): frames closer than one step would repeat; lower fps or dt");
+  if (scene.duration < dt * (1.0 - 1e-9))
+    failAtWritten("duration", "duration = " + numberText(scene.duration) + " s is shorter than one step (" + dtText +
+                                  "): the face would not move; lengthen duration or lower dt");
 }
 
 SourceLocation locationOf(const YAML::Node& n) {
@@ -131,6 +166,8 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
         h.fail("units", e.message());
       }
     }
+    if (scene.head.obj.empty() && !scene.head.gravityPins.empty())
+      h.fail("gravity_pins", "only a head OBJ takes a pin file (the built-in head has its own pins)");
     if (!scene.head.obj.empty() && scene.head.landmarks.empty())
       h.fail("landmarks", "a head OBJ needs a landmark file");
     if (scene.head.obj.empty() && scene.head.units != LengthUnit::cm)
@@ -142,7 +179,13 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   if (root.has("muscles")) {
     DocReader m = root.child("muscles");
     scene.muscleLibrary = m.string("library", scene.muscleLibrary);
-    scene.muscles = m.strings("use");
+    // "all" (the default; an empty list says the same) or a list of the library's names.
+    if (m.has("use") && m.node("use").IsScalar()) {
+      const std::string use = m.string("use", "all");
+      if (use != "all") m.fail("use", "must be \"all\" or a list of muscle names (got \"" + use + "\")");
+    } else {
+      scene.muscles = m.strings("use");
+    }
     for (size_t i = 0; i < scene.muscles.size(); ++i)
       scene.locations["muscles.use[" + std::to_string(i) + "]"] = locationOf(m.node("use")[i]);
     if (m.has("extra")) {
@@ -233,6 +276,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   root.requireAbove("duration", scene.duration, 0.0);
   scene.fps = root.number("fps", scene.fps);
   root.requireAbove("fps", scene.fps, 0.0);
+  checkFramesAgainstStep(root, scene);
 
   if (root.has("timeline")) {
     DocReader t = root.child("timeline");
@@ -285,7 +329,8 @@ template <class Value>
 nlohmann::json trackJson(const Track<Value>& track) {
   nlohmann::json keys = nlohmann::json::array();
   for (const auto& k : track.keys()) {
-    nlohmann::json key = {{"t", k.time}, {"interp", toString(k.interpolation)}};
+    nlohmann::json key = {{"t", k.time}};
+    if (&k != &track.keys().back()) key["interp"] = toString(k.interpolation);  // the last key starts no segment
     if constexpr (std::is_same_v<Value, double>) key["value"] = k.value;
     else key["value"] = {k.value.x(), k.value.y(), k.value.z()};
     keys.push_back(key);
@@ -299,9 +344,10 @@ std::string sceneToJson(const SceneDesc& scene) {
   const FaceModelSettings& s = scene.model;
   json j;
   j["name"] = scene.name;
-  j["head"] = scene.head.obj.empty()
-                  ? json{{"builtin", scene.head.builtin}}
-                  : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}, {"gravity_pins", scene.head.gravityPins}};
+  j["head"] = scene.head.obj.empty() ? json{{"builtin", scene.head.builtin}}
+                                     : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}};
+  // No pin file: no key (the head's own pins, the rim and the landmarks, are meant; docs/heads.md).
+  if (!scene.head.obj.empty() && !scene.head.gravityPins.empty()) j["head"]["gravity_pins"] = scene.head.gravityPins;
   if (!scene.head.skull.empty()) j["head"]["skull"] = scene.head.skull;
   if (scene.head.units != LengthUnit::cm) j["head"]["units"] = lengthUnitName(scene.head.units);
   json extra = json::array();
@@ -318,7 +364,9 @@ std::string sceneToJson(const SceneDesc& scene) {
                      {"stations", d.stations}, {"ring_nodes", d.ringNodes}, {"contraction", d.contraction},
                      {"spring_stiffness", d.springStiffness}, {"roi_alpha", d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha}});
   }
-  j["muscles"] = {{"library", scene.muscleLibrary}, {"use", scene.muscles}, {"extra", extra}};
+  j["muscles"] = {{"library", scene.muscleLibrary},
+                  {"use", scene.muscles.empty() ? json("all") : json(scene.muscles)},
+                  {"extra", extra}};
   j["skin"] = materialJson(s.skin);
   j["skin"]["damping_mass"] = s.skinDampingMass;
   j["skin"]["damping_stiffness"] = s.skinDampingStiffness;

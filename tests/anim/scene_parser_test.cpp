@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/core/errors.h"
 
@@ -37,7 +39,7 @@ TEST(SceneParser, ReadsEveryPart) {
     "numerics": {"dt": 0.002, "skin_modes": 12, "stepper": "semi-implicit", "precision": "double"},
     "duration": 3, "fps": 24,
     "timeline": {
-      "activations": {"zygomaticus_major_right": [{"t": 0, "value": 0}, {"t": 1, "value": 1, "interp": "smooth"}]},
+      "activations": {"zygomaticus_major_right": [{"t": 0, "value": 0, "interp": "smooth"}, {"t": 1, "value": 1}]},
       "drags": {"cheek": [{"t": 0, "value": [0, 0, 0]}, {"t": 2, "value": [100, 0, 0]}]}
     }})", "s.json");
   EXPECT_EQ(s.name, "fig26");
@@ -83,7 +85,7 @@ TEST(SceneParser, RoundTripsThroughJson) {
     "muscles": {"extra": [{"name": "frontalis_right", "origin": {"landmark": "right_brow_inner", "offset": [0, 0.5, 0]},
                            "insertion": {"landmark": "right_brow_inner"}}]},
     "drags": [{"name": "d", "vertex": 12, "pin_landmarks": false}],
-    "timeline": {"activations": {"frontalis_right": [{"t": 0, "value": 0}, {"t": 1, "value": -0.5, "interp": "step"}]},
+    "timeline": {"activations": {"frontalis_right": [{"t": 0, "value": 0, "interp": "step"}, {"t": 1, "value": -0.5}]},
                  "gravity": [{"t": 0, "value": 1}, {"t": 2, "value": 0}]}})",
                                  "rt.json");
   const std::string once = sceneToJson(a);
@@ -96,6 +98,57 @@ TEST(SceneParser, RoundTripsThroughJson) {
   EXPECT_DOUBLE_EQ(b.gravity.at(1.0), 0.5);
   ASSERT_EQ(b.drags.size(), 1u);
   EXPECT_FALSE(b.drags[0].pinLandmarks);
+}
+
+TEST(SceneParser, InterpOnATracksLastKeyIsAnErrorAtItsPlace) {
+  // interp shapes the segment from its key to the next; the last key starts none.
+  EXPECT_EQ(errorOf("{\"timeline\": {\"gravity\": [{\"t\": 0, \"value\": 0}, {\"t\": 1, \"value\": 1, \"interp\": \"smooth\"}]}}"),
+            "scene.json:1:80: key 'timeline.gravity[1].interp': a track's last key starts no segment ('interp' says how "
+            "the value goes from its key to the next; put it on the key that starts the eased segment)");
+  EXPECT_NE(errorOf("{\"timeline\": {\"drags\": {\"d\": [{\"t\": 0, \"value\": [0, 0, 0], \"interp\": \"linear\"}]}}, "
+                    "\"drags\": [{\"name\": \"d\", \"vertex\": 1}]}")
+                .find("key 'timeline.drags.d[0].interp': a track's last key starts no segment"),
+            std::string::npos);
+  // On the key that starts the segment it eases that segment: halfway along, smoothstep(0.5) = 0.5,
+  // at a quarter 0.15625 (linear would give 0.25).
+  const SceneDesc s = parseScene(R"({"timeline": {"gravity": [{"t": 0, "value": 0, "interp": "smooth"}, {"t": 1, "value": 1}]}})");
+  EXPECT_DOUBLE_EQ(s.gravity.at(0.25), 0.15625);
+}
+
+TEST(SceneParser, PrintsWhatIsMeant) {
+  // No interp on a last key, "all" for every muscle, a pin file only when there is one.
+  SceneDesc s = parseScene(R"({"timeline": {"gravity": [{"t": 0, "value": 0, "interp": "smooth"}, {"t": 1, "value": 1}]}})");
+  nlohmann::json j = nlohmann::json::parse(sceneToJson(s));
+  EXPECT_EQ(j["timeline"]["gravity"][0]["interp"], "smooth");
+  EXPECT_FALSE(j["timeline"]["gravity"][1].contains("interp"));
+  EXPECT_EQ(j["muscles"]["use"], "all");
+  EXPECT_EQ(j["head"], nlohmann::json({{"builtin", "default"}}));
+  s.head.obj = "h.obj";
+  s.head.landmarks = "l.json";
+  EXPECT_FALSE(nlohmann::json::parse(sceneToJson(s))["head"].contains("gravity_pins"));
+  s.head.gravityPins = "pins.json";
+  EXPECT_EQ(nlohmann::json::parse(sceneToJson(s))["head"]["gravity_pins"], "pins.json");
+  // "use": "all" and the old empty list both read as every muscle.
+  EXPECT_TRUE(parseScene(R"({"muscles": {"use": "all"}})").muscles.empty());
+  EXPECT_TRUE(parseScene(R"({"muscles": {"use": []}})").muscles.empty());
+  EXPECT_EQ(errorOf(R"({"head": {"gravity_pins": "p.json"}})"),
+            "scene.json:1:27: key 'head.gravity_pins': only a head OBJ takes a pin file (the built-in head has its own pins)");
+}
+
+TEST(SceneParser, FramesCloserThanOneStepOrAShorterSceneAreErrorsNamingBothValues) {
+  EXPECT_EQ(errorOf("{\"numerics\": {\"dt\": 0.01},\n \"fps\": 200}"),
+            "scene.json:2:9: key 'fps': fps = 200 is above 1/dt = 100 (numerics.dt = 0.01 s): frames closer than one "
+            "step would repeat; lower fps or dt");
+  // Only dt written (fps 30 by default): the error sits at dt.
+  EXPECT_EQ(errorOf("{\"numerics\": {\"dt\": 0.05}}"),
+            "scene.json:1:21: key 'numerics.dt': fps = 30 is above 1/dt = 20 (numerics.dt = 0.05 s): frames closer than "
+            "one step would repeat; lower fps or dt");
+  EXPECT_EQ(errorOf("{\"duration\": 0.001}"),
+            "scene.json:1:14: key 'duration': duration = 0.001 s is shorter than one step (numerics.dt = 0.00416667 s): "
+            "the face would not move; lengthen duration or lower dt");
+  // fps = 1/dt and duration = dt are the limits, and pass.
+  EXPECT_NO_THROW(parseScene(R"({"numerics": {"dt": 0.01}, "fps": 100, "duration": 0.01})"));
+  EXPECT_NO_THROW(parseScene(R"({"fps": 240})"));
 }
 
 std::string parseError(const std::string& text, const std::string& name) {

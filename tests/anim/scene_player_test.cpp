@@ -22,7 +22,7 @@ SceneDesc smallScene() {
     "drags": [{"name": "cheek", "vertex": 205, "radius": 1.0}],
     "duration": 0.3, "fps": 20,
     "timeline": {
-      "activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.2, "value": 1, "interp": "smooth"}],
+      "activations": {"zygomaticus_major_left": [{"t": 0, "value": 0, "interp": "smooth"}, {"t": 0.2, "value": 1}],
                       "zygomaticus_major_right": [{"t": 0, "value": 0.5}]},
       "gravity": [{"t": 0, "value": 0}, {"t": 0.3, "value": 1}],
       "drags": {"cheek": [{"t": 0, "value": [0, 0, 0]}, {"t": 0.3, "value": [3000, 0, 0]}]}}

@@ -1,6 +1,7 @@
 // Scene files (JSON, or YAML — the same keys): parse → SceneDesc → build (docs/scene_format.md).
 // Every error names `file:line:col`, the key path and the fault; unknown keys are errors, and
-// values out of range (activations outside [−1, 1] included) are errors. Parsing reads no file:
+// values out of range (activations outside [−1, 1] included, fps above 1/dt, a duration shorter
+// than dt) are errors. Parsing reads no file:
 // reading a scene file and building its face are io's (io/scene_face.h).
 #pragma once
 
@@ -15,7 +16,9 @@ namespace myo {
 SceneDesc parseScene(const std::string& text, const std::string& path = "<string>");
 
 // The description as a scene file (JSON) with every default written out: `myoshell check` prints
-// it, and parseScene(sceneToJson(d)) gives d back.
+// it, and parseScene(sceneToJson(d)) gives d back. It writes what is meant: `"use": "all"` for the
+// whole library, `head.gravity_pins` only when a pin file is given, no `interp` on a track's last
+// key (which parseScene refuses: interp shapes the segment from its key to the next).
 std::string sceneToJson(const SceneDesc& scene);
 
 // The muscles a scene uses, given its muscle library: the `muscles.use` selection in its order (or
