@@ -9,6 +9,7 @@
 #include "myoshell/io/scene_face.h"  // buildSceneFace for the fixture
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
+#include "support/basis_cache.h"
 
 namespace myo {
 namespace {
@@ -31,7 +32,7 @@ SceneDesc smallScene() {
 }
 
 std::shared_ptr<const FaceModel> smallFace() {  // built once: the eigen-solves are the slow part
-  static const auto model = buildSceneFace(smallScene());
+  static const auto model = buildSceneFace(smallScene(), test::sharedBasisCache());
   return model;
 }
 

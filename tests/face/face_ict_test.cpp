@@ -13,6 +13,7 @@
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "support/basis_cache.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -32,7 +33,7 @@ FaceModelSettings ictSettings() {
 }
 
 std::shared_ptr<const FaceModel> ictFace() {
-  static const auto model = std::make_shared<const FaceModel>(ictHead(), thesisMuscleDefs(), ictSettings());
+  static const auto model = std::make_shared<const FaceModel>(ictHead(), thesisMuscleDefs(), ictSettings(), test::sharedBasisCache());
   return model;
 }
 

@@ -19,6 +19,7 @@
 #include "myoshell/reduce/modal_warping.h"
 #include "myoshell/verify/modal_statics.h"
 #include "myoshell/verify/reference_solver.h"
+#include "support/basis_cache.h"
 #include "support/free_vertex.h"
 
 #include <sstream>
@@ -36,7 +37,7 @@ FaceModelSettings testSettings() {
 // Built once for the whole file: eight muscles, their ROI channels and gravity.
 std::shared_ptr<const FaceModel> defaultFace() {
   static const auto model =
-      std::make_shared<const FaceModel>(loadDefaultHead(), thesisMuscleDefs(), testSettings());
+      std::make_shared<const FaceModel>(loadDefaultHead(), thesisMuscleDefs(), testSettings(), test::sharedBasisCache());
   return model;
 }
 
@@ -373,7 +374,7 @@ TEST(Simulator, SkinStiffnessScaleScalesTheSteadySagAsOneOverS) {
   for (const bool warping : {false, true}) {
     FaceModelSettings s = testSettings();
     s.warping = warping;
-    const auto model = std::make_shared<const FaceModel>(loadDefaultHead(), std::vector<MuscleDef>{}, s);
+    const auto model = std::make_shared<const FaceModel>(loadDefaultHead(), std::vector<MuscleDef>{}, s, test::sharedBasisCache());
     MatX3 sag[2];
     const double scales[2] = {1.0, 2.5};
     for (int k = 0; k < 2; ++k) {
