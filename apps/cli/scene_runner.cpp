@@ -86,6 +86,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     animation.name = scene.name;
     animation.triangles = model->head().mesh.F;
     animation.rest = model->head().mesh.V;
+    animation.uv = model->head().mesh.UV;  // TEXCOORD_0 when the head has UVs
     animation.fps = scene.fps;
     animation.positions.reserve(frames);
   }

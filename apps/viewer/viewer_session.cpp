@@ -199,6 +199,7 @@ int ViewerSession::exportGlb(const std::string& path) const {
   animation.name = scene().name.empty() ? "viewer" : scene().name;
   animation.triangles = model_->head().mesh.F;
   animation.rest = model_->head().mesh.V;
+  animation.uv = model_->head().mesh.UV;
   animation.fps = scene().fps;
   for (int f = 0; f < frames; ++f) {
     fresh.advanceTo(f);

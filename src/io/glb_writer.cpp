@@ -96,6 +96,8 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   const auto n = static_cast<size_t>(frames.rest.rows());
   MYO_CHECK(frames.triangles.minCoeff() >= 0 && static_cast<size_t>(frames.triangles.maxCoeff()) < n,
             "triangle indices must lie in [0, " << n << ")");
+  MYO_CHECK(frames.uv.rows() == 0 || static_cast<size_t>(frames.uv.rows()) == n,
+            "uv must have 0 or " << n << " rows (one per vertex), got " << frames.uv.rows());
   const std::vector<int> exported = glbFrameIndices(static_cast<int>(frames.positions.size()), maxMorphTargets);
   const size_t T = exported.size();
 
@@ -122,6 +124,18 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   const int normalAccessor = bb.addAccessor(bb.addView(normals.data(), normals.size() * 4, kArrayBuffer), 0,
                                             TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
 
+  // Texture coordinates, when the head has them: glTF's v runs down the image, OBJ's up.
+  int texcoordAccessor = -1;
+  if (frames.uv.rows() > 0) {
+    std::vector<float> uv(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+      uv[2 * i] = static_cast<float>(frames.uv(static_cast<Eigen::Index>(i), 0));
+      uv[2 * i + 1] = static_cast<float>(1.0 - frames.uv(static_cast<Eigen::Index>(i), 1));
+    }
+    texcoordAccessor = bb.addAccessor(bb.addView(uv.data(), uv.size() * 4, kArrayBuffer), 0,
+                                      TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC2);
+  }
+
   // Morph targets: displacement from the rest, all in one view.
   std::vector<float> targets;
   targets.reserve(T * 3 * n);
@@ -137,6 +151,7 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   tinygltf::Primitive prim;
   prim.attributes["POSITION"] = positionAccessor;
   prim.attributes["NORMAL"] = normalAccessor;
+  if (texcoordAccessor >= 0) prim.attributes["TEXCOORD_0"] = texcoordAccessor;
   prim.indices = indexAccessor;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   tinygltf::Value::Array targetNames;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
@@ -181,6 +182,47 @@ TEST_F(AnimationExport, GlbStridesLongAnimations) {
   ASSERT_EQ(times.size(), 4u);
   EXPECT_NEAR(times[2], 6 / 24.0, 1e-6);
   EXPECT_NEAR(times[3], 7 / 24.0, 1e-6);
+}
+
+// TEXCOORD_0 only when the frames carry UVs: VEC2 floats, one per vertex, v flipped to glTF's
+// top-left origin; UVs of the wrong row count are a CheckError and write nothing.
+TEST_F(AnimationExport, GlbTexcoordsOnlyWhenTheHeadHasUvs) {
+  AnimationFrames a = waveAnimation(3);
+  auto load = [](const fs::path& path, tinygltf::Model& m) {
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, path.string())) << err;
+  };
+  writeGlb(dir_ / "plain.glb", a);
+  tinygltf::Model plain;
+  load(dir_ / "plain.glb", plain);
+  EXPECT_EQ(plain.meshes.at(0).primitives.at(0).attributes.count("TEXCOORD_0"), 0u);
+  std::ifstream bytes(dir_ / "plain.glb", std::ios::binary);
+  const std::string raw((std::istreambuf_iterator<char>(bytes)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(raw.find("TEXCOORD"), std::string::npos);
+
+  a.uv.resize(4, 2);
+  a.uv << 0.1, 0.2, 0.9, 0.25, 0.8, 0.95, 0.05, 0.7;
+  writeGlb(dir_ / "uv.glb", a);
+  tinygltf::Model m;
+  load(dir_ / "uv.glb", m);
+  const auto& attrs = m.meshes.at(0).primitives.at(0).attributes;
+  ASSERT_EQ(attrs.count("TEXCOORD_0"), 1u);
+  const tinygltf::Accessor& acc = m.accessors[attrs.at("TEXCOORD_0")];
+  EXPECT_EQ(acc.type, TINYGLTF_TYPE_VEC2);
+  EXPECT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  ASSERT_EQ(acc.count, 4u);
+  const tinygltf::BufferView& view = m.bufferViews[acc.bufferView];
+  std::vector<float> uv(8);
+  std::memcpy(uv.data(), m.buffers[view.buffer].data.data() + view.byteOffset + acc.byteOffset, 32);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_FLOAT_EQ(uv[2 * i], static_cast<float>(a.uv(i, 0))) << i;
+    EXPECT_FLOAT_EQ(uv[2 * i + 1], static_cast<float>(1.0 - a.uv(i, 1))) << i;
+  }
+
+  a.uv.conservativeResize(3, 2);
+  EXPECT_THROW(writeGlb(dir_ / "bad.glb", a), CheckError);
+  EXPECT_FALSE(fs::exists(dir_ / "bad.glb"));
 }
 
 TEST_F(AnimationExport, WritingIntoAMissingFolderFailsAndLeavesNoFile) {

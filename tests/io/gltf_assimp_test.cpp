@@ -8,11 +8,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/obj_writer.h"
 #include "support/cli_runner.h"
 
 namespace myo {
@@ -60,6 +62,21 @@ double keyWeight(const aiMeshMorphKey& key, unsigned target) {
   for (unsigned j = 0; j < key.mNumValuesAndWeights; ++j)
     if (key.mValues[j] == target) return key.mWeights[j];
   return 0.0;
+}
+
+// Largest difference between the texture coordinates two assimp meshes give the same face corners
+// (assimp's OBJ importer makes one vertex per corner, its glTF importer keeps ours, so corners are
+// matched through the faces, which both keep in file order).
+double maxCornerUvDifference(const aiMesh* a, const aiMesh* b) {
+  EXPECT_EQ(a->mNumFaces, b->mNumFaces);
+  double worst = 0;
+  for (unsigned f = 0; f < a->mNumFaces && f < b->mNumFaces; ++f)
+    for (unsigned c = 0; c < 3; ++c) {
+      const aiVector3D& ua = a->mTextureCoords[0][a->mFaces[f].mIndices[c]];
+      const aiVector3D& ub = b->mTextureCoords[0][b->mFaces[f].mIndices[c]];
+      worst = std::max({worst, std::abs(double(ua.x) - ub.x), std::abs(double(ua.y) - ub.y)});
+    }
+  return worst;
 }
 
 class GltfAssimp : public ::testing::Test {
@@ -120,6 +137,43 @@ TEST_F(GltfAssimp, ReadsTheBaseMeshMorphTargetsAndWeightsAnimation) {
   }
 }
 
+// A head with UVs: the GLB's TEXCOORD_0 read by assimp equals what assimp reads from our OBJ of
+// the same mesh, corner by corner (and equals the UVs given); a head without UVs has none.
+TEST_F(GltfAssimp, TexcoordsEqualTheObjs) {
+  AnimationFrames a = bulgeAnimation(3);
+  a.uv.resize(a.rest.rows(), 2);
+  for (Eigen::Index v = 0; v < a.uv.rows(); ++v) a.uv.row(v) << 0.1 + 0.15 * (v % 6), 0.05 + 0.3 * (v / 6) - 0.01 * v;
+  writeGlb(dir_ / "uv.glb", a);
+  TriMesh mesh;
+  mesh.V = a.rest;
+  mesh.F = a.triangles;
+  mesh.UV = a.uv;
+  writeObj((dir_ / "uv.obj").string(), mesh);
+
+  Assimp::Importer glbImporter, objImporter;
+  const aiScene* glb = glbImporter.ReadFile((dir_ / "uv.glb").string(), 0);
+  const aiScene* obj = objImporter.ReadFile((dir_ / "uv.obj").string(), 0);
+  ASSERT_NE(glb, nullptr) << glbImporter.GetErrorString();
+  ASSERT_NE(obj, nullptr) << objImporter.GetErrorString();
+  const aiMesh* g = glb->mMeshes[0];
+  const aiMesh* o = obj->mMeshes[0];
+  ASSERT_TRUE(g->HasTextureCoords(0));
+  ASSERT_TRUE(o->HasTextureCoords(0));
+  EXPECT_EQ(g->mNumUVComponents[0], 2u);
+  EXPECT_LT(maxCornerUvDifference(g, o), 1e-6);
+  for (unsigned v = 0; v < g->mNumVertices; ++v) {
+    EXPECT_NEAR(g->mTextureCoords[0][v].x, a.uv(v, 0), 1e-6) << v;
+    EXPECT_NEAR(g->mTextureCoords[0][v].y, a.uv(v, 1), 1e-6) << v;
+  }
+
+  a.uv.resize(0, 2);
+  writeGlb(dir_ / "plain.glb", a);
+  Assimp::Importer plainImporter;
+  const aiScene* plain = plainImporter.ReadFile((dir_ / "plain.glb").string(), 0);
+  ASSERT_NE(plain, nullptr) << plainImporter.GetErrorString();
+  EXPECT_FALSE(plain->mMeshes[0]->HasTextureCoords(0));
+}
+
 // A simulated run: the GLB's anim meshes are the frames the PC2 cache holds, vertex by vertex.
 TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
   std::ofstream(dir_ / "small.json") << R"({
@@ -131,7 +185,7 @@ TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
   "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
 })";
   const auto r = test::runCli("run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / "out").string() +
-                              "' --cache '" + (dir_ / "cache").string() + "' --format glb,pc2");
+                              "' --cache '" + (dir_ / "cache").string() + "' --format glb,pc2,obj");
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   const PointCache pc = readPc2(dir_ / "out" / "small.pc2");
 
@@ -148,6 +202,14 @@ TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
   EXPECT_GT((pc.samples.back() - pc.samples.front()).cwiseAbs().maxCoeff(), 0.01);
   ASSERT_EQ(scene->mNumAnimations, 1u);
   EXPECT_EQ(scene->mAnimations[0]->mNumMorphMeshChannels, 1u);
+
+  // The default head has UVs: the GLB carries the same ones as the run's OBJ frames.
+  Assimp::Importer objImporter;
+  const aiScene* obj = objImporter.ReadFile((dir_ / "out" / "obj" / "small_0000.obj").string(), 0);
+  ASSERT_NE(obj, nullptr) << objImporter.GetErrorString();
+  ASSERT_TRUE(mesh->HasTextureCoords(0));
+  ASSERT_TRUE(obj->mMeshes[0]->HasTextureCoords(0));
+  EXPECT_LT(maxCornerUvDifference(mesh, obj->mMeshes[0]), 1e-6);
 }
 
 }  // namespace

@@ -127,6 +127,16 @@ TEST_F(GltfValidator, StridedAndSingleFrameGlbsHaveNoErrors) {
   expectValid(dir_ / "single.glb");
 }
 
+// With TEXCOORD_0 (the grid's UVs span [0, 1]²).
+TEST_F(GltfValidator, GlbWithTexcoordsHasNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  AnimationFrames a = rippleAnimation(6);
+  a.uv.resize(a.rest.rows(), 2);
+  for (Eigen::Index v = 0; v < a.rest.rows(); ++v) a.uv.row(v) << a.rest(v, 0) / 7.0, a.rest(v, 1) / 5.0;
+  writeGlb(dir_ / "uv.glb", a);
+  expectValid(dir_ / "uv.glb");
+}
+
 // The validator does find errors: a GLB whose binary chunk is cut short fails (exit 1).
 TEST_F(GltfValidator, ATruncatedGlbFails) {
   MYO_REQUIRE_GLTF_VALIDATOR();

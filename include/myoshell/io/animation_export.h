@@ -6,13 +6,18 @@
 //   sampleRate f32 | numSamples i32 | numSamples × numPoints × (x, y, z) f32
 // We write startFrame 0 and sampleRate 1 (one sample per frame), points in the head's vertex order.
 //
-// GLB: one mesh (the rest skin: POSITION, NORMAL of the rest, UNSIGNED_INT indices), one node,
-// one scene. Each exported frame k becomes morph target k holding the displacement
+// GLB: one mesh (the rest skin: POSITION, NORMAL of the rest, TEXCOORD_0 when the frames carry
+// UVs, UNSIGNED_INT indices), one node, one scene. Each exported frame k becomes morph target k holding the displacement
 // positions[k] − rest; the animation's "weights" channel (LINEAR) has keyframe times
 // frame_k / fps with the one-hot weights e_k, so the player shows rest + target k at frame k and
 // blends neighbours in between (the scheme three.js and Blender play). Every POSITION accessor
 // carries min/max. At most maxMorphTargets frames are exported: with more frames, every
 // stride-th frame (stride = ceil(frames / maxMorphTargets)) and always the last one.
+// TEXCOORD_0 (float VEC2, one per vertex) holds (u, 1 − v) of AnimationFrames::uv: UVs here are
+// per vertex in the OBJ convention (origin at the image's bottom-left, TriMesh::UV), glTF's origin
+// is the top-left. A head whose OBJ gave one vertex several texture coordinates (a UV seam) has
+// already been reduced to the first corner's by the OBJ reader, so the GLB holds exactly the UVs
+// our OBJ exports write, and no vertex is split. Without UVs no TEXCOORD_0 is written.
 // Both writers go through a temporary name renamed into place; a failure leaves no file.
 #pragma once
 
@@ -31,6 +36,7 @@ struct AnimationFrames {
   MatX3 rest;                      // n×3 rest positions, cm; row i is vertex i
   std::vector<MatX3> positions;    // one n×3 matrix per frame, cm, same vertex order as rest
   double fps = 30.0;               // frames per second; frame k is at time k / fps, s
+  MatX2 uv;                        // n×2 per-vertex texture coordinates (TriMesh::UV), or 0×2: none
 };
 
 // A PC2 file read back.
@@ -53,7 +59,8 @@ PointCache readPc2(const std::filesystem::path& path);
 std::vector<int> glbFrameIndices(int frameCount, int maxMorphTargets = 240);
 
 // Writes the GLB described above. Throws InputError when the file cannot be written and
-// CheckError when the frames are inconsistent (no frames, shapes, fps ≤ 0, bad triangle indices).
+// CheckError when the frames are inconsistent (no frames, shapes, uv neither 0 nor n rows, fps ≤ 0,
+// bad triangle indices).
 void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, int maxMorphTargets = 240);
 
 }  // namespace myo
