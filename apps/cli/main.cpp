@@ -9,6 +9,7 @@
 
 #include "command.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/io_error.h"
 
 namespace myo::cli {
 
@@ -68,6 +69,9 @@ int main(int argc, char** argv) {
   } catch (const myo::InputError& e) {
     fmt::print(stderr, "myoshell: error: {}\n", e.what());
     return kExitBadInput;
+  } catch (const myo::IoError& e) {  // run-time: a full disk, a file-size limit (path and OS reason)
+    fmt::print(stderr, "myoshell: error: {}\n", e.what());
+    return kExitFailure;
   } catch (const std::exception& e) {
     fmt::print(stderr, "myoshell: error: {}\n", e.what());
     return kExitFailure;

@@ -21,6 +21,7 @@
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/io_error.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/animation_export.h"
@@ -70,6 +71,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   // Folders only once the scene has built: a bad scene leaves nothing behind.
   std::error_code ec;
   fs::create_directories(formats.obj ? out / "obj" : out, ec);
+  if (ec && isRunTimeIoFailure(ec.value())) throw IoError("cannot create the output folder (" + ec.message() + ")", out.string());
   if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
   // What the last run here wrote: whatever of it this run does not rewrite goes at the end.
   const std::vector<std::string> previous = readOutputManifest(out);

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/io_error.h"
 
 namespace myo {
 
@@ -17,11 +18,32 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The target itself is unusable (a folder, a missing folder, no permission): the user's input.
 [[noreturn]] void fail(const std::string& what, const std::string& reason, const std::string& path) {
   throw InputError(what + " (" + reason + ")", path);
 }
 
+// `error` (an errno) while making the file: the system's failure or the path's fault, as
+// isRunTimeIoFailure says.
+[[noreturn]] void failToCreate(const std::string& what, int error, const std::string& path) {
+  if (isRunTimeIoFailure(error)) throw IoError(what + " (" + std::strerror(error) + ")", path);
+  fail(what, std::strerror(error), path);
+}
+
+// A failure once the temporary file is open (writing, flushing, syncing, closing, renaming): the
+// path was usable, so it is the system's (a full disk, a file-size limit, an I/O error).
+[[noreturn]] void failWhileWriting(const std::string& what, const std::string& reason, const std::string& path) {
+  throw IoError(what + " (" + reason + ")", path);
+}
+
 }  // namespace
+
+bool isRunTimeIoFailure(int error) {
+  switch (error) {
+    case ENOSPC: case EDQUOT: case EFBIG: case EIO: case EMFILE: case ENFILE: case ENOMEM: return true;
+    default: return false;
+  }
+}
 
 std::string temporaryPathBeside(const std::string& target, const std::string& suffix) {
   // pid and a per-process counter: unique among threads and among processes writing one folder
@@ -46,7 +68,7 @@ void renameIntoPlace(const std::string& tmp, const std::string& target, const st
   fs::rename(tmp, target, ec);
   if (ec) {
     removeQuietly(tmp);
-    fail(what, "cannot rename the temporary file into place: " + ec.message(), target);
+    failWhileWriting(what, "cannot rename the temporary file into place: " + ec.message(), target);
   }
 }
 
@@ -56,8 +78,9 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
   if (fs::is_directory(path, ec)) fail(what, "it is a folder", path);
   const std::string tmp = temporaryPathBeside(path);
   std::FILE* out = std::fopen(tmp.c_str(), "wb");
-  if (!out) fail(what, std::strerror(errno), path);
+  if (!out) failToCreate(what, errno, path);
   try {
+    errno = 0;  // so that a stream error below reports the write's own errno
     write(out);
   } catch (...) {
     std::fclose(out);
@@ -72,7 +95,7 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
   if (std::fclose(out) != 0 && !error) error = errno;
   if (error) {
     removeQuietly(tmp);
-    fail(what, std::strerror(error), path);
+    failWhileWriting(what, std::strerror(error), path);
   }
   renameIntoPlace(tmp, path, what);
 }

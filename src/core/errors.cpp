@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "myoshell/core/check.h"
+#include "myoshell/core/io_error.h"
 
 namespace myo {
 
@@ -28,6 +29,9 @@ InputError::InputError(const std::string& message, std::string file, int line, i
       file_(std::move(file)),
       line_(line),
       column_(column) {}
+
+IoError::IoError(const std::string& message, std::string path)
+    : std::runtime_error(locate(message, path, 0, 0)), message_(message), path_(std::move(path)) {}
 
 namespace detail {
 void checkFailed(const char* file, int line, const std::string& what) {

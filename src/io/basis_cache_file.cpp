@@ -6,6 +6,7 @@
 
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/io_error.h"
 #include "myoshell/core/whole_file.h"
 #include "myoshell/reduce/modal_analysis.h"
 
@@ -195,6 +196,8 @@ void FileBasisCache::store(const BasisKey& key, const ModalBasis& basis) {
     ++stats_.stores;
   } catch (const InputError& e) {
     // A cache is an optimization: a read-only or full disk must not stop a build.
+    lastStoreError_ = e.what();
+  } catch (const IoError& e) {  // a full disk, a file-size limit
     lastStoreError_ = e.what();
   }
 }

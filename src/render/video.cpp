@@ -20,6 +20,7 @@
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/io_error.h"
 
 extern char** environ;
 
@@ -188,7 +189,11 @@ void checkWritable(const std::string& path, const std::string& probe, const std:
   if (!fs::is_directory(parent, ec))
     throw InputError("cannot write " + what + ": the folder " + parent.string() + " does not exist", path);
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError("cannot write " + what + " (" + std::strerror(errno) + ")", path);
+  if (fd < 0) {
+    const int error = errno;  // a full disk is the system's failure, no permission the path's
+    if (isRunTimeIoFailure(error)) throw IoError("cannot write " + what + " (" + std::strerror(error) + ")", path);
+    throw InputError("cannot write " + what + " (" + std::strerror(error) + ")", path);
+  }
   ::close(fd);
   removeQuietly(probe);
 }
@@ -213,7 +218,7 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
     throw InputError("cannot write video: ffmpeg not found on PATH (install the Debian package ffmpeg)", path_);
 
   int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0) throw InputError(std::string("cannot write video: pipe (") + std::strerror(errno) + ")", path_);
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw IoError(std::string("cannot write video: pipe (") + std::strerror(errno) + ")", path_);
   int logFd = -1;
   logPath_ = makeLogFile(logFd);
   const int evenWidth = width_ + (width_ & 1), evenHeight = height_ + (height_ & 1);
@@ -234,7 +239,7 @@ VideoWriter::VideoWriter(std::string path, int width, int height, const VideoOpt
     ::close(fds[1]);
     removeQuietly(logPath_);
     removeQuietly(tmpPath_);
-    throw InputError(std::string("cannot write video: cannot start ffmpeg (") + std::strerror(error) + ")", path_);
+    throw IoError(std::string("cannot write video: cannot start ffmpeg (") + std::strerror(error) + ")", path_);
   }
   stdinFd_ = fds[1];
 }
@@ -262,7 +267,8 @@ void VideoWriter::discard() noexcept {
 
 void VideoWriter::fail(const std::string& why) {
   discard();
-  throw InputError("cannot write video: " + why, path_);
+  // The path was checked writable: ffmpeg failing now is a run-time failure (a full disk, EFBIG).
+  throw IoError("cannot write video: " + why, path_);
 }
 
 void VideoWriter::addFrame(const Image& frame) {

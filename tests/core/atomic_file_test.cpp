@@ -4,13 +4,18 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/io_error.h"
 #include "myoshell/core/whole_file.h"
 
 namespace myo {
@@ -76,6 +81,49 @@ TEST(AtomicFile, FailureNamesThePathAndLeavesNothing) {
                std::runtime_error);
   EXPECT_EQ(readWholeFile(path), "old");
   EXPECT_EQ(dir.entries(), 2);  // sub, keep.txt
+}
+
+// RLIMIT_FSIZE lowered (soft limit only, restored on leaving) with SIGXFSZ ignored: a write past
+// the limit fails with EFBIG, as on a full disk, instead of killing the process.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    ::getrlimit(RLIMIT_FSIZE, &saved_);
+    oldHandler_ = ::signal(SIGXFSZ, SIG_IGN);
+    rlimit lowered = saved_;
+    lowered.rlim_cur = bytes;
+    ::setrlimit(RLIMIT_FSIZE, &lowered);
+  }
+  ~FileSizeLimit() {
+    ::setrlimit(RLIMIT_FSIZE, &saved_);
+    ::signal(SIGXFSZ, oldHandler_);
+  }
+
+ private:
+  rlimit saved_{};
+  sighandler_t oldHandler_ = SIG_DFL;
+};
+
+TEST(AtomicFile, ASystemFailureIsAnIoErrorNamingThePathAndTheReason) {
+  TempDir dir;
+  const std::string path = (dir / "big.bin").string();
+  writeFileAtomically(path, "old");
+  {
+    FileSizeLimit limit(1000);
+    try {
+      writeFileAtomically(path, std::string(100000, 'x'), "cannot write thing");
+      FAIL() << "expected IoError";
+    } catch (const IoError& e) {  // not an InputError: the CLI exits 1
+      EXPECT_EQ(std::string(e.what()), path + ": cannot write thing (File too large)");
+      EXPECT_EQ(e.path(), path);
+    }
+  }
+  EXPECT_EQ(readWholeFile(path), "old");  // the old file whole, no temporary
+  EXPECT_EQ(dir.entries(), 1);
+  EXPECT_TRUE(isRunTimeIoFailure(ENOSPC));
+  EXPECT_TRUE(isRunTimeIoFailure(EFBIG));
+  EXPECT_FALSE(isRunTimeIoFailure(ENOENT));
+  EXPECT_FALSE(isRunTimeIoFailure(EACCES));
 }
 
 TEST(AtomicFile, TemporaryNamesAreHiddenUniqueAndBesideTheTarget) {

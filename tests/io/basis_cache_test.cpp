@@ -1,5 +1,8 @@
 // The file basis cache: bit-identical round trip; corrupt, truncated and foreign files rejected.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -84,6 +87,30 @@ TEST(BasisCache, RoundTripIsBitIdenticalAndSkipsTheSolve) {
   s.modeCount = 9;
   EXPECT_FALSE(computeModalBasis(shell, kPins, s, &cache).fromCache);
   EXPECT_EQ(cache.stats().misses, 2);
+}
+
+TEST(BasisCache, AStoreFailingForTheSystemIsNotFatalAndKeepsItsReason) {
+  // A file-size limit (as a full disk): the store fails with EFBIG, the basis is still returned,
+  // the reason is kept and no temporary file is left.
+  TempDir dir;
+  FileBasisCache cache(dir.path / "cache");
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 8;
+  rlimit saved{};
+  ::getrlimit(RLIMIT_FSIZE, &saved);
+  const sighandler_t oldHandler = ::signal(SIGXFSZ, SIG_IGN);
+  rlimit lowered = saved;
+  lowered.rlim_cur = 512;
+  ::setrlimit(RLIMIT_FSIZE, &lowered);
+  const ModalBasis basis = computeModalBasis(shell, kPins, s, &cache);
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  ::signal(SIGXFSZ, oldHandler);
+  EXPECT_EQ(basis.modeCount(), 8);
+  EXPECT_EQ(cache.stats().stores, 0);
+  const std::string file = cache.pathFor(modalBasisKey(shell, kPins, s)).string();
+  EXPECT_EQ(cache.lastStoreError(), file + ": cannot write the basis cache file (File too large)");
+  EXPECT_TRUE(fs::is_empty(cache.directory()));
 }
 
 TEST(BasisCache, CorruptTruncatedAndForeignFilesAreRebuilt) {

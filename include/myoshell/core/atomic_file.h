@@ -11,9 +11,13 @@
 
 namespace myo {
 
-// Writes `bytes` to `path` through a temporary file renamed into place. Throws InputError naming
-// `path`, "<what> (<reason>)", when it cannot be written or renamed (a missing folder, a folder at
-// `path`, no permission); nothing is left behind then (no temporary, no half-written `path`).
+// Writes `bytes` to `path` through a temporary file renamed into place. On failure nothing is left
+// behind (no temporary, no half-written `path`) and the error names `path`, "<what> (<reason>)",
+// the reason being the OS's (strerror):
+// - InputError when `path` cannot be a file (a folder at `path`, a missing folder, no permission):
+//   the user's choice of path (exit 2);
+// - IoError when the system fails (isRunTimeIoFailure at creation; any failure to write, flush,
+//   sync, close or rename once the file is open: a full disk, EFBIG under RLIMIT_FSIZE, EIO) (exit 1).
 void writeFileAtomically(const std::string& path, std::string_view bytes,
                          const std::string& what = "cannot write file");
 
@@ -30,5 +34,10 @@ std::string temporaryPathBeside(const std::string& target, const std::string& su
 void renameIntoPlace(const std::string& tmp, const std::string& target, const std::string& what);
 // removes a file if it exists, ignoring every error (cleanup on failure paths).
 void removeQuietly(const std::string& path) noexcept;
+
+// Whether an errno met while creating a file or folder is the system's run-time failure (no space,
+// quota, file too large, I/O error, out of file descriptors or memory: IoError) rather than a fault
+// of the path itself (missing, not a folder, no permission: InputError).
+bool isRunTimeIoFailure(int error);
 
 }  // namespace myo

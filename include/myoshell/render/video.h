@@ -34,7 +34,8 @@ bool ffmpegAvailable();
 class VideoWriter {
  public:
   // Starts ffmpeg writing to a temporary file beside `path`. Throws InputError naming `path` when
-  // ffmpeg is missing, the folder is missing or unwritable, or `path` is a folder; CheckError when
+  // ffmpeg is missing, the folder is missing or unwritable, or `path` is a folder; IoError when the
+  // system fails (no space to create the file, no pipe, ffmpeg cannot be started); CheckError when
   // width or height < 1, fps ≤ 0 or crf is outside [0, 51].
   VideoWriter(std::string path, int width, int height, const VideoOptions& options = {});
   VideoWriter(const VideoWriter&) = delete;
@@ -43,12 +44,13 @@ class VideoWriter {
   ~VideoWriter();
 
   // Sends one frame. Throws InputError when its size is not width × height (nothing is sent and
-  // the writer stays usable), or when ffmpeg has died (the message quotes ffmpeg's last error
-  // lines; the writer is then failed and the temporary file removed). CheckError after finish().
+  // the writer stays usable); IoError when ffmpeg has died (a full disk, a file-size limit; the
+  // message quotes ffmpeg's last error lines; the writer is then failed and the temporary file
+  // removed). CheckError after finish().
   void addFrame(const Image& frame);
 
   // Closes ffmpeg's input, waits for it, checks its exit status and renames the temporary file to
-  // `path`. Throws InputError naming `path` with ffmpeg's last error lines when ffmpeg failed or the
+  // `path`. Throws IoError naming `path` with ffmpeg's last error lines when ffmpeg failed or the
   // rename failed (no file is left then), CheckError when no frame was added or when called twice.
   void finish();
 
@@ -61,7 +63,7 @@ class VideoWriter {
 
  private:
   void discard() noexcept;                          // kills ffmpeg, removes the temporary files
-  [[noreturn]] void fail(const std::string& why);  // discard() and throw InputError naming path_
+  [[noreturn]] void fail(const std::string& why);  // discard() and throw IoError naming path_
 
   std::string path_;         // final MP4
   std::string tmpPath_;      // what ffmpeg writes, renamed to path_ by finish()
