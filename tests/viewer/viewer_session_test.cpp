@@ -9,6 +9,7 @@
 #include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/whole_file.h"
 #include "myoshell/io/animation_export.h"
 #include "support/free_vertex.h"
 #include "viewer_script.h"
@@ -156,6 +157,9 @@ TEST(ViewerSession, KeysFromSlidersSaveAndReloadAndExportAGlb) {
   ASSERT_EQ(zyg.keys().size(), 3u);  // 0, 0.25 and the new 0.4
   EXPECT_DOUBLE_EQ(zyg.keys()[2].time, 0.4);
   EXPECT_FALSE(fs::exists(dir / "authored.json.tmp"));
+  // It read back (so no interp on a last key, which readScene refuses), and it is what `check`
+  // prints for it: a fixed point.
+  EXPECT_EQ(sceneToJson(back), readWholeFile((dir / "authored.json").string()));
 
   const int frames = s.exportGlb((dir / "authored.glb").string());
   EXPECT_EQ(frames, 11);  // 0.5 s at 20 fps
