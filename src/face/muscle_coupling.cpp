@@ -3,6 +3,9 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <queue>
+#include <unordered_map>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/closest_point.h"
@@ -17,6 +20,68 @@ namespace {
 double smooth(double s) {
   s = std::clamp(s, 0.0, 1.0);
   return s * s * (3.0 - 2.0 * s);
+}
+
+// The skin as a graph for patch distances: per vertex, its neighbours and the edge lengths, and its
+// lumped area (a third of each incident triangle's).
+struct SkinGraph {
+  std::vector<std::vector<std::pair<int, double>>> neighbours;
+  VecX area;
+  double meanEdge = 0.0;
+  SkinGraph(const MatX3& V, const MatX3i& F) : neighbours(static_cast<size_t>(V.rows())), area(VecX::Zero(V.rows())) {
+    long long edges = 0;
+    for (Eigen::Index t = 0; t < F.rows(); ++t) {
+      const double a = triangleArea(V.row(F(t, 0)), V.row(F(t, 1)), V.row(F(t, 2)));
+      for (int k = 0; k < 3; ++k) {
+        const int i = F(t, k), j = F(t, (k + 1) % 3);
+        area(i) += a / 3.0;
+        const double l = (V.row(i) - V.row(j)).norm();
+        neighbours[static_cast<size_t>(i)].emplace_back(j, l);  // each interior edge twice: harmless
+        neighbours[static_cast<size_t>(j)].emplace_back(i, l);
+        meanEdge += l;
+        ++edges;
+      }
+    }
+    if (edges > 0) meanEdge /= static_cast<double>(edges);
+  }
+};
+
+// The patch of skin within `radius` of the surface point (triangle, barycentric) along the edges
+// (Dijkstra from the triangle's corners, started at their straight distances to the point), with
+// weights A_j (1 − (d_j/r)²)², normalised. The lips' gap and the lids' slit separate patches.
+void patchAround(const SkinGraph& g, const MatX3& V, const Eigen::Vector3i& tri, const Vec3& point, double radius,
+                 std::vector<int>& vertices, std::vector<double>& weights) {
+  std::vector<std::pair<int, double>> reached;  // (vertex, distance), settled
+  std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> queue;
+  std::unordered_map<int, double> best;
+  for (int k = 0; k < 3; ++k) {
+    const double d = (Vec3(V.row(tri(k))) - point).norm();
+    if (!best.count(tri(k)) || d < best[tri(k)]) best[tri(k)] = d, queue.emplace(d, tri(k));
+  }
+  std::unordered_map<int, bool> done;
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (done[v] || d > radius) continue;
+    done[v] = true;
+    reached.emplace_back(v, d);
+    for (const auto& [w, l] : g.neighbours[static_cast<size_t>(v)]) {
+      const double dw = d + l;
+      if (dw <= radius && (!best.count(w) || dw < best[w])) best[w] = dw, queue.emplace(dw, w);
+    }
+  }
+  vertices.clear();
+  weights.clear();
+  double sum = 0.0;
+  for (const auto& [v, d] : reached) {
+    const double s = d / radius;
+    const double w = g.area(v) * (1.0 - s * s) * (1.0 - s * s);
+    if (w <= 0.0) continue;
+    vertices.push_back(v);
+    weights.push_back(w);
+    sum += w;
+  }
+  for (double& w : weights) w /= sum;
 }
 }  // namespace
 
@@ -83,12 +148,17 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
     cm.naturalFrequency = std::sqrt(x.dot(Kff * x) / mm2);
   }
 
-  // Springs to the closest skin points.
+  // Springs to patches around the closest skin points.
   const MatX3& S = head.mesh.V;
   const MatX3i& F = head.mesh.F;
   const MatX3 normals = vertexNormals(S, F);
-  const double areaPerNode = surfaceArea(mm.V, mm.F) / nm;
+  const double muscleArea = surfaceArea(mm.V, mm.F);
+  const double areaPerNode = muscleArea / nm;
   const double L = mu.restLength;
+  const SkinGraph graph(S, F);
+  const double radius = settings.patchRadius <= 0.0
+                            ? 0.0
+                            : std::max(settings.patchRadius * muscleArea / (4.0 * L), 1.5 * graph.meanEdge);
   for (int v = 0; v < nm; ++v) {
     const Vec3 p = mm.V.row(v);
     const double t = std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
@@ -99,8 +169,12 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
       throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
     CoupledMuscle::Spring s;
     s.node = v;
-    s.skin = F.row(sp.triangle).transpose();
-    s.barycentric = sp.barycentric;
+    const Eigen::Vector3i tri = F.row(sp.triangle).transpose();
+    if (radius > 0.0) patchAround(graph, S, tri, sp.point, radius, s.skin, s.weights);
+    if (s.skin.empty()) {  // the closest point alone
+      s.skin = {tri(0), tri(1), tri(2)};
+      s.weights = {sp.barycentric(0), sp.barycentric(1), sp.barycentric(2)};
+    }
     s.t = t;
     s.depth = sp.distance;
     s.stiffness = G * areaPerNode / sp.distance;
@@ -111,17 +185,17 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
 
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets) {
   for (const auto& s : m.springs)
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        const double k = s.stiffness * s.barycentric(a) * s.barycentric(b);
-        for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin(a) + c, 3 * s.skin(b) + c, k);
+    for (size_t a = 0; a < s.skin.size(); ++a)
+      for (size_t b = 0; b < s.skin.size(); ++b) {
+        const double k = s.stiffness * s.weights[a] * s.weights[b];
+        for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin[a] + c, 3 * s.skin[b] + c, k);
       }
 }
 
 MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount) {
   MatX3 f = MatX3::Zero(skinVertexCount, 3);
   for (const auto& s : m.springs)
-    for (int a = 0; a < 3; ++a) f.row(s.skin(a)) += s.stiffness * s.barycentric(a) * m.fullShape.row(s.node);
+    for (size_t a = 0; a < s.skin.size(); ++a) f.row(s.skin[a]) += s.stiffness * s.weights[a] * m.fullShape.row(s.node);
   return f;
 }
 

@@ -1,10 +1,12 @@
 // Muscles that pull where they insert (docs/anatomical_model.md; METHOD.md §9 "coupling at a
-// surface point"). Each muscle node m is tied to the closest point s = Σ_j b_j x_j of the skin
-// surface (barycentric in its rest triangle) by a zero-length linear spring on the relative
-// displacement:
-//   E_c = ½ k_c ‖u_m − Σ_j b_j u_j‖²
-// The muscle is fed forward (u_m known), so on the skin side K_c = k_c b bᵀ ⊗ I₃ joins the skin's
-// stiffness and the load is f_j = k_c b_j u_m. The muscle moves in one shape, its static response
+// surface point"). Each muscle node m is tied by a zero-length linear spring to a patch of skin
+// around its closest skin point s: the patch's weighted mean Σ_j w_j u_j, with weights w_j ∝ A_j
+// (1 − (d_j/r)²)² (A_j the vertex area, d_j the distance from s along the surface's edges, r the
+// patch radius: the muscle's half-width), Σ_j w_j = 1 (the fibres insert over an area, not at a
+// point; a single triangle stretched 170 % at the mouth corner):
+//   E_c = ½ k_c ‖u_m − Σ_j w_j u_j‖²
+// The muscle is fed forward (u_m known), so on the skin side K_c = k_c w wᵀ ⊗ I₃ joins the skin's
+// stiffness and the load is f_j = k_c w_j u_m. The muscle moves in one shape, its static response
 // to the activation load, u_m = a·U_m (a ∈ [0, 1]): the skin load is linear in a.
 //
 // Stiffness: k_c = G(t)·A_node/depth (dyn/cm) with A_node the muscle's surface area per node (cm²),
@@ -43,6 +45,10 @@ struct MuscleCouplingSettings {
   // Shortening at a = 1 as a fraction of the rest length: zygomaticus major in a joyful expression
   // shortens to 85.6 % of its rest length (MRI, Rams et al. 2024, Aesthetic Plast Surg 48:2722).
   double shortening = 0.144;
+  // Patch radius as a multiple of the muscle's half-width (its surface area / (4 × rest length) for
+  // a flat ring), and never below 1.5 mean skin edges. 0: the closest point alone (barycentric).
+  // 2: the fibres spread over the muscle's width (docs/anatomical_model.md, "Couplings").
+  double patchRadius = 2.0;
   ShellMaterial muscle = [] {  // as the thesis face's muscles (docs/face_model.md)
     ShellMaterial m;
     m.kA = 1.0e3;
@@ -61,8 +67,8 @@ struct CoupledMuscle {
   double naturalFrequency = 0.0;  // ω = √(φᵀKφ/φᵀMφ) of that shape (rad/s), for its dynamics
   struct Spring {
     int node = -1;               // muscle node
-    Eigen::Vector3i skin = Eigen::Vector3i::Constant(-1);  // the skin triangle's vertices
-    Vec3 barycentric = Vec3::Zero();
+    std::vector<int> skin;         // the patch's skin vertices
+    std::vector<double> weights;   // w_j ≥ 0, Σ w_j = 1
     double t = 0.0;              // position along the muscle (0 origin, 1 insertion)
     double depth = 0.0;          // distance to the skin at rest, cm
     double stiffness = 0.0;      // k_c, dyn/cm (> 0)
@@ -75,9 +81,9 @@ struct CoupledMuscle {
 // muscle is singular.
 CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings = {});
 
-// Σ over springs of K_c = k_c b bᵀ ⊗ I₃ into a 3n×3n triplet list (dyn/cm).
+// Σ over springs of K_c = k_c w wᵀ ⊗ I₃ into a 3n×3n triplet list (dyn/cm).
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets);
-// The skin load at a = 1 (n×3, dyn): f_j = Σ_springs k_c b_j U_m(node).
+// The skin load at a = 1 (n×3, dyn): f_j = Σ_springs k_c w_j U_m(node).
 MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount);
 
 }  // namespace myo
