@@ -167,7 +167,7 @@ double median(std::vector<double> v) {
 
 // Plays the window once; returns (steps, seconds counted).
 std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row, double budget) {
-  const double dt = player.model().settings().dt;
+  const double dt = player.model().dt();
   long long steps = 0;
   double counted = 0.0;
   Stopwatch total;
@@ -199,7 +199,7 @@ std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row
 nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std::string& head, BasisCache& cache) {
   const SceneDesc scene = rowScene(opt, row, head);
   Stopwatch build;
-  const auto model = buildSceneFace(scene, &cache);
+  const auto model = buildThesisFace(scene, &cache);
   const double buildSeconds = build.seconds();
   ScenePlayer player(scene, model);
   // Warm-up: the window once (caches, branch predictors, page faults).
@@ -248,7 +248,7 @@ nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std:
 nlohmann::json benchReference(const BenchOptions& opt, const std::string& head, BasisCache& cache) {
   BenchRow row{"4", "reference", "reference", "fig22_gravity_sweep.json", {}, 0.0, 1.0, false, 0};
   const SceneDesc scene = rowScene(opt, row, head);
-  const auto model = buildSceneFace(scene, &cache);
+  const auto model = buildThesisFace(scene, &cache);
   const DiscreteShell& skin = model->skin();
   const FaceModelSettings& s = model->settings();
   const int n = skin.vertexCount();

@@ -56,7 +56,7 @@ class Figures {
     l.scene = readScene((fs::path(opt_.scenesDir) / (name + ".json")).string());
     if (const fs::path data = dataDir(opt_.dataDir).dir; !data.empty()) useDataDir(l.scene, data);
     if (edit) edit(l.scene);
-    l.model = buildSceneFace(l.scene, cache_.get());
+    l.model = buildThesisFace(l.scene, cache_.get());
     return l;
   }
 

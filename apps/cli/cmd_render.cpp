@@ -124,6 +124,9 @@ int runRender(const RenderCommandOptions& opt) {
   FaceOverlays overlays = parseOverlays(opt.overlays);
   const ViewPreset view = parseView(opt.view);
   const SceneDesc scene = readScene(opt.scene);
+  if (overlays.roi && scene.modelKind != FaceModelKind::Thesis)
+    throw InputError("--overlay roi: the muscles' ROIs are model: thesis only (the scene's model is " +
+                     std::string(toString(scene.modelKind)) + ")");
   const int frameCount = ScenePlayer::frameCount(scene.duration, scene.fps);
   const FrameRange range = parseFrames(opt.frames, frameCount);
   const fs::path out(opt.outDir);
@@ -159,7 +162,7 @@ int runRender(const RenderCommandOptions& opt) {
     times.push_back(snap.time);
   }
   overlays.displacementScale = opt.colorScale > 0 ? opt.colorScale : maxDisplacement > 0 ? maxDisplacement : 1.0;
-  const VecX roi = overlays.roi ? roiWeights(*model) : VecX();
+  const VecX roi = overlays.roi ? roiWeights(dynamic_cast<const FaceModel&>(*model)) : VecX();
 
   // Draw and write each frame; keep the contact sheet's pictures.
   std::vector<Image> sheet;

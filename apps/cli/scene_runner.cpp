@@ -23,6 +23,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/core/io_error.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/face/anatomical_face.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/output_manifest.h"
@@ -79,9 +80,9 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   ScenePlayer player(scene, model);
   const std::atomic<bool>& interrupted = installInterruptHandlers();
   player.watch(&interrupted);
-  const double dt = model->settings().dt;
+  const double dt = model->dt();
   const int frames = player.frameCount();
-  const auto& channels = model->channels();
+  const std::vector<std::string> channels = model->channelNames();
   AnimationFrames animation;  // kept only for the GLB and PC2 exports
   const bool keepFrames = formats.glb || formats.pc2;
   if (keepFrames) {
@@ -149,7 +150,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     nlohmann::json perChannel = nlohmann::json::object();
     for (size_t c = 0; c < channels.size(); ++c) {
       channelMax[c] = std::max(channelMax[c], snap.channelMax[c]);
-      perChannel[channels[c].name] = snap.channelMax[c];
+      perChannel[channels[c]] = snap.channelMax[c];
     }
     fs_["channel_max_cm"] = perChannel;
     frameStats.push_back(fs_);
@@ -195,6 +196,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
 
   nlohmann::json stats;
   stats["scene"] = scene.name;
+  stats["model"] = toString(model->kind());
   stats["frames"] = frames;
   stats["steps"] = steps;
   stats["dt"] = dt;
@@ -204,20 +206,33 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   stats["steps_per_second"] = steps / std::max(stepSeconds, 1e-12);
   stats["step_ms_mean"] = steps ? 1e3 * stepSeconds / steps : 0.0;
   nlohmann::json ch = nlohmann::json::array();
-  for (size_t c = 0; c < channels.size(); ++c)
-    ch.push_back({{"name", channels[c].name},
-                  {"free_vertices", channels[c].basis->freeCount()},
-                  {"modes", channels[c].basis->modeCount()},
-                  {"load_participation", channels[c].loadParticipation},
-                  {"max_displacement_cm", channelMax[c]}});
-  stats["channels"] = ch;
   nlohmann::json mus = nlohmann::json::array();
-  for (const MuscleUnit& u : model->muscles())
-    mus.push_back({{"name", u.muscle.def.name},
-                   {"stretch_mode_index", u.stretchModeIndex},
-                   {"stretch_participation", u.stretchParticipation},
-                   {"max_force_dyn", u.maxForce},
-                   {"roi_vertices", static_cast<int>(u.roi.size())}});
+  if (const auto* thesis = dynamic_cast<const FaceModel*>(model.get())) {
+    const auto& chs = thesis->channels();
+    for (size_t c = 0; c < chs.size(); ++c)
+      ch.push_back({{"name", chs[c].name},
+                    {"free_vertices", chs[c].basis->freeCount()},
+                    {"modes", chs[c].basis->modeCount()},
+                    {"load_participation", chs[c].loadParticipation},
+                    {"max_displacement_cm", channelMax[c]}});
+    for (const MuscleUnit& u : thesis->muscles())
+      mus.push_back({{"name", u.muscle.def.name},
+                     {"stretch_mode_index", u.stretchModeIndex},
+                     {"stretch_participation", u.stretchParticipation},
+                     {"max_force_dyn", u.maxForce},
+                     {"roi_vertices", static_cast<int>(u.roi.size())}});
+  } else if (const auto* anatomical = dynamic_cast<const AnatomicalFace*>(model.get())) {
+    const AnatomicalSkin& skin = anatomical->skin();
+    ch.push_back({{"name", "skin"},
+                  {"free_vertices", skin.basis()->freeCount()},
+                  {"modes", skin.basis()->modeCount()},
+                  {"max_displacement_cm", channelMax[0]}});
+    for (const CoupledMuscle& m : skin.muscles())
+      mus.push_back({{"name", m.muscle.def.name},
+                     {"couplings", static_cast<int>(m.springs.size())},
+                     {"natural_frequency", m.naturalFrequency}});
+  }
+  stats["channels"] = ch;
   stats["muscles"] = mus;
   stats["per_frame"] = frameStats;
   writeFileAtomically((out / "stats.json").string(), stats.dump(2) + "\n");

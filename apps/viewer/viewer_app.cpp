@@ -298,14 +298,17 @@ class ViewerApp {
       if (ImGui::Button("reset")) session_.resetSliders();
       for (int m = 0; m < session_.muscleCount(); ++m) {
         float a = static_cast<float>(session_.slider(m));
-        if (ImGui::SliderFloat(session_.muscleName(m).c_str(), &a, -1.0f, 1.0f, "%.2f")) session_.setSlider(m, a);
+        if (ImGui::SliderFloat(session_.muscleName(m).c_str(), &a, static_cast<float>(session_.model().minActivation()),
+                               1.0f, "%.2f"))
+          session_.setSlider(m, a);
       }
     }
     if (ImGui::CollapsingHeader("Skin", ImGuiTreeNodeFlags_DefaultOpen)) {
       bool gravity = session_.gravity();
       if (session_.hasGravity() && ImGui::Checkbox("gravity", &gravity)) session_.setGravity(gravity);
       float s = static_cast<float>(session_.simulator().skinStiffnessScale());
-      if (ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+      if (session_.thesisModel() &&  // the anatomical model's one skin has no stiffness slider
+          ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
         session_.setStiffnessScale(std::max(s, 0.1f));
       float k = static_cast<float>(display_.dragStiffness);
       if (ImGui::SliderFloat("drag dyn/cm", &k, 100.0f, 20000.0f, "%.0f", ImGuiSliderFlags_Logarithmic)) display_.dragStiffness = k;
@@ -376,17 +379,17 @@ class ViewerApp {
   }
 
   void draw() {
-    const FaceModel& model = session_.model();
+    const FaceSystem& model = session_.model();
     FaceOverlays overlays;
     overlays.muscles = display_.muscles;
     overlays.skull = display_.skull;
     overlays.displacement = display_.displacement;
     overlays.displacementScale = display_.displacementScale;
-    overlays.roi = display_.roi && session_.muscleCount() > 0;
+    overlays.roi = display_.roi && session_.muscleCount() > 0 && session_.thesisModel();  // ROIs: thesis only
     overlays.pins = display_.pins;
     overlays.wireframe = display_.wireframe;
     overlays.grabVertex = session_.grabbing() ? session_.grabbedVertex() : -1;
-    const VecX roi = overlays.roi ? roiWeights(model, display_.selected) : VecX();
+    const VecX roi = overlays.roi ? roiWeights(*session_.thesisModel(), display_.selected) : VecX();
     const FaceScene scene = faceScene(model, faceFrameState(session_.simulator(), overlays), camera_, faceWidth_,
                                       height_, overlays, &roi);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

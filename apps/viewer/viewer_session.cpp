@@ -42,11 +42,11 @@ std::string mirrorName(const std::string& name) {
 ViewerSession::ViewerSession(SceneDesc scene, BasisCache* cache)
     : model_(buildSceneFace(withMouseDrag(scene), cache)),
       player_(std::move(scene), model_),
-      sliders_(model_->muscles().size(), 0.0),
-      mirror_(model_->muscles().size(), -1),
+      sliders_(static_cast<size_t>(model_->muscleCount()), 0.0),
+      mirror_(static_cast<size_t>(model_->muscleCount()), -1),
       mouseDrag_(static_cast<int>(player_.scene().drags.size())),
-      gravityOn_(model_->gravityChannel() >= 0) {
-  player_.setControls([this](Simulator& s) { controls(s); });
+      gravityOn_(model_->hasGravity()) {
+  player_.setControls([this](FaceStepper& s) { controls(s); });
   updateTracked();
   for (int m = 0; m < muscleCount(); ++m) {
     const std::string other = mirrorName(muscleName(m));
@@ -57,13 +57,14 @@ ViewerSession::ViewerSession(SceneDesc scene, BasisCache* cache)
 }
 
 const std::string& ViewerSession::muscleName(int muscle) const {
-  return model_->muscles()[static_cast<size_t>(muscle)].muscle.def.name;
+  return model_->muscleName(muscle);
 }
 
 void ViewerSession::setSlider(int muscle, double activation) {
   if (std::isnan(activation)) throw InputError("activation of muscle '" + muscleName(muscle) + "' is NaN");
-  if (activation < -1.0 || activation > 1.0) {
-    const double clamped = std::clamp(activation, -1.0, 1.0);
+  const double lowest = model_->minActivation();
+  if (activation < lowest || activation > 1.0) {
+    const double clamped = std::clamp(activation, lowest, 1.0);
     std::ostringstream w;
     w << "activation " << activation << " of muscle '" << muscleName(muscle) << "' clamped to " << clamped;
     warnings_.push_back(w.str());
@@ -119,7 +120,7 @@ void ViewerSession::applyControls() {
 }
 
 // After the timeline, before a step (the player calls it while playing): what the user controls.
-void ViewerSession::controls(Simulator& s) {
+void ViewerSession::controls(FaceStepper& s) {
   if (playing && !gravityOn_ && hasGravity()) s.setGravity(0.0);
   for (int m = 0; m < muscleCount(); ++m) {
     if (playing && tracked_[static_cast<size_t>(m)])
@@ -130,7 +131,7 @@ void ViewerSession::controls(Simulator& s) {
 }
 
 void ViewerSession::advance(double seconds) {
-  const double dt = model_->settings().dt;
+  const double dt = model_->dt();
   pending_ += std::max(seconds, 0.0);
   const int steps = static_cast<int>(std::floor(pending_ / dt + 1e-6));  // a step owed up to round-off is taken
   pending_ -= steps * dt;

@@ -25,14 +25,16 @@ class ViewerSession {
   ViewerSession(SceneDesc scene, BasisCache* cache);
 
   const SceneDesc& scene() const { return player_.scene(); }
-  const FaceModel& model() const { return *model_; }
-  const Simulator& simulator() const { return player_.simulator(); }
+  const FaceSystem& model() const { return *model_; }
+  const FaceModel* thesisModel() const { return dynamic_cast<const FaceModel*>(model_.get()); }  // null: anatomical
+  const FaceStepper& simulator() const { return player_.simulator(); }
 
   // --- sliders ---------------------------------------------------------------------------------
   int muscleCount() const { return static_cast<int>(sliders_.size()); }
   const std::string& muscleName(int muscle) const;
-  // The muscle's activation slider, in [−1, 1] (values outside are clamped with a warning naming
-  // the muscle, see takeWarnings(); NaN is an InputError).
+  // The muscle's activation slider, in [model().minActivation(), 1]: thesis [−1, 1], anatomical
+  // [0, 1] (values outside are clamped with a warning naming the muscle, see takeWarnings(); NaN
+  // is an InputError).
   // With the link on, the mirror muscle (name with _left ↔ _right swapped) follows.
   void setSlider(int muscle, double activation);
   void setSlider(const std::string& muscle, double activation);  // InputError for an unknown name
@@ -44,12 +46,14 @@ class ViewerSession {
   // Gravity on or off (needs the scene's gravity channel to turn on).
   void setGravity(bool on);
   bool gravity() const { return gravityOn_; }
-  bool hasGravity() const { return model_->gravityChannel() >= 0; }
-  // The skin stiffness slider (Simulator::setSkinStiffnessScale): s > 0.
+  bool hasGravity() const { return model_->hasGravity(); }
+  // The skin stiffness slider (Simulator::setSkinStiffnessScale): s > 0. Thesis only (the
+  // anatomical model refuses it: InputError).
   void setStiffnessScale(double s) { sim().setSkinStiffnessScale(s); }
 
   // --- the mouse drag ----------------------------------------------------------------------------
-  // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin).
+  // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin; the anatomical
+  // model grips only the mouse drag's own vertex, the nose tip, for now).
   void grab(int vertex);
   // While grabbing: the force (dyn) on the grabbed spot.
   void pull(const Vec3& force);
@@ -89,7 +93,7 @@ class ViewerSession {
   const StepTimings& lastTimings() const { return simulator().lastTimings(); }
 
  private:
-  std::shared_ptr<const FaceModel> model_;
+  std::shared_ptr<const FaceSystem> model_;
   ScenePlayer player_;  // the scene, its timeline clock (the playhead) and the simulator
   std::vector<double> sliders_;
   std::vector<int> mirror_;
@@ -101,9 +105,9 @@ class ViewerSession {
   double stepsPerSecond_ = 0.0;
   std::vector<std::string> warnings_;
 
-  Simulator& sim() { return player_.simulator(); }
+  FaceStepper& sim() { return player_.simulator(); }
   void applyControls();
-  void controls(Simulator& sim);
+  void controls(FaceStepper& sim);
   void updateTracked();
 };
 

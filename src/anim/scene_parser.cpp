@@ -28,9 +28,17 @@ void readMaterial(DocReader& r, ShellMaterial& m) {
   r.requireAbove("thickness", m.thickness, 0.0);
 }
 
+std::string numberText(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 // A track: a list of keys {t, value, interp}; value is a number (or a 3-vector for drags).
+// `rangeNote` (optional) follows a range error: activations name the model whose range it is.
 template <class Value>
-Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std::string& path, double lo, double hi) {
+Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std::string& path, double lo, double hi,
+                       const std::string& rangeNote = "") {
   if (!list.IsSequence()) owner.failAt(list, path, "must be a list of keys {t, value, interp}");
   std::vector<Keyframe<Value>> keys;
   for (size_t i = 0; i < list.size(); ++i) {
@@ -40,7 +48,10 @@ Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std
     k.requireAtLeast("t", key.time, 0.0);
     if constexpr (std::is_same_v<Value, double>) {
       key.value = k.requiredNumber("value");
-      k.requireWithin("value", key.value, lo, hi);
+      if (rangeNote.empty()) k.requireWithin("value", key.value, lo, hi);
+      else if (!(key.value >= lo && key.value <= hi))
+        k.fail("value", "must lie in [" + numberText(lo) + ", " + numberText(hi) + "] " + rangeNote + " (got " +
+                            numberText(key.value) + ")");
     } else {
       k.node("value");
       key.value = k.vec3("value", Vec3::Zero());
@@ -64,10 +75,12 @@ Track<Value> readTrack(const DocReader& owner, const YAML::Node& list, const std
   return Track<Value>(std::move(keys), path);
 }
 
-std::string numberText(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
+// A key one model reads is an error under the other, naming the model and where it is written.
+void onlyFor(FaceModelKind model, const SceneDesc& scene, const DocReader& r, const std::string& key) {
+  if (scene.modelKind == model || !r.has(key)) return;
+  const std::string other = toString(scene.modelKind);
+  r.fail(key, std::string("only \"model\": \"") + toString(model) + "\" uses it (this scene's model is " + other +
+                  (scene.modelKind == FaceModelKind::Anatomical ? ", the default" : "") + ")");
 }
 
 // Frames closer together than one step, or a scene shorter than one step, would show a face that
@@ -152,8 +165,17 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   if (scene.name.find_first_of("/\\") != std::string::npos || scene.name.find("..") != std::string::npos)
     root.fail("name", "must not contain '/', '\\', or '..' (it names the output files inside --out)");
 
+  const std::string modelName = root.string("model", "anatomical");
+  if (modelName == "anatomical") scene.modelKind = FaceModelKind::Anatomical;
+  else if (modelName == "thesis") scene.modelKind = FaceModelKind::Thesis;
+  else root.fail("model", "must be \"anatomical\" or \"thesis\" (got \"" + modelName + "\")");
+  const FaceModelKind thesis = FaceModelKind::Thesis, anatomical = FaceModelKind::Anatomical;
+  const bool isThesis = scene.modelKind == thesis;
+  AnatomicalSettings& an = scene.anatomical;
+
   if (root.has("head")) {
     DocReader h = root.child("head");
+    onlyFor(thesis, scene, h, "gravity_pins");
     scene.head.builtin = h.string("builtin", scene.head.builtin);
     scene.head.obj = h.string("obj", "");
     scene.head.landmarks = h.string("landmarks", "");
@@ -186,6 +208,10 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     } else {
       scene.muscles = m.strings("use");
     }
+    onlyFor(anatomical, scene, m, "shortening");
+    an.coupling.shortening = m.number("shortening", an.coupling.shortening);
+    m.requireWithin("shortening", an.coupling.shortening, 0.0, 0.9);
+    if (!(an.coupling.shortening > 0.0)) m.fail("shortening", "must be > 0 (got 0)");
     for (size_t i = 0; i < scene.muscles.size(); ++i)
       scene.locations["muscles.use[" + std::to_string(i) + "]"] = locationOf(m.node("use")[i]);
     if (m.has("extra")) {
@@ -201,6 +227,10 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   FaceModelSettings& s = scene.model;
   if (root.has("skin")) {
     DocReader r = root.child("skin");
+    for (const char* key : {"k_a", "k_l", "k_b", "density"}) onlyFor(thesis, scene, r, key);
+    onlyFor(anatomical, scene, r, "young_modulus");
+    an.skinYoungModulus = r.number("young_modulus", an.skinYoungModulus);
+    r.requireAbove("young_modulus", an.skinYoungModulus, 0.0);
     readMaterial(r, s.skin);
     s.skinDampingMass = r.number("damping_mass", s.skinDampingMass);
     r.requireAtLeast("damping_mass", s.skinDampingMass, 0.0);
@@ -210,11 +240,14 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   }
   if (root.has("muscle_material")) {
     DocReader r = root.child("muscle_material");
-    readMaterial(r, s.muscle);
+    onlyFor(thesis, scene, r, "damping_ratio");
+    readMaterial(r, isThesis ? s.muscle : an.coupling.muscle);
     s.muscleDampingRatio = r.number("damping_ratio", s.muscleDampingRatio);
     r.requireAtLeast("damping_ratio", s.muscleDampingRatio, 0.0);
     r.finish();
   }
+  onlyFor(thesis, scene, root, "roi_alpha");
+  onlyFor(thesis, scene, root, "springs");
   s.roiAlpha = root.number("roi_alpha", s.roiAlpha);
   root.requireAbove("roi_alpha", s.roiAlpha, 1.0);
   if (root.has("springs")) {
@@ -245,6 +278,8 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
       if (d.landmark.empty() == (d.vertex < 0)) r.fail("landmark", "give exactly one of 'landmark' and 'vertex'");
       d.radius = r.number("radius", d.radius);
       r.requireAbove("radius", d.radius, 0.0);
+      onlyFor(thesis, scene, r, "pins");
+      onlyFor(thesis, scene, r, "pin_landmarks");
       d.pins = r.string("pins", "");
       d.pinLandmarks = r.boolean("pin_landmarks", d.pinLandmarks);
       r.finish();
@@ -255,6 +290,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   }
   if (root.has("numerics")) {
     DocReader r = root.child("numerics");
+    for (const char* key : {"muscle_modes", "stepper", "precision"}) onlyFor(thesis, scene, r, key);
     s.dt = r.number("dt", s.dt);
     r.requireAbove("dt", s.dt, 0.0);
     s.skinModes = r.integer("skin_modes", s.skinModes);
@@ -285,11 +321,23 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
       for (auto it = a.self().begin(); it != a.self().end(); ++it) {
         const std::string muscle = a.asString(it->first, a.keyPath(it->first.Scalar()));
         scene.locations[a.keyPath(muscle)] = locationOf(it->first);
-        scene.activations[muscle] = readTrack<double>(a, a.node(muscle), a.keyPath(muscle), -1.0, 1.0);
+        scene.activations[muscle] =
+            isThesis ? readTrack<double>(a, a.node(muscle), a.keyPath(muscle), -1.0, 1.0)
+                     : readTrack<double>(a, a.node(muscle), a.keyPath(muscle), 0.0, 1.0,
+                                         "under the anatomical model (relaxing, a < 0, needs \"model\": \"thesis\")");
       }
       a.finish();
     }
     if (t.has("gravity")) scene.gravity = readTrack<double>(t, t.node("gravity"), t.keyPath("gravity"), 0.0, 1e3);
+    onlyFor(anatomical, scene, t, "head_pose");
+    if (t.has("head_pose")) {
+      const VectorTrack degrees = readTrack<Vec3>(t, t.node("head_pose"), t.keyPath("head_pose"), 0, 0);
+      for (size_t i = 0; i < degrees.keys().size(); ++i)
+        if (!degrees.keys()[i].value.allFinite())
+          t.failAt(t.node("head_pose")[i], t.keyPath("head_pose") + "[" + std::to_string(i) + "]",
+                   "[pitch, yaw, roll] must be finite degrees");
+      scene.headPose = HeadPoseTrack(degrees.keys(), t.keyPath("head_pose"));
+    }
     if (t.has("drags")) {
       DocReader d = t.child("drags");
       for (auto it = d.self().begin(); it != d.self().end(); ++it) {
@@ -305,6 +353,15 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   }
   root.finish();
   s.validate();
+  // The keys both models read, onto the anatomical settings.
+  an.skinThickness = s.skin.thickness;
+  an.dampingMass = s.skinDampingMass;
+  an.dampingStiffness = s.skinDampingStiffness;
+  an.skinModes = s.skinModes;
+  an.warping = s.warping;
+  an.dt = s.dt;
+  an.gravity = s.gravityAcceleration;
+  if (!isThesis) an.validate();
   // The muscle names: against the built-in library here; a library file is io's to read, so here
   // only the timeline against an explicit selection (io checks the rest: readSceneInputs).
   if (scene.muscleLibrary == "builtin") {
@@ -342,12 +399,16 @@ nlohmann::json trackJson(const Track<Value>& track) {
 std::string sceneToJson(const SceneDesc& scene) {
   using nlohmann::json;
   const FaceModelSettings& s = scene.model;
+  const bool thesis = scene.modelKind == FaceModelKind::Thesis;
+  const AnatomicalSettings& an = scene.anatomical;
   json j;
   j["name"] = scene.name;
+  j["model"] = toString(scene.modelKind);
   j["head"] = scene.head.obj.empty() ? json{{"builtin", scene.head.builtin}}
                                      : json{{"obj", scene.head.obj}, {"landmarks", scene.head.landmarks}};
   // No pin file: no key (the head's own pins, the rim and the landmarks, are meant; docs/heads.md).
-  if (!scene.head.obj.empty() && !scene.head.gravityPins.empty()) j["head"]["gravity_pins"] = scene.head.gravityPins;
+  if (thesis && !scene.head.obj.empty() && !scene.head.gravityPins.empty())
+    j["head"]["gravity_pins"] = scene.head.gravityPins;
   if (!scene.head.skull.empty()) j["head"]["skull"] = scene.head.skull;
   if (scene.head.units != LengthUnit::cm) j["head"]["units"] = lengthUnitName(scene.head.units);
   json extra = json::array();
@@ -367,29 +428,46 @@ std::string sceneToJson(const SceneDesc& scene) {
   j["muscles"] = {{"library", scene.muscleLibrary},
                   {"use", scene.muscles.empty() ? json("all") : json(scene.muscles)},
                   {"extra", extra}};
-  j["skin"] = materialJson(s.skin);
-  j["skin"]["damping_mass"] = s.skinDampingMass;
-  j["skin"]["damping_stiffness"] = s.skinDampingStiffness;
-  j["muscle_material"] = materialJson(s.muscle);
-  j["muscle_material"]["damping_ratio"] = s.muscleDampingRatio;
-  j["roi_alpha"] = s.roiAlpha;
-  j["springs"] = {{"model", s.springModel == SpringModel::Thesis ? "thesis" : "displacement"},
-                  {"stiffness", s.springStiffness}};
-  j["gravity"] = {{"enabled", s.gravity}, {"acceleration", s.gravityAcceleration}};
-  json drags = json::array();
-  for (const DragDesc& d : scene.drags) {
-    json dj = {{"name", d.name}, {"radius", d.radius}, {"pins", d.pins}, {"pin_landmarks", d.pinLandmarks}};
-    if (d.landmark.empty()) dj["vertex"] = d.vertex;
-    else dj["landmark"] = d.landmark;
-    drags.push_back(dj);
+  if (!thesis) {
+    j["muscles"]["shortening"] = an.coupling.shortening;
+    j["skin"] = {{"young_modulus", an.skinYoungModulus}, {"thickness", an.skinThickness},
+                 {"damping_mass", an.dampingMass}, {"damping_stiffness", an.dampingStiffness}};
+    j["muscle_material"] = materialJson(an.coupling.muscle);
+    j["gravity"] = {{"enabled", s.gravity}, {"acceleration", an.gravity}};
+    json drags = json::array();
+    for (const DragDesc& d : scene.drags) {
+      json dj = {{"name", d.name}, {"radius", d.radius}};
+      if (d.landmark.empty()) dj["vertex"] = d.vertex;
+      else dj["landmark"] = d.landmark;
+      drags.push_back(dj);
+    }
+    j["drags"] = drags;
+    j["numerics"] = {{"dt", an.dt}, {"skin_modes", an.skinModes}, {"warping", an.warping}};
+  } else {
+    j["skin"] = materialJson(s.skin);
+    j["skin"]["damping_mass"] = s.skinDampingMass;
+    j["skin"]["damping_stiffness"] = s.skinDampingStiffness;
+    j["muscle_material"] = materialJson(s.muscle);
+    j["muscle_material"]["damping_ratio"] = s.muscleDampingRatio;
+    j["roi_alpha"] = s.roiAlpha;
+    j["springs"] = {{"model", s.springModel == SpringModel::Thesis ? "thesis" : "displacement"},
+                    {"stiffness", s.springStiffness}};
+    j["gravity"] = {{"enabled", s.gravity}, {"acceleration", s.gravityAcceleration}};
+    json drags = json::array();
+    for (const DragDesc& d : scene.drags) {
+      json dj = {{"name", d.name}, {"radius", d.radius}, {"pins", d.pins}, {"pin_landmarks", d.pinLandmarks}};
+      if (d.landmark.empty()) dj["vertex"] = d.vertex;
+      else dj["landmark"] = d.landmark;
+      drags.push_back(dj);
+    }
+    j["drags"] = drags;
+    j["numerics"] = {{"dt", s.dt},
+                     {"skin_modes", s.skinModes},
+                     {"muscle_modes", s.muscleModes},
+                     {"warping", s.warping},
+                     {"stepper", s.stepper == ModalStepper::Exact ? "exact" : "semi-implicit"},
+                     {"precision", s.precision == ModalPrecision::Float ? "float" : "double"}};
   }
-  j["drags"] = drags;
-  j["numerics"] = {{"dt", s.dt},
-                   {"skin_modes", s.skinModes},
-                   {"muscle_modes", s.muscleModes},
-                   {"warping", s.warping},
-                   {"stepper", s.stepper == ModalStepper::Exact ? "exact" : "semi-implicit"},
-                   {"precision", s.precision == ModalPrecision::Float ? "float" : "double"}};
   j["duration"] = scene.duration;
   j["fps"] = scene.fps;
   json timeline = json::object();
@@ -400,6 +478,7 @@ std::string sceneToJson(const SceneDesc& scene) {
   json dragTracks = json::object();
   for (const auto& [name, track] : scene.dragForces) dragTracks[name] = trackJson(track);
   timeline["drags"] = dragTracks;
+  if (!scene.headPose.empty()) timeline["head_pose"] = trackJson(VectorTrack(scene.headPose.keys()));
   j["timeline"] = timeline;
   return j.dump(2) + "\n";
 }

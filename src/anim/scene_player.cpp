@@ -9,8 +9,11 @@
 
 namespace myo {
 
-ScenePlayer::ScenePlayer(SceneDesc scene, std::shared_ptr<const FaceModel> model)
-    : scene_(std::move(scene)), model_(std::move(model)), sim_(model_) {
+ScenePlayer::ScenePlayer(SceneDesc scene, std::shared_ptr<const FaceSystem> model)
+    : scene_(std::move(scene)),
+      model_(std::move(model)),
+      sim_(makeStepper(model_)),
+      channelCount_(static_cast<int>(model_->channelNames().size())) {
   resolveNames();
 }
 
@@ -38,7 +41,7 @@ void ScenePlayer::resolveNames() {
     }
     muscleTracks_.push_back({m, &track});
   }
-  const std::vector<DragDef>& drags = model_->settings().drags;
+  const std::vector<DragDef>& drags = model_->drags();
   for (const auto& [dragName, track] : scene_.dragForces) {
     const std::string& name = dragName;  // a plain reference: clang 14 cannot capture a structured binding
     auto it = std::find_if(drags.begin(), drags.end(), [&](const DragDef& d) { return d.name == name; });
@@ -50,9 +53,9 @@ void ScenePlayer::resolveNames() {
     }
     dragTracks_.push_back({static_cast<int>(it - drags.begin()), &track});
   }
-  // Simulator::setDragForce in drag order, as the scene lists them.
+  // FaceStepper::setDragForce in drag order, as the scene lists them.
   std::sort(dragTracks_.begin(), dragTracks_.end(), [](const DragTrack& a, const DragTrack& b) { return a.drag < b.drag; });
-  applyGravity_ = model_->gravityChannel() >= 0 && !scene_.gravity.empty();
+  applyGravity_ = model_->hasGravity() && !scene_.gravity.empty();
 }
 
 int ScenePlayer::frameCount(double duration, double fps) {
@@ -60,23 +63,24 @@ int ScenePlayer::frameCount(double duration, double fps) {
 }
 
 void ScenePlayer::applyTimeline(double t) {
-  for (const MuscleTrack& m : muscleTracks_) sim_.setActivation(m.muscle, m.track->at(t));
-  if (applyGravity_) sim_.setGravity(scene_.gravity.at(t));
-  for (const DragTrack& d : dragTracks_) sim_.setDragForce(d.drag, d.track->at(t));
+  for (const MuscleTrack& m : muscleTracks_) sim_->setActivation(m.muscle, m.track->at(t));
+  if (applyGravity_) sim_->setGravity(scene_.gravity.at(t));
+  if (!scene_.headPose.empty()) sim_->setHeadPose(scene_.headPose.at(t));
+  for (const DragTrack& d : dragTracks_) sim_->setDragForce(d.drag, d.track->at(t));
 }
 
 void ScenePlayer::step() {
   applyTimeline(time_);
-  if (controls_) controls_(sim_);
+  if (controls_) controls_(*sim_);
   Stopwatch sw;
-  sim_.step();
+  sim_->step();
   lastStepSeconds_ += sw.seconds();
   ++lastSteps_;
-  time_ += model_->settings().dt;
+  time_ += model_->dt();
 }
 
 bool ScenePlayer::playTo(double t) {
-  const double dt = model_->settings().dt;
+  const double dt = model_->dt();
   lastSteps_ = 0;
   lastStepSeconds_ = 0.0;
   while (time_ < t - 0.5 * dt) {
@@ -87,7 +91,7 @@ bool ScenePlayer::playTo(double t) {
 }
 
 void ScenePlayer::restart(double t0) {
-  sim_.reset();
+  sim_->reset();
   time_ = t0;
   lastSteps_ = 0;
   lastStepSeconds_ = 0.0;
@@ -96,17 +100,17 @@ void ScenePlayer::restart(double t0) {
 const FrameSnapshot& ScenePlayer::snapshot(bool muscles) {
   FrameSnapshot& s = snapshot_;
   s.time = time_;
-  sim_.skinPositions(s.positions);
-  s.displacement = sim_.skinDisplacement();
+  sim_->skinPositions(s.positions);
+  s.displacement = sim_->skinDisplacement();
   s.maxDisplacement = s.displacement.rows() ? s.displacement.rowwise().norm().maxCoeff() : 0.0;
-  const size_t channels = model_->channels().size();
+  const size_t channels = static_cast<size_t>(channelCount_);
   s.channelMax.resize(channels);
   for (size_t c = 0; c < channels; ++c) {
-    sim_.channelDisplacement(static_cast<int>(c), channelU_);
+    sim_->channelDisplacement(static_cast<int>(c), channelU_);
     s.channelMax[c] = channelU_.rowwise().norm().maxCoeff();
   }
-  s.muscles.resize(muscles ? model_->muscles().size() : 0);
-  for (size_t m = 0; m < s.muscles.size(); ++m) sim_.musclePositions(static_cast<int>(m), s.muscles[m]);
+  s.muscles.resize(muscles ? static_cast<size_t>(model_->muscleCount()) : 0);
+  for (size_t m = 0; m < s.muscles.size(); ++m) sim_->musclePositions(static_cast<int>(m), s.muscles[m]);
   s.steps = lastSteps_;
   s.stepSeconds = lastStepSeconds_;
   return s;

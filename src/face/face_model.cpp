@@ -4,7 +4,9 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
+#include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/face/simulator.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/edge_table.h"
@@ -286,6 +288,22 @@ int FaceModel::muscleIndex(const std::string& name) const {
   std::string known;
   for (const auto& u : muscles_) known += (known.empty() ? "" : ", ") + u.muscle.def.name;
   throw InputError("unknown muscle '" + name + "' (this face has: " + known + ")");
+}
+
+}  // namespace myo
+
+namespace myo {
+
+std::vector<std::string> FaceModel::channelNames() const {
+  std::vector<std::string> names;
+  for (const SkinChannel& c : channels_) names.push_back(c.name);
+  return names;
+}
+
+std::unique_ptr<FaceStepper> FaceModel::makeStepper(std::shared_ptr<const FaceSystem> self) const {
+  auto model = std::dynamic_pointer_cast<const FaceModel>(self);
+  MYO_CHECK(model.get() == this, "makeStepper: self must be this face");
+  return std::make_unique<Simulator>(std::move(model));
 }
 
 }  // namespace myo

@@ -260,3 +260,11 @@ void Simulator::reset() {
 }
 
 }  // namespace myo
+
+namespace myo {
+
+void Simulator::setHeadPose(const Eigen::Quaterniond&) {
+  throw InputError("the head pose (timeline.head_pose) needs \"model\": \"anatomical\"; the thesis model has no head pose");
+}
+
+}  // namespace myo

@@ -4,6 +4,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
+#include "myoshell/face/anatomical_face.h"
 #include "myoshell/face/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
@@ -54,7 +55,18 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
   return in;
 }
 
-std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCache* cache) {
+std::shared_ptr<const FaceSystem> buildSceneFace(const SceneDesc& scene, BasisCache* cache) {
+  if (scene.modelKind == FaceModelKind::Thesis) return buildThesisFace(scene, cache);
+  SceneInputs in = readSceneInputs(scene);
+  return std::make_shared<const AnatomicalFace>(in.head, in.muscles, scene.anatomical, in.settings.drags,
+                                                in.settings.gravity);
+}
+
+std::shared_ptr<const FaceModel> buildThesisFace(const SceneDesc& scene, BasisCache* cache) {
+  if (scene.modelKind != FaceModelKind::Thesis)
+    throw InputError("this needs \"model\": \"thesis\" (the scene's model is " + std::string(toString(scene.modelKind)) +
+                         ")",
+                     scene.path);
   SceneInputs in = readSceneInputs(scene);
   return std::make_shared<const FaceModel>(std::move(in.head), in.muscles, in.settings, cache);
 }

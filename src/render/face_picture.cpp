@@ -24,7 +24,7 @@ const char* viewName(ViewPreset view) {
   return "front";
 }
 
-Camera faceCamera(const FaceModel& model, ViewPreset view, int width, int height, FaceFraming framing) {
+Camera faceCamera(const FaceSystem& model, ViewPreset view, int width, int height, FaceFraming framing) {
   const FaceFrame frame = model.head().frame();
   Camera camera = presetCamera(ViewFrame{frame.origin, frame.axes, frame.scale}, view);
   const auto named = model.head().landmarks.resolved();
@@ -47,20 +47,20 @@ FaceFrameState faceFrameState(const FrameSnapshot& snapshot, const FaceOverlays&
   return state;
 }
 
-FaceFrameState faceFrameState(const Simulator& sim, const FaceOverlays& overlays) {
+FaceFrameState faceFrameState(const FaceStepper& sim, const FaceOverlays& overlays) {
   FaceFrameState state;
   state.skin = sim.skinPositions();
   if (overlays.displacement) state.displacement = sim.skinDisplacement();
   if (overlays.muscles)
-    for (int m = 0; m < static_cast<int>(sim.model().muscles().size()); ++m) state.muscles.push_back(sim.musclePositions(m));
+    for (int m = 0; m < sim.face().muscleCount(); ++m) state.muscles.push_back(sim.musclePositions(m));
   return state;
 }
 
-FaceFrameState restFrameState(const FaceModel& model) {
+FaceFrameState restFrameState(const FaceSystem& model) {
   FaceFrameState state;
   state.skin = model.head().mesh.V;
   state.displacement = MatX3::Zero(state.skin.rows(), 3);
-  for (const MuscleUnit& u : model.muscles()) state.muscles.push_back(u.muscle.mesh.V);
+  for (int m = 0; m < model.muscleCount(); ++m) state.muscles.push_back(model.muscleMesh(m).V);
   return state;
 }
 
@@ -81,7 +81,7 @@ VecX roiWeights(const FaceModel& model, int muscle) {
   return w;
 }
 
-FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, const Camera& camera, int width, int height,
+FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, const Camera& camera, int width, int height,
                     const FaceOverlays& overlays, const VecX* roi) {
   const FacePalette& palette = kFacePalette;
   const TriMesh& skin = model.head().mesh;
@@ -104,8 +104,8 @@ FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, const C
   if (overlays.muscles) {
     RenderStyle muscleStyle;
     muscleStyle.color = palette.muscle;
-    for (size_t m = 0; m < model.muscles().size() && m < state.muscles.size(); ++m)
-      scene.meshes.push_back({state.muscles[m], &model.muscles()[m].muscle.mesh.F, muscleStyle});
+    for (int m = 0; m < model.muscleCount() && static_cast<size_t>(m) < state.muscles.size(); ++m)
+      scene.meshes.push_back({state.muscles[static_cast<size_t>(m)], &model.muscleMesh(m).F, muscleStyle});
     skinMesh.style.opacity = overlays.skinOpacityOverMuscles;
   }
   ColorBar bar;
@@ -137,7 +137,7 @@ FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, const C
   scene.markerStyle.depthTolerance = 0.02 * camera.orthoHeight;
   scene.markerStyle.outlineWidth = 0.8;
   if (overlays.pins)
-    for (int v : model.gravityPins()) scene.markers.push_back({state.skin.row(v).transpose(), palette.pin, 2.5});
+    for (int v : model.pinnedVertices()) scene.markers.push_back({state.skin.row(v).transpose(), palette.pin, 2.5});
   for (int v : overlays.features)
     scene.markers.push_back({state.skin.row(v).transpose(), palette.feature, overlays.featureRadius});
   if (overlays.grabVertex >= 0 && overlays.grabVertex < state.skin.rows())
@@ -145,7 +145,7 @@ FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, const C
   return scene;
 }
 
-FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, ViewPreset view, int width, int height,
+FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, ViewPreset view, int width, int height,
                     const FaceOverlays& overlays, const VecX* roi) {
   return faceScene(model, state, faceCamera(model, view, width, height), width, height, overlays, roi);
 }

@@ -17,6 +17,12 @@ std::string errorOf(const std::string& text) {
   return "(no error)";
 }
 
+// The same scene under "model": "thesis", added last so every line and column stays where it was.
+std::string thesisErrorOf(std::string text) {
+  text.insert(text.rfind('}'), ", \"model\": \"thesis\"");
+  return errorOf(text);
+}
+
 TEST(SceneParser, DefaultsFillAnEmptyScene) {
   const SceneDesc s = parseScene("{}", "dir/empty.json");
   EXPECT_EQ(s.name, "empty");
@@ -30,6 +36,7 @@ TEST(SceneParser, DefaultsFillAnEmptyScene) {
 TEST(SceneParser, ReadsEveryPart) {
   const SceneDesc s = parseScene(R"({
     "name": "fig26",
+    "model": "thesis",
     "muscles": {"use": ["zygomaticus_major_right"]},
     "skin": {"k_a": 1500, "damping_mass": 4},
     "springs": {"model": "displacement", "stiffness": 250},
@@ -64,14 +71,14 @@ TEST(SceneParser, ErrorsNameFileLineColumnAndKeyPath) {
   EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dt\": -1}\n}"), "scene.json:2:22: key 'numerics.dt': must be > 0 (got -1)");
   EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dtt\": 0.1}\n}"), "scene.json:2:16: key 'numerics.dtt': unknown key");
   EXPECT_EQ(errorOf("{\"duration\": \"2\"}"), "scene.json:1:14: key 'duration': must be a number");
-  EXPECT_EQ(errorOf("{\"roi_alpha\": 0.9}"), "scene.json:1:15: key 'roi_alpha': must be > 1 (got 0.9)");
-  EXPECT_EQ(errorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": 1.5}]}}}"),
+  EXPECT_EQ(thesisErrorOf("{\"roi_alpha\": 0.9}"), "scene.json:1:15: key 'roi_alpha': must be > 1 (got 0.9)");
+  EXPECT_EQ(thesisErrorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": 1.5}]}}}"),
             "scene.json:1:55: key 'timeline.activations.m[0].value': must lie in [-1, 1] (got 1.5)");
-  EXPECT_EQ(errorOf("{\"springs\": {\"model\": \"hooke\"}}"),
+  EXPECT_EQ(thesisErrorOf("{\"springs\": {\"model\": \"hooke\"}}"),
             "scene.json:1:23: key 'springs.model': must be \"thesis\" or \"displacement\" (got \"hooke\")");
   EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\"}]}"),
             "scene.json:1:12: key 'drags[0].landmark': give exactly one of 'landmark' and 'vertex'");
-  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": 1}]}"),
+  EXPECT_EQ(thesisErrorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": 1}]}"),
             "scene.json:1:56: key 'drags[0].pin_landmarks': must be true or false");
   EXPECT_EQ(errorOf("{\"timeline\": {\"drags\": {\"nope\": []}}}"),
             "scene.json:1:25: key 'timeline.drags.nope': no drag of that name in 'drags'");
@@ -81,7 +88,7 @@ TEST(SceneParser, ErrorsNameFileLineColumnAndKeyPath) {
 }
 
 TEST(SceneParser, RoundTripsThroughJson) {
-  const SceneDesc a = parseScene(R"({"name": "rt", "numerics": {"skin_modes": 7},
+  const SceneDesc a = parseScene(R"({"name": "rt", "model": "thesis", "numerics": {"skin_modes": 7},
     "muscles": {"extra": [{"name": "frontalis_right", "origin": {"landmark": "right_brow_inner", "offset": [0, 0.5, 0]},
                            "insertion": {"landmark": "right_brow_inner"}}]},
     "drags": [{"name": "d", "vertex": 12, "pin_landmarks": false}],
@@ -193,6 +200,73 @@ TEST(SceneParser, SceneMusclesSelectsInUseOrderThenExtras) {
   EXPECT_EQ(m[1].name, "zygomaticus_major_right");
   EXPECT_EQ(m[2].name, "x");
   EXPECT_EQ(sceneMuscles(parseScene("{}", "e.json"), thesisMuscleDefs()).size(), thesisMuscleDefs().size());
+}
+
+}  // namespace
+}  // namespace myo
+
+namespace myo {
+namespace {
+
+// "model": anatomical (the default) or thesis; keys of one model are errors under the other, naming
+// the model, at their place.
+TEST(SceneParser, TheModelKeyAndKeysOfOneModelOnly) {
+  EXPECT_EQ(parseScene("{}").modelKind, FaceModelKind::Anatomical);
+  EXPECT_EQ(parseScene("{\"model\": \"thesis\"}").modelKind, FaceModelKind::Thesis);
+  EXPECT_EQ(errorOf("{\"model\": \"bone\"}"),
+            "scene.json:1:11: key 'model': must be \"anatomical\" or \"thesis\" (got \"bone\")");
+  const std::string tail = ": only \"model\": \"thesis\" uses it (this scene's model is anatomical, the default)";
+  EXPECT_EQ(errorOf("{\n  \"roi_alpha\": 5\n}"), "scene.json:2:16: key 'roi_alpha'" + tail);
+  EXPECT_EQ(errorOf("{\"springs\": {\"stiffness\": 3}}"), "scene.json:1:13: key 'springs'" + tail);
+  EXPECT_EQ(errorOf("{\"head\": {\"obj\": \"h.obj\", \"landmarks\": \"l.json\", \"gravity_pins\": \"p.json\"}}"),
+            "scene.json:1:66: key 'head.gravity_pins'" + tail);
+  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pins\": \"p.json\"}]}"),
+            "scene.json:1:47: key 'drags[0].pins'" + tail);
+  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": false}]}"),
+            "scene.json:1:56: key 'drags[0].pin_landmarks'" + tail);
+  EXPECT_EQ(errorOf("{\"skin\": {\"k_a\": 100}}"), "scene.json:1:18: key 'skin.k_a'" + tail);
+  EXPECT_EQ(errorOf("{\"numerics\": {\"stepper\": \"exact\"}}"), "scene.json:1:26: key 'numerics.stepper'" + tail);
+  EXPECT_EQ(errorOf("{\"muscle_material\": {\"damping_ratio\": 1}}"),
+            "scene.json:1:39: key 'muscle_material.damping_ratio'" + tail);
+  // Relaxing is the thesis's.
+  EXPECT_EQ(errorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": -0.5}]}}}"),
+            "scene.json:1:55: key 'timeline.activations.m[0].value': must lie in [0, 1] under the anatomical model "
+            "(relaxing, a < 0, needs \"model\": \"thesis\") (got -0.5)");
+  // The anatomical model's own keys are errors under the thesis.
+  const std::string anatomical = ": only \"model\": \"anatomical\" uses it (this scene's model is thesis)";
+  EXPECT_EQ(thesisErrorOf("{\"skin\": {\"young_modulus\": 1e5}}"), "scene.json:1:28: key 'skin.young_modulus'" + anatomical);
+  EXPECT_EQ(thesisErrorOf("{\"timeline\": {\"head_pose\": [{\"t\": 0, \"value\": [90, 0, 0]}]}}"),
+            "scene.json:1:28: key 'timeline.head_pose'" + anatomical);
+}
+
+TEST(SceneParser, AnatomicalKeysMapOntoItsSettingsAndRoundTrip) {
+  const SceneDesc a = parseScene(R"({"name": "an",
+    "skin": {"young_modulus": 5e5, "thickness": 0.2, "damping_mass": 3},
+    "muscles": {"use": ["zygomaticus_major_left"], "shortening": 0.2},
+    "muscle_material": {"k_b": 5e4},
+    "gravity": {"acceleration": 900},
+    "drags": [{"name": "d", "landmark": "nose_tip", "radius": 0.5}],
+    "numerics": {"dt": 0.002, "skin_modes": 12, "warping": false},
+    "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 1, "value": 1}]},
+                 "head_pose": [{"t": 0, "value": [0, 0, 0], "interp": "smooth"}, {"t": 1, "value": [90, 0, 0]}]}})",
+                                 "an.json");
+  const AnatomicalSettings& s = a.anatomical;
+  EXPECT_EQ(a.modelKind, FaceModelKind::Anatomical);
+  EXPECT_DOUBLE_EQ(s.skinYoungModulus, 5e5);
+  EXPECT_DOUBLE_EQ(s.skinThickness, 0.2);
+  EXPECT_DOUBLE_EQ(s.dampingMass, 3.0);
+  EXPECT_DOUBLE_EQ(s.coupling.shortening, 0.2);
+  EXPECT_DOUBLE_EQ(s.coupling.muscle.kB, 5e4);
+  EXPECT_DOUBLE_EQ(s.gravity, 900.0);
+  EXPECT_DOUBLE_EQ(s.dt, 0.002);
+  EXPECT_EQ(s.skinModes, 12);
+  EXPECT_FALSE(s.warping);
+  ASSERT_EQ(a.headPose.keys().size(), 2u);
+  const std::string once = sceneToJson(a);
+  const SceneDesc b = parseScene(once, "an.json");
+  EXPECT_EQ(sceneToJson(b), once);
+  EXPECT_DOUBLE_EQ(b.anatomical.skinYoungModulus, 5e5);
+  EXPECT_LT(b.headPose.at(0.5).angularDistance(a.headPose.at(0.5)), 1e-15);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/io/scene_face.h"  // buildSceneFace for the fixture
 #include "myoshell/anim/scene_player.h"
+#include "myoshell/face/simulator.h"
 #include "myoshell/core/errors.h"
 #include "support/basis_cache.h"
 
@@ -17,6 +18,7 @@ namespace {
 SceneDesc smallScene() {
   return parseScene(R"({
     "name": "player_test",
+    "model": "thesis",
     "muscles": {"use": ["zygomaticus_major_left", "zygomaticus_major_right"]},
     "gravity": {"enabled": true},
     "numerics": {"skin_modes": 10},
@@ -32,7 +34,7 @@ SceneDesc smallScene() {
 }
 
 std::shared_ptr<const FaceModel> smallFace() {  // built once: the eigen-solves are the slow part
-  static const auto model = buildSceneFace(smallScene(), test::sharedBasisCache());
+  static const auto model = buildThesisFace(smallScene(), test::sharedBasisCache());
   return model;
 }
 
@@ -79,7 +81,7 @@ TEST(ScenePlayer, CancellationStopsAtTheNextStep) {
   std::atomic<bool> stop{false};
   player.watch(&stop);
   int steps = 0;
-  player.setControls([&](Simulator&) {
+  player.setControls([&](FaceStepper&) {
     if (++steps == 3) stop = true;  // seen before the 4th step
   });
   EXPECT_FALSE(player.advanceTo(player.frameCount() - 1));
@@ -121,7 +123,7 @@ TEST(ScenePlayer, SnapshotMaximaEqualTheChannelFieldsMaxima) {
   ScenePlayer player(smallScene(), smallFace());
   ASSERT_TRUE(player.advanceTo(player.frameCount() - 1));
   const FrameSnapshot& snap = player.snapshot();
-  const Simulator& sim = player.simulator();
+  const auto& sim = dynamic_cast<const Simulator&>(player.simulator());
   ASSERT_EQ(snap.channelMax.size(), smallFace()->channels().size());
   for (size_t c = 0; c < snap.channelMax.size(); ++c) {
     EXPECT_EQ(snap.channelMax[c], sim.channelDisplacement(static_cast<int>(c)).rowwise().norm().maxCoeff());

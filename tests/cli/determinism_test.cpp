@@ -32,7 +32,7 @@ TEST(Determinism, TheSameSceneGivesTheSameBytes) {
   const fs::path dir = fs::temp_directory_path() / ("myo_determinism_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "scene.json") << R"({"name": "twice",
+  std::ofstream(dir / "scene.json") << R"({"name": "twice", "model": "thesis",
     "muscles": {"use": ["zygomaticus_major_left", "depressor_anguli_oris_right"]},
     "numerics": {"skin_modes": 8}, "duration": 0.15, "fps": 20,
     "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.1, "value": 1}],

@@ -23,7 +23,7 @@ class ExportCommand : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::ofstream(dir_ / "small.json") << R"({
-  "name": "small",
+  "name": "small", "model": "thesis",
   "muscles": {"use": ["zygomaticus_major_left"]},
   "gravity": {"enabled": false},
   "numerics": {"skin_modes": 8},

@@ -20,7 +20,7 @@ using test::differingPixels;
 
 // Both zygomatici contract from frame 0 to frame 2 (10 frames per second): a smile.
 const char* kSmileScene = R"({
-  "name": "smile",
+  "name": "smile", "model": "thesis",
   "muscles": {"use": ["zygomaticus_major_left", "zygomaticus_major_right"]},
   "gravity": {"enabled": false},
   "numerics": {"skin_modes": 8},

@@ -30,7 +30,7 @@ class RunRerun : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string scene(const std::string& file, const std::string& name, double duration) {
-    std::ofstream(dir_ / file) << R"({"name": ")" << name << R"(", "muscles": {"use": ["zygomaticus_major_left"]},
+    std::ofstream(dir_ / file) << R"({"name": ")" << name << R"(", "model": "thesis", "muscles": {"use": ["zygomaticus_major_left"]},
       "gravity": {"enabled": false}, "numerics": {"skin_modes": 8}, "duration": )"
                                << duration << R"(, "fps": 20,
       "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.2, "value": 1}]}}})";

@@ -31,7 +31,7 @@ class RunCommand : public ::testing::Test {
 };
 
 const char* kSmallScene = R"({
-  "name": "small",
+  "name": "small", "model": "thesis",
   "muscles": {"use": ["zygomaticus_major_left"]},
   "gravity": {"enabled": false},
   "numerics": {"skin_modes": 8},

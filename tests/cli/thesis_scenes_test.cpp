@@ -46,7 +46,7 @@ std::shared_ptr<const FaceModel> modelFor(const SceneDesc& scene, const std::str
   static std::map<std::string, std::shared_ptr<const FaceModel>> models;
   auto it = models.find(key);
   if (it != models.end()) return it->second;
-  auto m = buildSceneFace(scene, &cache());
+  auto m = buildThesisFace(scene, &cache());
   models[key] = m;
   return m;
 }
@@ -130,8 +130,8 @@ TEST(ThesisScenes, Fig17MusclesContractAndRelax) {
   ScenePlayer pa(contract, model), pb(relax, model);
   pa.playTo(0.6);
   pb.playTo(0.6);
-  const Simulator& a = pa.simulator();
-  const Simulator& b = pb.simulator();
+  const auto& a = dynamic_cast<const Simulator&>(pa.simulator());
+  const auto& b = dynamic_cast<const Simulator&>(pb.simulator());
   for (int m = 0; m < 8; ++m) {
     const double rest = restInsertionToOrigin(*model, m);
     const std::string& name = model->muscles()[static_cast<size_t>(m)].muscle.def.name;
@@ -179,7 +179,7 @@ void checkRightThenBoth(const std::string& sceneName, double upSign) {
   const SceneDesc scene = readScene(scenePath(sceneName));
   const auto model = modelFor(scene, sceneName);
   ScenePlayer player(scene, model);
-  Simulator& sim = player.simulator();
+  auto& sim = dynamic_cast<Simulator&>(player.simulator());
   const Vec3 y = up(*model);
   player.playTo(0.95);
   const auto [r1, l1] = sideSums(sim);
@@ -212,7 +212,7 @@ TEST(ThesisScenes, Fig20CorrugatorContractsThenRelaxes) {
   const SceneDesc scene = readScene(scenePath("fig20_corrugator"));
   const auto model = modelFor(scene, "fig20_corrugator");
   ScenePlayer player(scene, model);
-  Simulator& sim = player.simulator();
+  auto& sim = dynamic_cast<Simulator&>(player.simulator());
   const int m = model->muscleIndex("corrugator_supercilii_right");
   const double rest = restInsertionToOrigin(*model, m);
   const int v = insertionSkinVertex(*model, "corrugator_supercilii_right");
@@ -241,7 +241,7 @@ TEST(ThesisScenes, Fig22GravitySagGrowsAsStiffnessFalls) {
     const auto model = modelFor(scene, "fig22@" + std::to_string(scale));
     ASSERT_GE(model->gravityChannel(), 0);
     ScenePlayer player(scene, model);
-    Simulator& sim = player.simulator();
+    auto& sim = dynamic_cast<Simulator&>(player.simulator());
     player.playTo(scene.duration);
     const MatX3 u = sim.channelDisplacement(model->gravityChannel());
     const double sag = u.rowwise().norm().maxCoeff();
@@ -259,7 +259,7 @@ TEST(ThesisScenes, Fig23CombinedSmileOpensTheLowerLip) {
   const SceneDesc scene = readScene(scenePath("fig23_combined"));
   const auto model = modelFor(scene, "fig23_combined");
   ScenePlayer player(scene, model);
-  Simulator& sim = player.simulator();
+  auto& sim = dynamic_cast<Simulator&>(player.simulator());
   player.playTo(scene.duration);
   const Vec3 y = up(*model);
   EXPECT_LT(displacementAt(sim, insertionSkinVertex(*model, "depressor_labii_inferioris_right")).dot(y), -0.02);
@@ -277,7 +277,7 @@ TEST(ThesisScenes, Fig25DragMovesTheCheekAlongTheForce) {
   const auto model = modelFor(scene, "fig25_drag");
   ASSERT_EQ(scene.drags.size(), 1u);
   ScenePlayer player(scene, model);
-  Simulator& sim = player.simulator();
+  auto& sim = dynamic_cast<Simulator&>(player.simulator());
   player.playTo(scene.duration);
   const Vec3 force = scene.dragForces.at(scene.drags[0].name).at(scene.duration);
   int dragChannel = -1;
@@ -299,7 +299,7 @@ TEST(ThesisScenes, Fig26TransitionUpNeutralDown) {
   const SceneDesc scene = readScene(scenePath("fig26_transition"));
   const auto model = modelFor(scene, "fig26_transition");
   ScenePlayer player(scene, model);
-  Simulator& sim = player.simulator();
+  auto& sim = dynamic_cast<Simulator&>(player.simulator());
   const int corner = landmark(*model, "mouth_corner_right");
   const Vec3 y = up(*model);
   player.playTo(0.6);
@@ -321,7 +321,7 @@ TEST(ThesisScenes, Fig27IctHeadSmileFrownAndCombined) {
   const auto model = modelFor(scene, "fig27_ict_head");
   EXPECT_GT(model->skin().vertexCount(), 10000);
   ScenePlayer player(scene, model);
-  Simulator& sim = player.simulator();
+  auto& sim = dynamic_cast<Simulator&>(player.simulator());
   const int corner = landmark(*model, "mouth_corner_right");
   const Vec3 y = up(*model);
   player.playTo(0.6);

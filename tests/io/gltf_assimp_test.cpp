@@ -177,7 +177,7 @@ TEST_F(GltfAssimp, TexcoordsEqualTheObjs) {
 // A simulated run: the GLB's anim meshes are the frames the PC2 cache holds, vertex by vertex.
 TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
   std::ofstream(dir_ / "small.json") << R"({
-  "name": "small",
+  "name": "small", "model": "thesis",
   "muscles": {"use": ["zygomaticus_major_left"]},
   "gravity": {"enabled": false},
   "numerics": {"skin_modes": 8},

@@ -152,7 +152,7 @@ TEST_F(GltfValidator, ATruncatedGlbFails) {
 TEST_F(GltfValidator, CliRunGlbHasNoErrors) {
   MYO_REQUIRE_GLTF_VALIDATOR();
   std::ofstream(dir_ / "small.json") << R"({
-  "name": "small",
+  "name": "small", "model": "thesis",
   "muscles": {"use": ["zygomaticus_major_left"]},
   "gravity": {"enabled": false},
   "numerics": {"skin_modes": 8},

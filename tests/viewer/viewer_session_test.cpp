@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 SceneDesc smallScene() {
   SceneDesc scene = parseScene(R"({
     "name": "viewer_test",
+    "model": "thesis",
     "muscles": {"use": ["zygomaticus_major_left", "zygomaticus_major_right", "depressor_anguli_oris_left"]},
     "numerics": {"skin_modes": 12},
     "duration": 0.5, "fps": 20,
@@ -52,8 +53,8 @@ TEST(ViewerSession, TheLinkMovesTheMirrorMuscleAndSlidersClamp) {
   EXPECT_EQ(s.mirrorOf(left), right);
   EXPECT_EQ(s.mirrorOf(dao), -1);  // its right twin is not in this scene
   // The viewer skips the load-participation diagnostic (a factorization per channel at start-up).
-  for (const SkinChannel& ch : s.model().channels()) EXPECT_EQ(ch.loadParticipation, -1.0) << ch.name;
-  EXPECT_EQ(s.model().channels().back().name, "mouse");
+  for (const SkinChannel& ch : s.thesisModel()->channels()) EXPECT_EQ(ch.loadParticipation, -1.0) << ch.name;
+  EXPECT_EQ(s.thesisModel()->channels().back().name, "mouse");
   s.linked = true;
   s.setSlider(left, 0.7);
   EXPECT_DOUBLE_EQ(s.slider(right), 0.7);
@@ -85,7 +86,7 @@ TEST(ViewerSession, SimulationTimeIsIndependentOfTheFrameRate) {
   a.advance(0.3);
   for (int f = 0; f < 36; ++f) b.advance(f % 2 ? 0.3 / 36 * 1.5 : 0.3 / 36 * 0.5);  // 18 short, 18 long
   EXPECT_EQ(a.simulator().stepCount(), b.simulator().stepCount());
-  EXPECT_EQ(a.simulator().stepCount(), static_cast<long long>(std::llround(0.3 / a.model().settings().dt)));
+  EXPECT_EQ(a.simulator().stepCount(), static_cast<long long>(std::llround(0.3 / a.model().dt())));
   EXPECT_EQ((a.simulator().skinDisplacement() - b.simulator().skinDisplacement()).norm(), 0.0);
   EXPECT_GT(a.simulator().skinDisplacement().norm(), 1e-3);
 }
@@ -98,13 +99,13 @@ TEST(ViewerSession, PlayingFollowsTheTimelineAndSeekReplaysIt) {
   s.advance(0.2);
   EXPECT_NEAR(s.playhead(), 0.2, 1e-9);
   const int left = s.model().muscleIndex("zygomaticus_major_left");
-  EXPECT_NEAR(s.slider(left), s.scene().activations.at("zygomaticus_major_left").at(s.playhead() - s.model().settings().dt), 1e-9);
+  EXPECT_NEAR(s.slider(left), s.scene().activations.at("zygomaticus_major_left").at(s.playhead() - s.model().dt()), 1e-9);
   s.advance(1.0);  // past the end: stops there
   EXPECT_FALSE(s.playing);
   EXPECT_DOUBLE_EQ(s.playhead(), s.duration());
   // Seek = a fresh simulator played to t.
   s.seek(0.3);
-  ScenePlayer fresh(s.scene(), std::shared_ptr<const FaceModel>(&s.model(), [](const FaceModel*) {}));
+  ScenePlayer fresh(s.scene(), std::shared_ptr<const FaceSystem>(&s.model(), [](const FaceSystem*) {}));
   fresh.playTo(0.3);
   EXPECT_LE((fresh.simulator().skinDisplacement() - s.simulator().skinDisplacement()).norm(), 1e-12);
   EXPECT_NEAR(s.slider(left), 1.0, 1e-12);
@@ -115,7 +116,7 @@ TEST(ViewerSession, TheMouseDragPullsTheGrabbedSpotAndReleaseLetsGo) {
   ViewerSession& s = session();
   s.setGravity(false);  // only the drag moves the face
   s.resetSliders();
-  const int cheek = test::freeLeftCheekVertex(s.model().head(), s.model().gravityPins());
+  const int cheek = test::freeLeftCheekVertex(s.model().head(), s.model().pinnedVertices());
   s.grab(cheek);
   EXPECT_TRUE(s.grabbing());
   EXPECT_EQ(s.grabbedVertex(), cheek);

@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anim/head_pose_track.h"
 #include "myoshell/anim/timeline.h"
+#include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/face_model.h"
 #include "myoshell/face/muscle_def.h"
 
@@ -17,7 +19,7 @@ struct HeadDesc {
   std::string builtin = "default";  // "default" (the built-in head) unless obj is set
   std::string obj;                  // a user's head OBJ (absolute, or resolved against the scene's folder)
   std::string landmarks;            // its landmark file (required with obj)
-  std::string gravityPins;          // its gravity pin set (vertex-set JSON); empty = rim + landmarks
+  std::string gravityPins;          // thesis: its gravity pin set (vertex-set JSON); empty = rim + landmarks
   std::string skull;                // a skull OBJ in the head's space (optional): muscle origins sit on it
   LengthUnit units = LengthUnit::cm;  // the unit obj and skull are written in (scaled to cm on load)
 };
@@ -27,10 +29,10 @@ struct DragDesc {
   std::string landmark;             // where the user grabs: a landmark name, or
   int vertex = -1;                  // a skin vertex id
   double radius = 1.0;              // cm
-  std::string pins;                 // vertex-set file; empty = the head's gravity pins
+  std::string pins;                 // thesis: vertex-set file; empty = the head's gravity pins
   // With the default pins: also pin the landmarks, as the gravity channel does (Fig. 21). Off, a
   // grip on a landmark (a mouth corner) moves it too; the channel then needs its own basis.
-  bool pinLandmarks = true;
+  bool pinLandmarks = true;         // thesis only
 };
 
 // Where a key or value was written in the scene file: 1-based line and column, 0 when unknown.
@@ -42,19 +44,24 @@ struct SourceLocation {
 struct SceneDesc {
   std::string path;                 // the file it was read from ("" when built in code)
   std::string name;                 // defaults to the file's stem
+  // Which face plays the scene: the anatomical model (docs/anatomical_model.md, the default) or
+  // the thesis's (docs/face_model.md). Keys only one model reads are errors under the other.
+  FaceModelKind modelKind = FaceModelKind::Anatomical;
   HeadDesc head;
   // Muscles: the built-in library (thesis's eight) or a JSON library file, optionally only some of
   // them, plus extra definitions written in the scene.
   std::string muscleLibrary = "builtin";
   std::vector<std::string> muscles;  // names to use; empty = every muscle of the library
   std::vector<MuscleDef> extraMuscles;
-  FaceModelSettings model;          // materials, modes, ROI α, springs, dt, stepper, warping, damping
+  FaceModelSettings model;          // thesis: materials, modes, ROI α, springs, dt, stepper, warping, damping
+  AnatomicalSettings anatomical;    // anatomical: skin E and h, modes, dt, warping, damping, gravity
   std::vector<DragDesc> drags;
   double duration = 1.0;            // s
   double fps = 30.0;                // output frames per second
-  std::map<std::string, ScalarTrack> activations;  // muscle name → activation track (−1 … 1)
+  std::map<std::string, ScalarTrack> activations;  // muscle name → activation track (thesis −1 … 1, anatomical 0 … 1)
   ScalarTrack gravity;              // gravity scale track (empty = constant 1 when gravity is on)
   std::map<std::string, VectorTrack> dragForces;   // drag name → force track (dyn)
+  HeadPoseTrack headPose;           // anatomical only: [pitch, yaw, roll] degrees over time (empty = upright)
   // Where the names checked after parsing were written (key path → location): "muscles.use[i]"
   // and "timeline.activations.NAME" (sceneMuscles). Empty for a scene built in code.
   std::map<std::string, SourceLocation> locations;

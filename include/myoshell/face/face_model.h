@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/face/face_system.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/muscle.h"
 #include "myoshell/reduce/basis_cache.h"
@@ -27,15 +28,6 @@ enum class SpringModel {
   // Named variant ("displacement"): F = k·u_m/|S_init|, linear in the muscle's motion, so a small
   // contraction already moves the skin (docs/face_model.md compares the two).
   Displacement,
-};
-
-// A drag force (the thesis's F_ext_s1, Fig. 24–25): a force on the skin vertices within `radius` of
-// `vertex`, with its own pinned set.
-struct DragDef {
-  std::string name = "drag";
-  int vertex = -1;                // skin vertex the user grabs
-  double radius = 1.0;            // cm: vertices within it share the force equally
-  std::vector<int> pins;          // pinned skin vertices of this channel; empty = FaceModel::gravityPins()
 };
 
 struct FaceModelSettings {
@@ -135,7 +127,7 @@ struct SkinChannel {
   std::vector<int> dragRows;                // Drag: free rows that share the force
 };
 
-class FaceModel {
+class FaceModel : public FaceSystem {
  public:
   // Builds everything: muscles from `muscles` on `head`, their modes and springs, ROIs, and the
   // skin channels (one per muscle, gravity if enabled, one per drag). Throws InputError for bad
@@ -143,17 +135,30 @@ class FaceModel {
   FaceModel(Head head, const std::vector<MuscleDef>& muscles, const FaceModelSettings& settings,
             BasisCache* cache = nullptr);
 
-  const Head& head() const { return head_; }
+  const Head& head() const override { return head_; }
   const FaceModelSettings& settings() const { return settings_; }
   const DiscreteShell& skin() const { return skin_; }
   const std::vector<MuscleUnit>& muscles() const { return muscles_; }
   const std::vector<SkinChannel>& channels() const { return channels_; }
-  int muscleIndex(const std::string& name) const;  // throws InputError naming the unknown muscle
+  int muscleIndex(const std::string& name) const override;  // throws InputError naming the unknown muscle
   int gravityChannel() const { return gravityChannel_; }  // −1 when disabled
   // The gravity channel's pins (and the default pins of drag channels), sorted.
   std::vector<int> gravityPins() const;
-  double buildSeconds() const { return buildSeconds_; }
-  int cacheHits() const { return cacheHits_; }
+  double buildSeconds() const override { return buildSeconds_; }
+  int cacheHits() const override { return cacheHits_; }
+
+  // FaceSystem: the thesis model.
+  FaceModelKind kind() const override { return FaceModelKind::Thesis; }
+  double dt() const override { return settings_.dt; }
+  int muscleCount() const override { return static_cast<int>(muscles_.size()); }
+  const std::string& muscleName(int m) const override { return muscles_[static_cast<size_t>(m)].muscle.def.name; }
+  const TriMesh& muscleMesh(int m) const override { return muscles_[static_cast<size_t>(m)].muscle.mesh; }
+  double minActivation() const override { return -1.0; }
+  std::vector<std::string> channelNames() const override;
+  bool hasGravity() const override { return gravityChannel_ >= 0; }
+  const std::vector<DragDef>& drags() const override { return settings_.drags; }
+  std::vector<int> pinnedVertices() const override { return gravityPins(); }
+  std::unique_ptr<FaceStepper> makeStepper(std::shared_ptr<const FaceSystem> self) const override;
 
  private:
   Head head_;

@@ -9,6 +9,7 @@
 
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/face/face_model.h"
+#include "myoshell/face/face_system.h"
 #include "myoshell/face/head.h"
 #include "myoshell/reduce/basis_cache.h"
 
@@ -21,7 +22,7 @@ SceneDesc readScene(const std::string& path);
 struct SceneInputs {
   Head head;                     // built-in, or OBJ + landmarks + pins (+ skull)
   std::vector<MuscleDef> muscles;  // sceneMuscles of its library; imported shells read
-  FaceModelSettings settings;    // scene.model with the drags resolved to vertices and pins
+  FaceModelSettings settings;    // scene.model with the drags resolved to vertices (and, thesis, pins)
 };
 
 // Reads every file a scene names (paths relative to the scene's folder): the head's OBJ,
@@ -30,7 +31,11 @@ struct SceneInputs {
 // head). `myoshell check` runs this, so it rejects what `run` rejects. Errors are InputError.
 SceneInputs readSceneInputs(const SceneDesc& scene);
 
-// Builds the face a scene describes: readSceneInputs, then the FaceModel (bases from `cache`).
-std::shared_ptr<const FaceModel> buildSceneFace(const SceneDesc& scene, BasisCache* cache = nullptr);
+// Builds the face a scene describes (its "model"): readSceneInputs, then the thesis's FaceModel
+// (bases from `cache`) or the AnatomicalFace (no basis cache yet).
+std::shared_ptr<const FaceSystem> buildSceneFace(const SceneDesc& scene, BasisCache* cache = nullptr);
+// The thesis's FaceModel of a "model": "thesis" scene (figures, which draw its channels and ROIs);
+// InputError naming the model for an anatomical scene.
+std::shared_ptr<const FaceModel> buildThesisFace(const SceneDesc& scene, BasisCache* cache = nullptr);
 
 }  // namespace myo

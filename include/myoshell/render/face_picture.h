@@ -12,6 +12,7 @@
 
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/face/face_model.h"
+#include "myoshell/face/face_system.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/render/camera.h"
 #include "myoshell/render/colormap.h"
@@ -46,7 +47,7 @@ const char* viewName(ViewPreset view);
 // landmarks, with room above the brows) for a whole head such as ICT's.
 enum class FaceFraming { head, face };
 // The preset camera fitted to the rest head (or its landmarks) for a width × height picture.
-Camera faceCamera(const FaceModel& model, ViewPreset view, int width, int height,
+Camera faceCamera(const FaceSystem& model, ViewPreset view, int width, int height,
                   FaceFraming framing = FaceFraming::head);
 
 // A frame of the simulation, as much of it as the overlays need.
@@ -63,7 +64,7 @@ struct FaceOverlays {
   bool roi = false;                    // roiWeights() as a heat map on the skin
   bool displacement = false;           // |u| on [0, displacementScale] cm as a colour map, with a colour bar
   double displacementScale = 1.0;      // cm
-  bool pins = false;                   // the model's gravity pins as markers
+  bool pins = false;                   // the model's pinned vertices (thesis: gravity pins) as markers
   bool wireframe = false;              // the skin's triangle edges
   int grabVertex = -1;                 // ≥ 0: a marker on this skin vertex (the viewer's grip)
   // Constraint pictures (thesis Figs. 18–24): these skin vertices free (red), every other pinned (blue).
@@ -75,9 +76,9 @@ struct FaceOverlays {
 
 // What the overlays need of a frame (the skin always; u and the muscles on demand).
 FaceFrameState faceFrameState(const FrameSnapshot& snapshot, const FaceOverlays& overlays);
-FaceFrameState faceFrameState(const Simulator& sim, const FaceOverlays& overlays);
+FaceFrameState faceFrameState(const FaceStepper& sim, const FaceOverlays& overlays);
 // The rest face (u = 0, muscles at rest).
-FaceFrameState restFrameState(const FaceModel& model);
+FaceFrameState restFrameState(const FaceSystem& model);
 
 // A weight per skin vertex (n) for the ROI heat map: the ROI of a muscle (thesis eq. 19) is every
 // skin vertex closer to one of its nodes than α·depth (depth: that node's spring rest length);
@@ -102,10 +103,10 @@ struct FaceScene {
 };
 
 // The picture of `state` seen by `camera`. `roi` is roiWeights(model, …), needed with overlays.roi.
-FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, const Camera& camera, int width, int height,
+FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, const Camera& camera, int width, int height,
                     const FaceOverlays& overlays, const VecX* roi = nullptr);
 // The same from a named view, framed on the rest head (faceCamera).
-FaceScene faceScene(const FaceModel& model, const FaceFrameState& state, ViewPreset view, int width, int height,
+FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, ViewPreset view, int width, int height,
                     const FaceOverlays& overlays, const VecX* roi = nullptr);
 
 class FacePainter {

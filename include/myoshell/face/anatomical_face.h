@@ -1,0 +1,112 @@
+// The anatomical face as a FaceSystem (face_system.h): one AnatomicalSkin (anatomical_skin.h) with
+// the scene's drags registered on it, stepped by AnatomicalSimulator through AnatomicalStepper, so
+// the one frame loop (ScenePlayer) plays it as it plays the thesis's face (docs/anatomical_model.md,
+// "Playing a scene").
+//
+// Gravity: g(t) = s(t)·|g|·(the rest direction turned by the head pose), s the gravity scale
+// (timeline.gravity, default 1); only its change from the upright rest g_rest loads the skin
+// (reading (b)). Upright at s = 1 the skin stays at rest; s = 0 is weightlessness (the tissue
+// rises by the rest sag). With gravity disabled g(t) = g_rest: no gravity load, no head-pose effect.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/core/timer.h"
+#include "myoshell/face/anatomical_skin.h"
+#include "myoshell/face/face_system.h"
+
+namespace myo {
+
+// The head's rotation in face-frame coordinates for [pitch, yaw, roll] degrees about the face
+// frame's x, y, z, applied in that order: R = R_z R_y R_x (as gravityForPose).
+Eigen::Quaterniond headPoseRotation(const Vec3& pitchYawRollDeg);
+// Gravity in head space (cm/s²) with the head turned by `rotation` (face-frame coordinates):
+// g = −|g|·(A R Aᵀ)ᵀ ŷ, A the frame's axes. gravityForRotation(f, headPoseRotation(p), g) equals
+// gravityForPose(f, p, g) to round-off; the identity gives exactly (0, −|g|, 0).
+Vec3 gravityForRotation(const FaceFrame& frame, const Eigen::Quaterniond& rotation, double gravity);
+
+class AnatomicalFace : public FaceSystem {
+ public:
+  // Builds the skin (AnatomicalSkin) and registers each drag (addDrag at its vertex and radius).
+  // `gravity` false: no gravity load at all. Throws InputError / NumericalError as AnatomicalSkin.
+  AnatomicalFace(const Head& head, const std::vector<MuscleDef>& muscles, const AnatomicalSettings& settings,
+                 std::vector<DragDef> drags, bool gravity = true);
+
+  const AnatomicalSkin& skin() const { return *skin_; }
+  std::shared_ptr<const AnatomicalSkin> skinPtr() const { return skin_; }
+  bool gravityEnabled() const { return gravity_; }
+
+  FaceModelKind kind() const override { return FaceModelKind::Anatomical; }
+  const Head& head() const override { return skin_->head(); }
+  double dt() const override { return skin_->settings().dt; }
+  int muscleCount() const override { return static_cast<int>(skin_->muscles().size()); }
+  const std::string& muscleName(int m) const override;
+  const TriMesh& muscleMesh(int m) const override;
+  int muscleIndex(const std::string& name) const override { return skin_->muscleIndex(name); }
+  double minActivation() const override { return 0.0; }
+  std::vector<std::string> channelNames() const override { return {"skin"}; }
+  bool hasGravity() const override { return gravity_; }
+  const std::vector<DragDef>& drags() const override { return drags_; }
+  std::vector<int> pinnedVertices() const override { return {}; }
+  std::unique_ptr<FaceStepper> makeStepper(std::shared_ptr<const FaceSystem> self) const override;
+  double buildSeconds() const override { return buildSeconds_; }
+  int cacheHits() const override { return 0; }
+
+ private:
+  std::shared_ptr<const AnatomicalSkin> skin_;
+  std::vector<DragDef> drags_;
+  bool gravity_ = true;
+  double buildSeconds_ = 0.0;
+};
+
+// Steps an AnatomicalFace: the loads (activations, gravity scale and head pose, drag forces) kept
+// between steps, AnatomicalStepper::step with them. step() allocates nothing.
+class AnatomicalSimulator : public FaceStepper {
+ public:
+  explicit AnatomicalSimulator(std::shared_ptr<const AnatomicalFace> face);
+
+  const FaceSystem& face() const override { return *face_; }
+  // InputError naming the model outside [0, 1] (and for NaN).
+  void setActivation(int muscle, double a) override;
+  double activation(int muscle) const override { return loads_.activations(muscle); }
+  void setGravity(double scale) override;
+  void setHeadPose(const Eigen::Quaterniond& rotation) override;
+  void setDragForce(int drag, const Vec3& force) override;
+  // Only the drag's own vertex (its Ritz vectors were built there): InputError otherwise.
+  void setDragVertex(int drag, int vertex, double radius = 0.0) override;
+  int dragVertex(int drag) const override;
+  // Refused (InputError naming the model): the one skin has no per-channel stiffness scale.
+  void setSkinStiffnessScale(double s) override;
+  double skinStiffnessScale() const override { return 1.0; }
+
+  void step() override;
+  void reset() override;
+  long long stepCount() const override { return steps_; }
+
+  const MatX3& skinDisplacement() const override { return stepper_->displacement(); }
+  void skinPositions(MatX3& out) const override;
+  void channelDisplacement(int channel, MatX3& out) const override;  // channel 0: the skin
+  void musclePositions(int muscle, MatX3& out) const override;       // rest + level·U_m
+  const StepTimings& lastTimings() const override { return timings_; }
+  std::vector<std::string> takeWarnings() override { return {}; }
+
+  const SkinLoads& loads() const { return loads_; }
+  const AnatomicalStepper& stepper() const { return *stepper_; }
+
+ private:
+  std::shared_ptr<const AnatomicalFace> face_;
+  std::unique_ptr<AnatomicalStepper> stepper_;
+  SkinLoads loads_;
+  double gravityScale_ = 1.0;
+  Eigen::Quaterniond pose_ = Eigen::Quaterniond::Identity();
+  bool posed_ = false;          // a head pose other than upright was set
+  double runawayLimit_ = 0.0;   // cm: the head's bounding-box diagonal
+  StepTimings timings_;
+  long long steps_ = 0;
+  void updateGravity();
+};
+
+}  // namespace myo
