@@ -130,6 +130,7 @@ TEST(SceneParser, PrintsWhatIsMeant) {
   EXPECT_FALSE(j["timeline"]["gravity"][1].contains("interp"));
   EXPECT_EQ(j["muscles"]["use"], "all");
   EXPECT_EQ(j["head"], nlohmann::json({{"builtin", "default"}}));
+  s.modelKind = FaceModelKind::Thesis;  // the pin file is the thesis model's
   s.head.obj = "h.obj";
   s.head.landmarks = "l.json";
   EXPECT_FALSE(nlohmann::json::parse(sceneToJson(s))["head"].contains("gravity_pins"));
@@ -138,7 +139,7 @@ TEST(SceneParser, PrintsWhatIsMeant) {
   // "use": "all" and the old empty list both read as every muscle.
   EXPECT_TRUE(parseScene(R"({"muscles": {"use": "all"}})").muscles.empty());
   EXPECT_TRUE(parseScene(R"({"muscles": {"use": []}})").muscles.empty());
-  EXPECT_EQ(errorOf(R"({"head": {"gravity_pins": "p.json"}})"),
+  EXPECT_EQ(thesisErrorOf(R"({"head": {"gravity_pins": "p.json"}})"),
             "scene.json:1:27: key 'head.gravity_pins': only a head OBJ takes a pin file (the built-in head has its own pins)");
 }
 

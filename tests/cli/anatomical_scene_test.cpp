@@ -28,7 +28,7 @@ const char* kScene = R"({
   "drags": [{"name": "cheek", "vertex": 205, "radius": 1.0}],
   "duration": 0.15, "fps": 20,
   "timeline": {
-    "activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.1, "value": 1, "interp": "smooth"}],
+    "activations": {"zygomaticus_major_left": [{"t": 0, "value": 0, "interp": "smooth"}, {"t": 0.1, "value": 1}],
                     "depressor_anguli_oris_right": [{"t": 0, "value": 0.5}]},
     "drags": {"cheek": [{"t": 0, "value": [0, 0, 0]}, {"t": 0.15, "value": [2000, 500, 0]}]}}
 })";

@@ -111,7 +111,7 @@ TEST_F(CheckCommand, PrintsAllForEveryMuscleAndNoEmptyPinFile) {
 TEST_F(CheckCommand, NamesTheHeadsPinFileOnlyWhenItHasOne) {
   MYO_REQUIRE_SHARED_DATA();
   const std::string ict = (test::sharedDataDir() / "ict").string();
-  const std::string withPins = write("pins.json", R"({"head": {"obj": ")" + ict + R"(/head_skin.obj", "landmarks": ")" + ict +
+  const std::string withPins = write("pins.json", R"({"model": "thesis", "head": {"obj": ")" + ict + R"(/head_skin.obj", "landmarks": ")" + ict +
                                                       R"(/landmarks_multipie68.json", "gravity_pins": ")" + ict +
                                                       R"(/rigid_vertices.json"}})");
   const test::CliResult a = test::runCli("check '" + withPins + "'");

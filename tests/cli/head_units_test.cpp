@@ -108,6 +108,7 @@ TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
   auto scene = [&](const std::string& obj, const std::string& units) {
     nlohmann::json j = {
         {"name", "u"},
+        {"model", "thesis"},
         {"head", {{"obj", obj}, {"landmarks", (ictDir() / "landmarks_multipie68.json").string()},
                   {"gravity_pins", (ictDir() / "rigid_vertices.json").string()}}},
         {"muscles", {{"use", {"zygomaticus_major_left"}}}},

@@ -201,5 +201,45 @@ TEST(ViewerScript, ErrorsNameTheFileLineAndFault) {
   }
 }
 
+// The anatomical model in the viewer: sliders in [0, 1], the thesis-only stiffness slider and
+// moving the mouse grip refused with a message naming the model, the timeline plays it.
+TEST(ViewerSession, TheAnatomicalModelPlaysAndRefusesThesisOnlyControls) {
+  ViewerSession s(parseScene(R"({
+    "name": "viewer_anatomical",
+    "muscles": {"use": ["zygomaticus_major_left"]},
+    "numerics": {"skin_modes": 4},
+    "duration": 0.2, "fps": 20,
+    "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.1, "value": 1}]}}
+  })"),
+                  nullptr);
+  EXPECT_EQ(s.model().kind(), FaceModelKind::Anatomical);
+  EXPECT_EQ(s.thesisModel(), nullptr);
+  EXPECT_EQ(s.model().channelNames(), std::vector<std::string>{"skin"});
+  s.setSlider(0, -0.5);
+  EXPECT_EQ(s.slider(0), 0.0);
+  const std::vector<std::string> warnings = s.takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "activation -0.5 of muscle 'zygomaticus_major_left' clamped to 0");
+  try {
+    s.setStiffnessScale(2.0);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model: thesis only"), std::string::npos) << e.what();
+  }
+  const int nose = s.model().head().landmarks.vertex("nose_tip");
+  EXPECT_NO_THROW(s.grab(nose));  // the mouse drag's own vertex
+  s.release();
+  try {
+    s.grab(nose == 0 ? 1 : 0);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model: thesis only"), std::string::npos) << e.what();
+  }
+  s.playing = true;
+  s.advance(0.2);
+  EXPECT_NEAR(s.slider(0), 1.0, 1e-9);  // the timeline drove the slider
+  EXPECT_GT(s.simulator().skinDisplacement().rowwise().norm().maxCoeff(), 0.01);
+}
+
 }  // namespace
 }  // namespace myo::viewer
