@@ -298,6 +298,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     s.muscleModes = r.integer("muscle_modes", s.muscleModes);
     r.requireAtLeast("muscle_modes", s.muscleModes, 1);
     s.warping = r.boolean("warping", s.warping);
+    an.warping = r.boolean("warping", an.warping);  // each model keeps its own default
     const std::string stepper = r.string("stepper", "exact");
     if (stepper == "exact") s.stepper = ModalStepper::Exact;
     else if (stepper == "semi-implicit") s.stepper = ModalStepper::SemiImplicit;
@@ -358,7 +359,6 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   an.dampingMass = s.skinDampingMass;
   an.dampingStiffness = s.skinDampingStiffness;
   an.skinModes = s.skinModes;
-  an.warping = s.warping;
   an.dt = s.dt;
   an.gravity = s.gravityAcceleration;
   if (!isThesis) an.validate();
