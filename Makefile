@@ -28,7 +28,7 @@ ASAN_ENV = ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/l
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 ASAN_EXCLUDE = -LE '^(gl|viewer)$$'
 # -O1 -g1 (line tables: stack traces keep file:line): the shell's Eigen code under ASan takes 3x as
-# long to compile at -O2 -g (docs/RELIABILITY.md, "CI time").
+# long to compile at -O2 -g (docs/RELIABILITY.md, "Status").
 ASAN_CMAKE = cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DMYO_SANITIZE=ON -DMYO_BUILD_BENCH=OFF > /dev/null
 asan-build: setup
