@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/face/tissue_attachment.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/geometry.h"
@@ -23,18 +24,16 @@ double smooth(double s) {
 }
 
 // The skin as a graph for patch distances: per vertex, its neighbours and the edge lengths, and its
-// lumped area (a third of each incident triangle's).
+// lumped area (tissue_attachment.h).
 struct SkinGraph {
   std::vector<std::vector<std::pair<int, double>>> neighbours;
   VecX area;
   double meanEdge = 0.0;
-  SkinGraph(const MatX3& V, const MatX3i& F) : neighbours(static_cast<size_t>(V.rows())), area(VecX::Zero(V.rows())) {
+  SkinGraph(const MatX3& V, const MatX3i& F) : neighbours(static_cast<size_t>(V.rows())), area(lumpedVertexAreas(V, F)) {
     long long edges = 0;
     for (Eigen::Index t = 0; t < F.rows(); ++t) {
-      const double a = triangleArea(V.row(F(t, 0)), V.row(F(t, 1)), V.row(F(t, 2)));
       for (int k = 0; k < 3; ++k) {
         const int i = F(t, k), j = F(t, (k + 1) % 3);
-        area(i) += a / 3.0;
         const double l = (V.row(i) - V.row(j)).norm();
         neighbours[static_cast<size_t>(i)].emplace_back(j, l);  // each interior edge twice: harmless
         neighbours[static_cast<size_t>(j)].emplace_back(i, l);
@@ -58,12 +57,10 @@ void patchAround(const SkinGraph& g, const MatX3& V, const Eigen::Vector3i& tri,
     const double d = (Vec3(V.row(tri(k))) - point).norm();
     if (!best.count(tri(k)) || d < best[tri(k)]) best[tri(k)] = d, queue.emplace(d, tri(k));
   }
-  std::unordered_map<int, bool> done;
   while (!queue.empty()) {
     const auto [d, v] = queue.top();
     queue.pop();
-    if (done[v] || d > radius) continue;
-    done[v] = true;
+    if (d > best[v] || d > radius) continue;  // a stale entry: v was reached closer already
     reached.emplace_back(v, d);
     for (const auto& [w, l] : g.neighbours[static_cast<size_t>(v)]) {
       const double dw = d + l;
