@@ -33,7 +33,12 @@ ViewerRun runViewer(const std::string& prefix, const std::string& args, const fs
   const fs::path log = dir / "viewer.log";
   // One basis cache for every run of this test program: the eigen-solves happen once.
   const fs::path cache = fs::path(testing::TempDir()) / "myo_view_cache";
-  const std::string cmd = "cd '" + dir.string() + "' && " + prefix + " '" + std::string(MYO_VIEWER_PATH) + "' --cache '" +
+  // xvfb-run keeps its auth file in a temporary folder of $TMPDIR and exits 5 when it cannot clean
+  // it up (seen once under ctest -j2, with another X test beside it): each run gets a folder of its own.
+  const fs::path tmp = dir.parent_path() / (dir.filename().string() + "_xvfb_tmp");
+  fs::create_directories(tmp);
+  const std::string cmd = "cd '" + dir.string() + "' && TMPDIR='" + tmp.string() + "' " + prefix + " '" +
+                          std::string(MYO_VIEWER_PATH) + "' --cache '" +
                           cache.string() + "' " + args + " > '" + log.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
   ViewerRun run;
