@@ -11,7 +11,6 @@
 // behind the surface are not drawn.
 #include <fmt/core.h>
 
-#include <filesystem>
 #include <sstream>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -33,8 +32,6 @@
 
 namespace myo::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 // ---------------------------------------------------------------------------------------------
 // Picture: the render layer's software renderer, drawn at 2× and downsampled.
@@ -102,36 +99,12 @@ struct HeadArgs {
 };
 
 Head loadFromArgs(const HeadArgs& a) {
-  LengthUnit unit;
-  try {
-    unit = parseLengthUnit(a.units);
-  } catch (const InputError& e) {
-    throw InputError("--units: " + e.message());
-  }
-  if (a.head == "default") {
-    if (!a.landmarks.empty() || !a.pins.empty() || unit != LengthUnit::cm)
-      throw InputError("--landmarks, --pins and --units apply to an OBJ head, not the default head");
-    DefaultHeadOptions o;
-    o.subdivisionLevels = a.levels;
-    o.openMouth = !a.closedMouth;
-    return loadDefaultHead(o);
-  }
-  fs::path obj = a.head;
-  std::string landmarks = a.landmarks, pins = a.pins;
-  if (fs::is_directory(obj)) {  // a folder laid out like ../shared/data/ict
-    const fs::path dir = obj;
-    obj = dir / "head_skin.obj";
-    if (landmarks.empty()) landmarks = (dir / "landmarks_multipie68.json").string();
-    if (pins.empty() && fs::exists(dir / "rigid_vertices.json"))
-      pins = (dir / "rigid_vertices.json").string();
-  }
-  if (!fs::exists(obj))
-    throw InputError("no such head: give 'default', an OBJ file or a folder with head_skin.obj",
-                     obj.string());
-  if (landmarks.empty())
-    throw InputError("an OBJ head needs --landmarks FILE (layout of docs/heads.md)", obj.string());
-  Head h = loadHead(obj.string(), landmarks, pins, unit);
-  return h;
+  const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, a.pins, a.units);
+  if (!files.builtIn()) return loadHead(files.obj, files.landmarks, files.pins, files.unit);
+  DefaultHeadOptions o;
+  o.subdivisionLevels = a.levels;
+  o.openMouth = !a.closedMouth;
+  return loadDefaultHead(o);
 }
 
 nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
 #include "myoshell/face/head_checks.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -11,6 +12,37 @@ namespace myo {
 
 Landmarks readLandmarks(const std::string& path, int vertexCount) {
   return parseLandmarks(readWholeFile(path, "cannot open landmark file"), vertexCount, path);
+}
+
+HeadFiles resolveHeadArgument(const std::string& head, const std::string& landmarks, const std::string& pins,
+                              const std::string& units) {
+  namespace fs = std::filesystem;
+  HeadFiles f;
+  try {
+    f.unit = parseLengthUnit(units);
+  } catch (const InputError& e) {
+    throw InputError("--units: " + e.message());
+  }
+  if (head == "default") {
+    if (!landmarks.empty() || !pins.empty() || f.unit != LengthUnit::cm)
+      throw InputError("--landmarks, --pins and --units apply to an OBJ head, not the default head");
+    return f;
+  }
+  fs::path obj = head;
+  f.landmarks = landmarks;
+  f.pins = pins;
+  if (fs::is_directory(obj)) {  // a folder laid out like ../shared/data/ict
+    const fs::path dir = obj;
+    obj = dir / "head_skin.obj";
+    if (f.landmarks.empty()) f.landmarks = (dir / "landmarks_multipie68.json").string();
+    if (f.pins.empty() && fs::exists(dir / "rigid_vertices.json")) f.pins = (dir / "rigid_vertices.json").string();
+  }
+  if (!fs::exists(obj))
+    throw InputError("no such head: give 'default', an OBJ file or a folder with head_skin.obj", obj.string());
+  if (f.landmarks.empty())
+    throw InputError("an OBJ head needs --landmarks FILE (layout of docs/heads.md)", obj.string());
+  f.obj = obj.string();
+  return f;
 }
 
 Head loadHead(const std::string& objPath, const std::string& landmarkPath, const std::string& pinPath,
