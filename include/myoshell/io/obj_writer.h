@@ -15,4 +15,12 @@ namespace myo {
 // and must have the mesh's vertex count (CheckError otherwise).
 void writeObj(const std::string& path, const TriMesh& mesh, const MatX3* V = nullptr);
 
+// A deformed copy of a user's OBJ file: the text of `sourcePath` with the first three numbers of
+// its i-th `v` line replaced by row i of V (n×3, in the file's own unit; shortest round-trip text),
+// every other byte kept (texture coordinates with their seams, normals — those of the rest shape —,
+// quads, groups, comments), written through core's atomic writer. Returns false, writing nothing,
+// when the file's `v` lines cannot be matched to V (another count, a line with fewer than three
+// numbers): the caller then writes the mesh as read (writeObj). InputError when it cannot be read.
+bool writeObjLikeFile(const std::string& path, const std::string& sourcePath, const MatX3& V);
+
 }  // namespace myo
