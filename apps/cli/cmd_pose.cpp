@@ -1,0 +1,260 @@
+// `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--scene S]
+// [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--out SHAPE.obj] [--json]`:
+// the settled shape of the anatomical face under fixed activations and gravity — the static
+// equilibrium of its reduced system (AnatomicalSkin::settle; docs/anatomical_model.md), linear or
+// warped as the model's settings say — written in the head's own vertex order and units: a head read
+// from an OBJ as a copy of that file with its vertex positions replaced (faces, UVs, groups as written).
+//
+// Without --scene the face is the anatomical model's defaults on the given head (a scene with only a
+// head). With --scene it is that scene's face (head, muscles, settings, drags registered but not
+// pulled); its timeline is not played. The head options and --scene exclude each other: a scene names
+// its own head (key `head`), and a second head would leave its drag vertices meaningless.
+// A thesis scene is refused: its face is a sum of channels stepped in time, with no static solve here.
+// Every argument is checked before the model is built (~10 s): bad input costs no wait.
+#include <fmt/core.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "command.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/head_checks.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/io/obj_writer.h"
+#include "myoshell/io/scene_face.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PoseArgs {
+  std::string head = "default";
+  std::string landmarks;
+  std::string units = "cm";
+  std::string scene;
+  std::vector<std::string> sets;  // NAME=VALUE, in the order given
+  std::string gravity;            // "on", "off", or "" (on; a scene's own switch with --scene)
+  std::string headPose = "0,0,0";
+  std::string out;
+  bool json = false;
+  // Whether a head option was given (they exclude --scene).
+  const CLI::Option* headOption = nullptr;
+  const CLI::Option* landmarksOption = nullptr;
+  const CLI::Option* unitsOption = nullptr;
+};
+
+// The whole text as a finite number, or nothing ("abc", "1x", "nan", "").
+bool parseNumber(const std::string& text, double& value) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && std::isfinite(value);
+}
+
+// P,Y,R in degrees: exactly three finite numbers.
+Vec3 parseHeadPose(const std::string& text) {
+  std::vector<std::string> parts(1);
+  for (char c : text) {
+    if (c == ',') parts.emplace_back();
+    else parts.back() += c;
+  }
+  Vec3 pose;
+  const std::string expected = "--head-pose '" + text + "': expected three angles P,Y,R in degrees (pitch, yaw, roll)";
+  if (parts.size() != 3) throw InputError(expected + ", got " + std::to_string(parts.size()));
+  for (int i = 0; i < 3; ++i)
+    if (!parseNumber(parts[static_cast<size_t>(i)], pose(i)))
+      throw InputError(expected + ": '" + parts[static_cast<size_t>(i)] + "' is not a number");
+  return pose;
+}
+
+struct Setting {
+  std::string name;
+  double value = 0.0;
+};
+
+// --set NAME=VALUE, syntax only (names and ranges need the model).
+std::vector<Setting> parseSets(const std::vector<std::string>& sets) {
+  std::vector<Setting> out;
+  for (const std::string& s : sets) {
+    const size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError("--set '" + s + "': expected NAME=VALUE");
+    Setting st;
+    st.name = s.substr(0, eq);
+    const std::string value = s.substr(eq + 1);
+    if (!parseNumber(value, st.value)) throw InputError("--set " + s + ": '" + value + "' is not a number");
+    out.push_back(st);
+  }
+  return out;
+}
+
+// The OBJ's folder must exist (pose makes no folders) and the path must not be a folder.
+void checkOutputPath(const std::string& out) {
+  if (out.empty()) return;
+  const fs::path p(out);
+  if (fs::is_directory(p)) throw InputError("--out: is a folder; give the OBJ file to write", out);
+  const fs::path parent = p.parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw InputError("--out: no such folder '" + parent.string() + "'");
+}
+
+// The scene to settle: the given scene file, or the anatomical defaults on the given head.
+SceneDesc poseScene(const PoseArgs& a) {
+  const bool headGiven = a.headOption->count() + a.landmarksOption->count() + a.unitsOption->count() > 0;
+  if (!a.scene.empty()) {
+    if (headGiven)
+      throw InputError("--head, --landmarks and --units choose the head without --scene; the scene names its own "
+                       "head (keys head.obj, head.landmarks, head.units)");
+    SceneDesc scene = readScene(a.scene);
+    if (scene.modelKind != FaceModelKind::Anatomical)
+      throw InputError("pose settles the anatomical model; this scene's model is " +
+                           std::string(toString(scene.modelKind)) + " (play it with `myoshell run`)",
+                       a.scene);
+    return scene;
+  }
+  const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, "", a.units);
+  SceneDesc scene;
+  scene.name = "pose";
+  scene.head.obj = files.obj;
+  scene.head.landmarks = files.landmarks;
+  scene.head.units = files.unit;
+  return scene;
+}
+
+// The activations, one per muscle of the model in its order: every --set name one of the muscles,
+// every value in [0, 1] (the anatomical model), no muscle set twice.
+VecX activations(const std::vector<Setting>& sets, const std::vector<MuscleDef>& muscles) {
+  VecX a = VecX::Zero(static_cast<Eigen::Index>(muscles.size()));
+  std::vector<bool> given(muscles.size(), false);
+  for (const Setting& s : sets) {
+    size_t m = 0;
+    while (m < muscles.size() && muscles[m].name != s.name) ++m;
+    if (m == muscles.size()) {
+      std::string names;
+      for (const MuscleDef& d : muscles) names += (names.empty() ? "" : ", ") + d.name;
+      throw InputError("--set: unknown muscle '" + s.name + "' (the anatomical model's muscles: " + names + ")");
+    }
+    if (given[m]) throw InputError("--set: muscle '" + s.name + "' is set twice");
+    if (!(s.value >= 0.0 && s.value <= 1.0))
+      throw InputError(fmt::format("--set {}={}: an activation must lie in [0, 1] under the anatomical model",
+                                   s.name, s.value));
+    given[m] = true;
+    a(static_cast<Eigen::Index>(m)) = s.value;
+  }
+  return a;
+}
+
+int runPose(const PoseArgs& a) {
+  const Stopwatch total;
+  // Arguments first, then the scene and the head (read and checked), then the model (~10 s).
+  if (!a.gravity.empty() && a.gravity != "on" && a.gravity != "off")
+    throw InputError("--gravity: '" + a.gravity + "' is neither on nor off");
+  const Vec3 headPose = parseHeadPose(a.headPose);
+  const std::vector<Setting> sets = parseSets(a.sets);
+  checkOutputPath(a.out);
+  const SceneDesc scene = poseScene(a);
+  const SceneInputs inputs = readSceneInputs(scene);
+  const VecX act = activations(sets, inputs.muscles);
+  const bool gravity = a.gravity.empty() ? inputs.settings.gravity : a.gravity == "on";
+
+  const Stopwatch buildClock;
+  const std::shared_ptr<const FaceSystem> system = buildSceneFace(scene);
+  const auto* face = dynamic_cast<const AnatomicalFace*>(system.get());
+  if (!face) throw CheckError("pose: the scene did not build an anatomical face");
+  const double buildSeconds = buildClock.seconds();
+  const AnatomicalSkin& skin = face->skin();
+  const Head& head = skin.head();
+
+  // Gravity as the playing face reads it (AnatomicalSimulator): upright it is exactly the rest
+  // gravity (no load); turned, gravityForPose; off, the rest gravity whatever the pose.
+  SkinLoads loads;
+  loads.activations = act;
+  loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
+  loads.gravity = gravity && !headPose.isZero() ? gravityForPose(head.frame(), headPose, skin.settings().gravity)
+                                                : skin.restGravity();
+  const Stopwatch settleClock;
+  const bool warped = skin.settings().warping;
+  const SettledSkin settled = skin.settle(loads, warped);
+  const double settleSeconds = settleClock.seconds();
+  if (!settled.converged || !settled.u.allFinite())
+    throw NumericalError(fmt::format("pose: the warped static solve did not converge (residual {:.3g} after {} "
+                                     "iterations)",
+                                     settled.residual, settled.iterations));
+
+  Eigen::Index peakVertex = 0;
+  const double peak = settled.u.rowwise().norm().maxCoeff(&peakVertex);
+  if (!a.out.empty()) {
+    // Back in the head file's unit: (rest + u) / (cm per unit); in cm the division is exact.
+    // A head read from a file is written as a copy of that file with new positions (its seam UVs,
+    // quads, groups kept); the built-in head as its mesh.
+    const MatX3 shape = (head.mesh.V + settled.u) / centimetresPer(scene.head.units);
+    if (scene.head.obj.empty() || !writeObjLikeFile(a.out, head.mesh.sourcePath, shape))
+      writeObj(a.out, head.mesh, &shape);
+  }
+  const double seconds = total.seconds();
+
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["model"] = "anatomical";
+    j["head"] = head.name;
+    j["units"] = lengthUnitName(scene.head.units);
+    j["vertices"] = head.mesh.vertexCount();
+    j["activations"] = nlohmann::ordered_json::object();
+    for (int m = 0; m < face->muscleCount(); ++m) j["activations"][face->muscleName(m)] = act(m);
+    j["gravity"] = gravity ? "on" : "off";
+    j["head_pose_deg"] = {headPose.x(), headPose.y(), headPose.z()};
+    j["gravity_cm_s2"] = {loads.gravity.x(), loads.gravity.y(), loads.gravity.z()};
+    j["warped"] = warped;
+    j["iterations"] = settled.iterations;
+    j["max_displacement_cm"] = peak;
+    j["max_displacement_vertex"] = static_cast<int>(peakVertex);
+    j["out"] = a.out.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(a.out);
+    j["build_seconds"] = buildSeconds;
+    j["settle_seconds"] = settleSeconds;
+    j["seconds"] = seconds;
+    fmt::print("{}\n", j.dump(2));
+    return kExitOk;
+  }
+  std::string set;
+  for (const Setting& s : sets) set += fmt::format("{}{}={}", set.empty() ? "" : ", ", s.name, s.value);
+  fmt::print("pose of {} ({} muscles{}, gravity {}{}): max displacement {:.4f} cm at vertex {} ({:.1f} s)\n",
+             head.name, face->muscleCount(), set.empty() ? std::string(", none active") : ": " + set, gravity ? "on" : "off",
+             gravity && !headPose.isZero()
+                 ? fmt::format(", head pose {:g},{:g},{:g}°", headPose.x(), headPose.y(), headPose.z())
+                 : std::string(),
+             peak, peakVertex, seconds);
+  if (!a.out.empty()) fmt::print("wrote {}\n", a.out);
+  return kExitOk;
+}
+
+static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
+  auto args = std::make_shared<PoseArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "pose", "Settle the anatomical face under fixed activations and gravity (its static equilibrium) and "
+              "write the shape as OBJ in the head's vertex order and units");
+  args->headOption = sub->add_option("--head", args->head, "'default', an OBJ file (with --landmarks), or a folder "
+                                                            "like ../shared/data/ict (default: default)");
+  args->landmarksOption = sub->add_option("--landmarks", args->landmarks, "landmark file of an OBJ head (docs/heads.md)");
+  args->unitsOption = sub->add_option("--units", args->units, "the OBJ head's length unit, m, mm or cm (default cm)");
+  sub->add_option("--scene", args->scene, "a scene file: its head, muscles and settings (not with the head options)");
+  sub->add_option("--set", args->sets, "NAME=VALUE: a muscle's activation in [0, 1] (repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub->add_option("--gravity", args->gravity, "on or off (default on; with --scene, the scene's)");
+  sub->add_option("--head-pose", args->headPose, "P,Y,R: pitch, yaw, roll in degrees about the face frame's x, y, "
+                                                  "z (face-down: 90,0,0; default upright)");
+  sub->add_option("--out", args->out, "write the settled shape as OBJ (its folder must exist)");
+  sub->add_flag("--json", args->json, "print activations, max_displacement_cm/_vertex and seconds as JSON");
+  return [args] { return runPose(*args); };
+});
+
+}  // namespace
+}  // namespace myo::cli
