@@ -1,4 +1,5 @@
-// writeObj: exact round trips through readObj, and no temporary file left behind.
+// writeObj: exact round trips through readObj, and no temporary file left behind. writeObjLikeFile:
+// only the positions of a user's file change.
 #include "myoshell/io/obj_writer.h"
 
 #include <gtest/gtest.h>
@@ -6,6 +7,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -67,6 +70,43 @@ TEST(WriteObj, RoundTripKeepsQuadsUvsAndExactPositions) {
   grid.polygons.clear();
   writeObj(out, grid);
   EXPECT_TRUE(readObj(out).F == grid.F);
+}
+
+TEST(WriteObjLikeFile, ReplacesOnlyThePositions) {
+  TempDir dir;
+  // Seam UVs (vertex 2 has two), a quad, a group, a comment, CRLF lines, a vertex colour, tabs.
+  const std::string before = "# my head\r\nv 0.1 0.2 0.3 1 0 0\r\nv\t1 0 0\r\n  v 1 1 0\r\nv 0 1 0\r\nv 2 0.5 0\r\n"
+                             "vt 0 0\r\nvt 1 0\r\nvt 1 1\r\nvt 0 1\r\nvt 0.9 0.9\r\ng skin\r\n"
+                             "f 1/1 2/2 3/3 4/4\r\nf 2/5 5/5 3/3\r\n";
+  const std::string src = dir.write("src.obj", before);
+  const TriMesh m = readObj(src);
+  MatX3 moved = m.V;
+  moved.col(0).array() += 0.1;
+  moved(3, 2) = -1e-300;
+  const std::string out = (dir.path() / "out.obj").string();
+  ASSERT_TRUE(writeObjLikeFile(out, src, moved));
+  std::ifstream in(out, std::ios::binary);
+  const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto replace = [](std::string s, const std::string& from, const std::string& to) {
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? s : s.replace(at, from.size(), to);
+  };
+  std::string expected = replace(before, "v 0.1 0.2 0.3 1", "v 0.2 0.2 0.3 1");
+  expected = replace(expected, "v\t1 0 0", "v\t1.1 0 0");
+  expected = replace(expected, "  v 1 1 0", "  v 1.1 1 0");
+  expected = replace(expected, "v 0 1 0", "v 0.1 1 -1e-300");
+  expected = replace(expected, "v 2 0.5 0", "v 2.1 0.5 0");
+  EXPECT_EQ(after, expected);
+  const TriMesh back = readObj(out);
+  EXPECT_TRUE(back.V == moved);  // bitwise
+  EXPECT_EQ(back.polygons, m.polygons);
+
+  // Another vertex count: nothing written, the caller falls back to writeObj.
+  const std::string none = (dir.path() / "none.obj").string();
+  EXPECT_FALSE(writeObjLikeFile(none, src, moved.topRows(3)));
+  EXPECT_FALSE(fs::exists(none));
+  EXPECT_THROW(writeObjLikeFile(none, (dir.path() / "missing.obj").string(), moved), InputError);
 }
 
 TEST(WriteObj, UnwritableDirectoryIsAnInputError) {
