@@ -88,16 +88,17 @@ double CouplingProfile::modulus(double t) const {
   return bellyModulus + (insertionModulus - bellyModulus) * smooth((t - insertionStart) / (1.0 - insertionStart));
 }
 
-void CouplingProfile::validate() const {
-  auto bad = [](const std::string& what) { throw InputError("muscle coupling: " + what); };
-  if (!(insertionModulus > 0) || !std::isfinite(insertionModulus)) bad("insertion modulus must be > 0 dyn/cm²");
-  if (!(bellyModulus >= 0) || !std::isfinite(bellyModulus)) bad("belly modulus must be ≥ 0 dyn/cm²");
+void CouplingProfile::validate(const std::string& owner) const {
+  auto bad = [&](const std::string& what) { throw InputError(owner + ": " + what); };
+  if (!(insertionModulus > 0) || !std::isfinite(insertionModulus)) bad("insertion_modulus must be > 0 dyn/cm²");
+  if (!(bellyModulus >= 0) || !std::isfinite(bellyModulus)) bad("belly_modulus must be ≥ 0 dyn/cm²");
   if (!(originEnd >= 0 && originEnd < bellyStart && bellyStart <= insertionStart && insertionStart < 1.0))
     bad("profile positions must satisfy 0 ≤ origin_end < belly_start ≤ insertion_start < 1");
 }
 
 CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings) {
-  settings.profile.validate();
+  const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
+  profile.validate(def.coupling ? "muscle '" + def.name + "': coupling" : "muscle coupling");
   settings.muscle.validate();
   if (!(settings.shortening > 0.0 && settings.shortening < 1.0))
     throw InputError("muscle '" + def.name + "': shortening must lie in (0, 1)");
@@ -159,7 +160,7 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   for (int v = 0; v < nm; ++v) {
     const Vec3 p = mm.V.row(v);
     const double t = std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
-    const double G = settings.profile.modulus(t);
+    const double G = profile.modulus(t);
     if (G <= 0.0) continue;
     const SurfacePoint sp = closestSurfacePoint(S, F, normals, p);
     if (!(sp.distance > 1e-9 * L))

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <sstream>
 
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
@@ -34,6 +35,7 @@ void MuscleDef::validate() const {
   if (!(contraction > 0.0 && contraction < 1.0)) bad("contraction must lie in (0, 1)");
   if (!std::isfinite(springStiffness)) bad("spring_stiffness is not finite");
   if (roiAlpha > 0.0 && roiAlpha <= 1.0) bad("roi_alpha must be > 1 (thesis eq. 19)");
+  if (coupling) coupling->validate("muscle '" + name + "': coupling");
 }
 
 namespace {
@@ -45,6 +47,39 @@ MuscleAnchor readAnchor(DocReader r) {
   r.requireAbove("depth", a.depth, 0.0);
   r.finish();
   return a;
+}
+
+// A muscle's coupling profile: each field defaults to CouplingProfile's (the model's default
+// profile); the order of the positions is checked here so the error points at the field.
+CouplingProfile readCoupling(DocReader r, const std::string& muscle) {
+  CouplingProfile p;
+  const std::string in = " in muscle '" + muscle + "'";
+  auto number = [&](const char* key, double& value) {
+    value = r.number(key, value);
+    if (!std::isfinite(value)) r.fail(key, "must be finite" + in);
+  };
+  number("insertion_modulus", p.insertionModulus);
+  if (!(p.insertionModulus > 0)) r.fail("insertion_modulus", "must be > 0 dyn/cm² (got " + r.node("insertion_modulus").Scalar() + ")" + in);
+  number("belly_modulus", p.bellyModulus);
+  if (!(p.bellyModulus >= 0)) r.fail("belly_modulus", "must be ≥ 0 dyn/cm² (got " + r.node("belly_modulus").Scalar() + ")" + in);
+  number("origin_end", p.originEnd);
+  number("belly_start", p.bellyStart);
+  number("insertion_start", p.insertionStart);
+  auto text = [](double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+  };
+  if (!(p.originEnd >= 0)) r.fail("origin_end", "must be ≥ 0 (got " + text(p.originEnd) + ")" + in);
+  if (!(p.originEnd < p.bellyStart))
+    r.fail(r.has("origin_end") ? "origin_end" : "belly_start",
+           "origin_end (" + text(p.originEnd) + ") must be < belly_start (" + text(p.bellyStart) + ")" + in);
+  if (!(p.bellyStart <= p.insertionStart))
+    r.fail(r.has("insertion_start") ? "insertion_start" : "belly_start",
+           "belly_start (" + text(p.bellyStart) + ") must be ≤ insertion_start (" + text(p.insertionStart) + ")" + in);
+  if (!(p.insertionStart < 1.0)) r.fail("insertion_start", "must be < 1 (got " + text(p.insertionStart) + ")" + in);
+  r.finish();
+  return p;
 }
 }  // namespace
 
@@ -102,6 +137,7 @@ MuscleDef readMuscleDef(DocReader& r) {
   d.springStiffness = r.number("spring_stiffness", d.springStiffness);
   d.roiAlpha = r.number("roi_alpha", d.roiAlpha);
   if (r.has("roi_alpha")) r.requireAbove("roi_alpha", d.roiAlpha, 1.0);
+  if (r.has("coupling")) d.coupling = readCoupling(r.child("coupling"), d.name);
   r.finish();
   d.validate();
   return d;

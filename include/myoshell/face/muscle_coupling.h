@@ -23,25 +23,15 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/face/coupling_profile.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/muscle.h"
 #include "myoshell/shell/shell_material.h"
 
 namespace myo {
 
-struct CouplingProfile {
-  double insertionModulus = 3.0e5;  // G at the insertion, dyn/cm² (30 kPa: muscle/dense tissue)
-  double bellyModulus = 1.0e4;      // G along the belly, dyn/cm² (1 kPa: subcutaneous fat)
-  double originEnd = 0.15;          // t below which there is no coupling (the origin)
-  double bellyStart = 0.30;         // G ramps 0 → belly over [originEnd, bellyStart]
-  double insertionStart = 0.70;     // G ramps belly → insertion over [insertionStart, 1]
-  // G at position t ∈ [0, 1] along the muscle (smooth ramps), dyn/cm².
-  double modulus(double t) const;
-  void validate() const;            // InputError naming the field
-};
-
 struct MuscleCouplingSettings {
-  CouplingProfile profile;
+  CouplingProfile profile;  // for every muscle whose definition has no profile of its own (MuscleDef::coupling)
   // Shortening at a = 1 as a fraction of the rest length: zygomaticus major in a joyful expression
   // shortens to 85.6 % of its rest length (MRI, Rams et al. 2024, Aesthetic Plast Surg 48:2722).
   double shortening = 0.144;
@@ -77,7 +67,7 @@ struct CoupledMuscle {
 };
 
 // Builds the muscle (buildMuscle), its static shape at a = 1 scaled to the shortening rule, and its
-// skin springs. Throws InputError naming the muscle for bad settings, NumericalError if the pinned
+// skin springs, with the muscle's own profile (def.coupling) or else settings.profile. Throws InputError naming the muscle for bad settings, NumericalError if the pinned
 // muscle is singular.
 CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings = {});
 

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/face/coupling_profile.h"
 #include "myoshell/mesh/tri_mesh.h"
 
 namespace YAML {
@@ -46,6 +48,10 @@ struct MuscleDef {
   double springStiffness = 0.0;
   // ROI factor α of thesis eq. 19 (> 1); ≤ 0 = model default.
   double roiAlpha = 0.0;
+  // Anatomical model: this muscle's coupling profile along its length (key `coupling`; fields not
+  // written keep CouplingProfile's defaults); none = the model's profile (MuscleCouplingSettings).
+  // The thesis model does not read it.
+  std::optional<CouplingProfile> coupling;
 
   // Imported muscle (instead of a generated one): an OBJ of the closed muscle shell in the head's
   // space (cm), with its node sets as vertex ids of that OBJ. origin/insertion anchors, width,
@@ -65,7 +71,8 @@ struct MuscleDef {
 
 // Parses a muscle library (JSON or YAML): {"muscles": [{...}, ...]} with the keys of MuscleDef in
 // snake_case (name, side, facs, origin {landmark, offset, depth}, insertion {…}, width, thickness,
-// stations, ring_nodes, contraction, spring_stiffness, roi_alpha, note). Errors (InputError) name
+// stations, ring_nodes, contraction, spring_stiffness, roi_alpha, coupling {insertion_modulus,
+// belly_modulus, origin_end, belly_start, insertion_start}, note). Errors (InputError) name
 // `name:line:col`, the key path and the fault; unknown keys are errors.
 // Imported muscles' OBJs are not read here (def.shell stays empty; io reads them).
 std::vector<MuscleDef> parseMuscleDefs(const std::string& jsonText, const std::string& name = "<string>");
