@@ -219,6 +219,9 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
       if (!extra.IsSequence()) m.failAt(extra, m.keyPath("extra"), "must be a list of muscles");
       for (size_t i = 0; i < extra.size(); ++i) {
         DocReader r(extra[i], path, m.keyPath("extra") + "[" + std::to_string(i) + "]");
+        // A muscle's keys that one model reads (a library file serves both models and is not checked).
+        for (const char* key : {"contraction", "spring_stiffness", "roi_alpha"}) onlyFor(thesis, scene, r, key);
+        onlyFor(anatomical, scene, r, "coupling");
         scene.extraMuscles.push_back(readMuscleDef(r));
       }
     }
@@ -229,6 +232,10 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     DocReader r = root.child("skin");
     for (const char* key : {"k_a", "k_l", "k_b", "density"}) onlyFor(thesis, scene, r, key);
     onlyFor(anatomical, scene, r, "young_modulus");
+    onlyFor(anatomical, scene, r, "attachment");
+    scene.skinAttachment = r.string("attachment", "");
+    if (r.has("attachment") && scene.skinAttachment.empty())
+      r.fail("attachment", "must name a file of attachment overrides");
     an.skinYoungModulus = r.number("young_modulus", an.skinYoungModulus);
     r.requireAbove("young_modulus", an.skinYoungModulus, 0.0);
     readMaterial(r, s.skin);
@@ -413,17 +420,23 @@ std::string sceneToJson(const SceneDesc& scene) {
   if (scene.head.units != LengthUnit::cm) j["head"]["units"] = lengthUnitName(scene.head.units);
   json extra = json::array();
   for (const MuscleDef& d : scene.extraMuscles) {
-    if (d.imported()) {
-      json m = {{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"obj", d.obj}, {"origin_nodes", d.originNodes},
-                {"central_nodes", d.centralNodes}, {"insertion_nodes", d.insertionNodes}, {"contraction", d.contraction},
-                {"spring_stiffness", d.springStiffness}, {"roi_alpha", d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha}};
-      extra.push_back(m);
-      continue;
+    json m = d.imported() ? json{{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"obj", d.obj},
+                                 {"origin_nodes", d.originNodes}, {"central_nodes", d.centralNodes},
+                                 {"insertion_nodes", d.insertionNodes}}
+                          : json{{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"origin", anchorJson(d.origin)},
+                                 {"insertion", anchorJson(d.insertion)}, {"width", d.width}, {"thickness", d.thickness},
+                                 {"stations", d.stations}, {"ring_nodes", d.ringNodes}};
+    if (thesis) {  // the keys only the thesis model reads (the parser refuses them under the other)
+      m["contraction"] = d.contraction;
+      m["spring_stiffness"] = d.springStiffness;
+      m["roi_alpha"] = d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha;
+    } else if (d.coupling) {
+      const CouplingProfile& c = *d.coupling;
+      m["coupling"] = {{"insertion_modulus", c.insertionModulus}, {"belly_modulus", c.bellyModulus},
+                       {"origin_end", c.originEnd}, {"belly_start", c.bellyStart},
+                       {"insertion_start", c.insertionStart}};
     }
-    extra.push_back({{"name", d.name}, {"side", d.side}, {"facs", d.facs}, {"origin", anchorJson(d.origin)},
-                     {"insertion", anchorJson(d.insertion)}, {"width", d.width}, {"thickness", d.thickness},
-                     {"stations", d.stations}, {"ring_nodes", d.ringNodes}, {"contraction", d.contraction},
-                     {"spring_stiffness", d.springStiffness}, {"roi_alpha", d.roiAlpha > 0 ? d.roiAlpha : s.roiAlpha}});
+    extra.push_back(m);
   }
   j["muscles"] = {{"library", scene.muscleLibrary},
                   {"use", scene.muscles.empty() ? json("all") : json(scene.muscles)},
@@ -432,6 +445,7 @@ std::string sceneToJson(const SceneDesc& scene) {
     j["muscles"]["shortening"] = an.coupling.shortening;
     j["skin"] = {{"young_modulus", an.skinYoungModulus}, {"thickness", an.skinThickness},
                  {"damping_mass", an.dampingMass}, {"damping_stiffness", an.dampingStiffness}};
+    if (!scene.skinAttachment.empty()) j["skin"]["attachment"] = scene.skinAttachment;
     j["muscle_material"] = materialJson(an.coupling.muscle);
     j["gravity"] = {{"enabled", s.gravity}, {"acceleration", an.gravity}};
     json drags = json::array();

@@ -6,6 +6,7 @@
 #include "myoshell/core/whole_file.h"
 #include "myoshell/face/anatomical_face.h"
 #include "myoshell/face/head_checks.h"
+#include "myoshell/io/attachment_file.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -38,6 +39,10 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
   in.muscles = sceneMuscles(scene, library);
   readMuscleShells(in.muscles);  // the scene's own imported muscles
 
+  in.anatomical = scene.anatomical;
+  if (!scene.skinAttachment.empty())
+    in.anatomical.attachmentOverrides = readAttachmentOverrideFile(resolve(scene.skinAttachment), head.mesh.vertexCount());
+
   in.settings = scene.model;
   for (const DragDesc& d : scene.drags) {
     DragDef def;
@@ -58,7 +63,7 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
 std::shared_ptr<const FaceSystem> buildSceneFace(const SceneDesc& scene, BasisCache* cache) {
   if (scene.modelKind == FaceModelKind::Thesis) return buildThesisFace(scene, cache);
   SceneInputs in = readSceneInputs(scene);
-  return std::make_shared<const AnatomicalFace>(in.head, in.muscles, scene.anatomical, in.settings.drags,
+  return std::make_shared<const AnatomicalFace>(in.head, in.muscles, in.anatomical, in.settings.drags,
                                                 in.settings.gravity);
 }
 

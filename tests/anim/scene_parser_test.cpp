@@ -238,6 +238,51 @@ TEST(SceneParser, TheModelKeyAndKeysOfOneModelOnly) {
   EXPECT_EQ(thesisErrorOf("{\"skin\": {\"young_modulus\": 1e5}}"), "scene.json:1:28: key 'skin.young_modulus'" + anatomical);
   EXPECT_EQ(thesisErrorOf("{\"timeline\": {\"head_pose\": [{\"t\": 0, \"value\": [90, 0, 0]}]}}"),
             "scene.json:1:28: key 'timeline.head_pose'" + anatomical);
+  EXPECT_EQ(thesisErrorOf("{\"skin\": {\"attachment\": \"a.json\"}}"), "scene.json:1:25: key 'skin.attachment'" + anatomical);
+}
+
+// A muscle written in the scene (muscles.extra) follows the scene's model: the keys only the
+// thesis's calibration reads (contraction, spring_stiffness, roi_alpha) are errors under the
+// anatomical model, a coupling profile under the thesis's.
+TEST(SceneParser, ExtraMusclesKeysOfOneModelOnly) {
+  const std::string muscle = R"({"muscles": {"extra": [{"name": "m", "origin": {"landmark": "nose_tip"}, )"
+                             R"("insertion": {"landmark": "chin_menton"}, )";
+  const std::string thesisOnly = ": only \"model\": \"thesis\" uses it (this scene's model is anatomical, the default)";
+  EXPECT_EQ(errorOf(muscle + R"("roi_alpha": 4}]}})"), "scene.json:1:129: key 'muscles.extra[0].roi_alpha'" + thesisOnly);
+  EXPECT_EQ(errorOf(muscle + R"("spring_stiffness": 40}]}})"),
+            "scene.json:1:136: key 'muscles.extra[0].spring_stiffness'" + thesisOnly);
+  EXPECT_EQ(errorOf(muscle + R"("contraction": 0.2}]}})"), "scene.json:1:131: key 'muscles.extra[0].contraction'" + thesisOnly);
+  EXPECT_EQ(thesisErrorOf(muscle + R"("coupling": {"belly_modulus": 0}}]}})"),
+            "scene.json:1:128: key 'muscles.extra[0].coupling': only \"model\": \"anatomical\" uses it (this scene's "
+            "model is thesis)");
+  // Each model reads its own.
+  EXPECT_DOUBLE_EQ(parseScene(muscle + R"("coupling": {"insertion_modulus": 6e5}}]}})").extraMuscles[0].coupling->insertionModulus,
+                   6e5);
+  EXPECT_DOUBLE_EQ(parseScene(muscle + R"("roi_alpha": 4}]}, "model": "thesis"})").extraMuscles[0].roiAlpha, 4.0);
+  // A profile out of order names the muscle and the field.
+  EXPECT_EQ(errorOf(muscle + R"("coupling": {"origin_end": 0.4, "belly_start": 0.3}}]}})"),
+            "scene.json:1:143: key 'muscles.extra[0].coupling.origin_end': origin_end (0.4) must be < belly_start (0.3) "
+            "in muscle 'm'");
+}
+
+TEST(SceneParser, AttachmentAndCouplingRoundTrip) {
+  const SceneDesc a = parseScene(R"({"skin": {"attachment": "lips.json"},
+    "muscles": {"extra": [{"name": "m", "origin": {"landmark": "nose_tip"}, "insertion": {"landmark": "chin_menton"},
+                           "coupling": {"insertion_modulus": 6e5, "origin_end": 0.1}}]}})",
+                                 "an.json");
+  EXPECT_EQ(a.skinAttachment, "lips.json");
+  ASSERT_TRUE(a.extraMuscles[0].coupling.has_value());
+  CouplingProfile expected;
+  expected.insertionModulus = 6e5;
+  expected.originEnd = 0.1;
+  EXPECT_EQ(*a.extraMuscles[0].coupling, expected);
+  const std::string once = sceneToJson(a);
+  const SceneDesc b = parseScene(once, "an.json");
+  EXPECT_EQ(sceneToJson(b), once);
+  EXPECT_EQ(b.skinAttachment, "lips.json");
+  EXPECT_EQ(*b.extraMuscles[0].coupling, expected);
+  EXPECT_EQ(errorOf(R"({"skin": {"attachment": ""}})"),
+            "scene.json:1:25: key 'skin.attachment': must name a file of attachment overrides");
 }
 
 TEST(SceneParser, AnatomicalKeysMapOntoItsSettingsAndRoundTrip) {

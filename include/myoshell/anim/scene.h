@@ -55,6 +55,9 @@ struct SceneDesc {
   std::vector<MuscleDef> extraMuscles;
   FaceModelSettings model;          // thesis: materials, modes, ROI α, springs, dt, stepper, warping, damping
   AnatomicalSettings anatomical;    // anatomical: skin E and h, modes, dt, warping, damping, gravity
+  // anatomical: a file of per-vertex k_att overrides (face/attachment_overrides.h), read by io into
+  // anatomical.attachmentOverrides when the head is known; "" = the region map alone.
+  std::string skinAttachment;
   std::vector<DragDesc> drags;
   double duration = 1.0;            // s
   double fps = 30.0;                // output frames per second

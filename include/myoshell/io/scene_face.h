@@ -23,10 +23,13 @@ struct SceneInputs {
   Head head;                     // built-in, or OBJ + landmarks + pins (+ skull)
   std::vector<MuscleDef> muscles;  // sceneMuscles of its library; imported shells read
   FaceModelSettings settings;    // scene.model with the drags resolved to vertices (and, thesis, pins)
+  // scene.anatomical with the attachment overrides of `skin.attachment` read for this head.
+  AnatomicalSettings anatomical;
 };
 
 // Reads every file a scene names (paths relative to the scene's folder): the head's OBJ,
-// landmarks, pins and skull, the muscle library and imported muscles' OBJs, drag pin sets; checks
+// landmarks, pins and skull, the muscle library and imported muscles' OBJs, drag pin sets, the
+// attachment overrides (skin.attachment); checks
 // every name (muscles against the library: sceneMuscles; drag landmarks and vertices against the
 // head). `myoshell check` runs this, so it rejects what `run` rejects. Errors are InputError.
 SceneInputs readSceneInputs(const SceneDesc& scene);
