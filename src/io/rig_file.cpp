@@ -247,8 +247,9 @@ std::vector<double> Reader::accessor(std::uint64_t i, bool positions) {
   auto normalized = acc.find("normalized");
   if (normalized != acc.end() && (!normalized->is_boolean() || normalized->get<bool>()))
     fail(pointer + "/normalized", "normalized accessors are not read here (positions and indices are not normalized)");
-  // A count bound keeps a hostile file from asking for gigabytes: 2^21 vertices is far beyond a head.
-  constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 21;
+  // A count bound keeps a hostile file from asking for gigabytes or minutes: 2^20 vertices is far
+  // beyond a head (ICT: 11,248).
+  constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 20;
   const std::uint64_t count = index(member(acc, "count", pointer), pointer + "/count", kMaxCount);
   if (count == 0) fail(pointer + "/count", "0 (at least 1 is needed)");
   const std::size_t csize = componentSize(ctype);

@@ -255,6 +255,8 @@ TEST_F(RigFileTest, BadFilesGiveTheFileThePointerAndTheFault) {
             "/meshes/0/extras/targetNames: missing (the rig's target names)");
   EXPECT_EQ(broken("range.glb", [](Tiny& t) { t.doc["accessors"][0]["count"] = 6; }),
             "/accessors/0: out of range: 6 elements need 72 bytes of bufferView 0, which has 60");
+  EXPECT_EQ(broken("huge.glb", [](Tiny& t) { t.doc["accessors"][2]["count"] = 1 << 20; }),
+            "/accessors/2/count: 1048576 out of range (limit 1048576)");
   EXPECT_EQ(broken("view.glb", [](Tiny& t) { t.doc["bufferViews"][4]["byteLength"] = 600; }),
             "/bufferViews/4: bytes 116..716 past the end of buffer 0 (176 bytes)");
   EXPECT_EQ(broken("ushort.glb", [](Tiny& t) { t.doc["accessors"][0]["componentType"] = 5123; }),
