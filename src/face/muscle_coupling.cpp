@@ -3,9 +3,6 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <queue>
-#include <unordered_map>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/tissue_attachment.h"
@@ -18,68 +15,15 @@
 namespace myo {
 
 namespace {
+// How squarely the muscle must lie beneath a skin vertex to couple to it: −(direction to the
+// muscle)·(skin normal) above this (about 73° from straight down).
+constexpr double kBeneath = 0.3;
+
 double smooth(double s) {
   s = std::clamp(s, 0.0, 1.0);
   return s * s * (3.0 - 2.0 * s);
 }
 
-// The skin as a graph for patch distances: per vertex, its neighbours and the edge lengths, and its
-// lumped area (tissue_attachment.h).
-struct SkinGraph {
-  std::vector<std::vector<std::pair<int, double>>> neighbours;
-  VecX area;
-  double meanEdge = 0.0;
-  SkinGraph(const MatX3& V, const MatX3i& F) : neighbours(static_cast<size_t>(V.rows())), area(lumpedVertexAreas(V, F)) {
-    long long edges = 0;
-    for (Eigen::Index t = 0; t < F.rows(); ++t) {
-      for (int k = 0; k < 3; ++k) {
-        const int i = F(t, k), j = F(t, (k + 1) % 3);
-        const double l = (V.row(i) - V.row(j)).norm();
-        neighbours[static_cast<size_t>(i)].emplace_back(j, l);  // each interior edge twice: harmless
-        neighbours[static_cast<size_t>(j)].emplace_back(i, l);
-        meanEdge += l;
-        ++edges;
-      }
-    }
-    if (edges > 0) meanEdge /= static_cast<double>(edges);
-  }
-};
-
-// The patch of skin within `radius` of the surface point (triangle, barycentric) along the edges
-// (Dijkstra from the triangle's corners, started at their straight distances to the point), with
-// weights A_j (1 − (d_j/r)²)², normalised. The lips' gap and the lids' slit separate patches.
-void patchAround(const SkinGraph& g, const MatX3& V, const Eigen::Vector3i& tri, const Vec3& point, double radius,
-                 std::vector<int>& vertices, std::vector<double>& weights) {
-  std::vector<std::pair<int, double>> reached;  // (vertex, distance), settled
-  std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> queue;
-  std::unordered_map<int, double> best;
-  for (int k = 0; k < 3; ++k) {
-    const double d = (Vec3(V.row(tri(k))) - point).norm();
-    if (!best.count(tri(k)) || d < best[tri(k)]) best[tri(k)] = d, queue.emplace(d, tri(k));
-  }
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > best[v] || d > radius) continue;  // a stale entry: v was reached closer already
-    reached.emplace_back(v, d);
-    for (const auto& [w, l] : g.neighbours[static_cast<size_t>(v)]) {
-      const double dw = d + l;
-      if (dw <= radius && (!best.count(w) || dw < best[w])) best[w] = dw, queue.emplace(dw, w);
-    }
-  }
-  vertices.clear();
-  weights.clear();
-  double sum = 0.0;
-  for (const auto& [v, d] : reached) {
-    const double s = d / radius;
-    const double w = g.area(v) * (1.0 - s * s) * (1.0 - s * s);
-    if (w <= 0.0) continue;
-    vertices.push_back(v);
-    weights.push_back(w);
-    sum += w;
-  }
-  for (double& w : weights) w /= sum;
-}
 }  // namespace
 
 double CouplingProfile::modulus(double t) const {
@@ -146,54 +90,71 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
     cm.naturalFrequency = std::sqrt(x.dot(Kff * x) / mm2);
   }
 
-  // Springs to patches around the closest skin points.
+  // Springs from every skin vertex over the muscle to the muscle's surface point below it.
   const MatX3& S = head.mesh.V;
   const MatX3i& F = head.mesh.F;
-  const MatX3 normals = vertexNormals(S, F);
-  const double muscleArea = surfaceArea(mm.V, mm.F);
-  const double areaPerNode = muscleArea / nm;
+  const MatX3 skinNormals = vertexNormals(S, F);
+  const MatX3 muscleNormals = vertexNormals(mm.V, mm.F);
+  const VecX skinArea = lumpedVertexAreas(S, F);
   const double L = mu.restLength;
-  const SkinGraph graph(S, F);
-  const double radius = settings.patchRadius <= 0.0
-                            ? 0.0
-                            : std::max(settings.patchRadius * muscleArea / (4.0 * L), 1.5 * graph.meanEdge);
+  // Per muscle node: its place along the muscle (t) and its depth below the skin.
+  VecX nodeT(nm), nodeDepth(nm);
   for (int v = 0; v < nm; ++v) {
     const Vec3 p = mm.V.row(v);
-    const double t = std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
+    nodeT(v) = std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
+    nodeDepth(v) = closestSurfacePoint(S, F, skinNormals, p).distance;
+    if (!(nodeDepth(v) > 1e-9 * L))
+      throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
+  }
+  const Vec3 middle = 0.5 * (mu.originPoint + mu.insertionPoint);
+  const double reachFactor = settings.footprintReach;
+  for (Eigen::Index i = 0; i < S.rows(); ++i) {
+    const Vec3 x = S.row(i);
+    if ((x - middle).norm() > L) continue;  // cannot lie over the muscle: skip the search
+    const SurfacePoint below = closestSurfacePoint(mm.V, mm.F, muscleNormals, x);
+    const Eigen::Vector3i tri = mm.F.row(below.triangle).transpose();
+    double t = 0.0, depth = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      t += below.barycentric(k) * nodeT(tri(k));
+      depth += below.barycentric(k) * nodeDepth(tri(k));
+    }
     const double G = profile.modulus(t);
     if (G <= 0.0) continue;
-    const SurfacePoint sp = closestSurfacePoint(S, F, normals, p);
-    if (!(sp.distance > 1e-9 * L))
-      throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
-    CoupledMuscle::Spring s;
-    s.node = v;
-    const Eigen::Vector3i tri = F.row(sp.triangle).transpose();
-    if (radius > 0.0) patchAround(graph, S, tri, sp.point, radius, s.skin, s.weights);
-    if (s.skin.empty()) {  // the closest point alone
-      s.skin = {tri(0), tri(1), tri(2)};
-      s.weights = {sp.barycentric(0), sp.barycentric(1), sp.barycentric(2)};
-    }
-    s.t = t;
-    s.depth = sp.distance;
-    s.stiffness = G * areaPerNode / sp.distance;
-    cm.springs.push_back(s);
+    // The muscle must lie beneath this skin, not beside or in front of it (the other lip, the
+    // inside of the mouth).
+    const Vec3 down = (below.point - x) / std::max(below.distance, 1e-12 * L);
+    if (down.dot(Vec3(skinNormals.row(i))) > -kBeneath) continue;
+    const double reach = reachFactor * depth;
+    if (below.distance >= reach) continue;
+    const double s = below.distance / reach;
+    CoupledMuscle::Spring spring;
+    spring.skin = static_cast<int>(i);
+    spring.nodes = {tri(0), tri(1), tri(2)};
+    spring.weights = {below.barycentric(0), below.barycentric(1), below.barycentric(2)};
+    spring.t = t;
+    spring.depth = below.distance;
+    // A shear layer of modulus G and thickness δ under the vertex's area, faded out towards the
+    // footprint's edge so the coupling has no step.
+    spring.stiffness = G * skinArea(i) / std::max(below.distance, 1e-3 * L) * (1.0 - s * s) * (1.0 - s * s);
+    cm.springs.push_back(spring);
   }
   return cm;
 }
 
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets) {
   for (const auto& s : m.springs)
-    for (size_t a = 0; a < s.skin.size(); ++a)
-      for (size_t b = 0; b < s.skin.size(); ++b) {
-        const double k = s.stiffness * s.weights[a] * s.weights[b];
-        for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin[a] + c, 3 * s.skin[b] + c, k);
-      }
+    for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin + c, 3 * s.skin + c, s.stiffness);
+}
+
+Vec3 CoupledMuscle::Spring::muscleDisplacement(const MatX3& muscleU) const {
+  Vec3 u = Vec3::Zero();
+  for (size_t b = 0; b < nodes.size(); ++b) u += weights[b] * muscleU.row(nodes[b]).transpose();
+  return u;
 }
 
 MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount) {
   MatX3 f = MatX3::Zero(skinVertexCount, 3);
-  for (const auto& s : m.springs)
-    for (size_t a = 0; a < s.skin.size(); ++a) f.row(s.skin[a]) += s.stiffness * s.weights[a] * m.fullShape.row(s.node);
+  for (const auto& s : m.springs) f.row(s.skin) += s.stiffness * s.muscleDisplacement(m.fullShape).transpose();
   return f;
 }
 

@@ -127,12 +127,13 @@ TEST_F(AnatomicalIct, ZygomaticusAndDepressorAnguliAgainstTheArtistShapes) {
     RecordProperty(muscle + "_magnitude_ratio", std::to_string(c.magnitudeRatio));
     RecordProperty(muscle + "_centroid_cm", std::to_string(c.centroidDistance));
     RecordProperty(muscle + "_peak_cm", std::to_string(c.resultPeak));
-    // Floors under the measured values (docs/anatomical_model.md): the goals (cosine ≥ 0.85,
-    // ratio 0.75–1.33, centroid ≤ 1 cm) are not all reached with the cited 14.4 % shortening.
+    // Floors under the measured values (docs/anatomical_model.md: cosine 0.81 / 0.75, centroid
+    // 0.77 / 0.79 cm, ratio 0.16 / 0.39): the cosine (≥ 0.85) and magnitude (0.75–1.33)
+    // goals are not reached with the cited 14.4 % shortening and the thesis's muscle placement.
     const bool smile = muscle == "zygomaticus_major_left";
-    EXPECT_GE(c.cosine, smile ? 0.72 : 0.6) << muscle;
-    EXPECT_LE(c.centroidDistance, smile ? 1.0 : 1.35) << muscle << " (cm)";
-    EXPECT_GE(c.magnitudeRatio, smile ? 0.15 : 0.3) << muscle;
+    EXPECT_GE(c.cosine, smile ? 0.78 : 0.7) << muscle;
+    EXPECT_LE(c.centroidDistance, 1.0) << muscle << " (cm)";
+    EXPECT_GE(c.magnitudeRatio, smile ? 0.13 : 0.3) << muscle;
     EXPECT_LE(c.magnitudeRatio, 1.33) << muscle;
   }
 }
@@ -220,7 +221,10 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
       {"zyg_dao", loads({{"zygomaticus_major_left", 1.0}, {"depressor_anguli_oris_left", 1.0}})},
       {"all_eight", loads(all)},
       {"gravity_face_down", loads({}, Vec3(90, 0, 0))}};
+  // MYO_REFERENCE_CASES=zyg,gravity_face_down runs only those (each case takes minutes).
+  const char* only = std::getenv("MYO_REFERENCE_CASES");
   for (const auto& [name, l] : cases) {
+    if (only && ("," + std::string(only) + ",").find("," + name + ",") == std::string::npos) continue;
     const MatX3 ref = fullSpaceReference(*skin_, skin_->worldLoad(l));
     const double lin = relativeError(skin_->settle(l, false).u, ref);
     const double warp = relativeError(skin_->settle(l, true).u, ref);
@@ -237,9 +241,10 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
   }
 }
 
-// The insertions pull a patch of skin, not one triangle (muscle_coupling.h): no muscle at a = 1
+// The insertions pull the skin over them, not one triangle (muscle_coupling.h): no muscle at a = 1
 // stretches a skin edge beyond what skin takes in an expression (tens of per cent) in the linear
-// settled shape; with point couplings the zygomaticus stretched a mouth-corner edge by 110 %.
+// settled shape; with muscle nodes tied to their closest skin points the zygomaticus stretched a
+// mouth-corner edge by 110 %.
 // The warped shape is recorded beside it (docs/anatomical_model.md: warping vs linear).
 TEST_F(AnatomicalIct, InsertionsStretchTheSkinModerately) {
   MYO_REQUIRE_SHARED_DATA();

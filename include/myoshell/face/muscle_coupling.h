@@ -1,19 +1,20 @@
 // Muscles that pull where they insert (docs/anatomical_model.md; METHOD.md §9 "coupling at a
-// surface point"). Each muscle node m is tied by a zero-length linear spring to a patch of skin
-// around its closest skin point s: the patch's weighted mean Σ_j w_j u_j, with weights w_j ∝ A_j
-// (1 − (d_j/r)²)² (A_j the vertex area, d_j the distance from s along the surface's edges, r the
-// patch radius: the muscle's half-width), Σ_j w_j = 1 (the fibres insert over an area, not at a
-// point; a single triangle stretched 170 % at the mouth corner):
-//   E_c = ½ k_c ‖u_m − Σ_j w_j u_j‖²
-// The muscle is fed forward (u_m known), so on the skin side K_c = k_c w wᵀ ⊗ I₃ joins the skin's
-// stiffness and the load is f_j = k_c w_j u_m. The muscle moves in one shape, its static response
-// to the activation load, u_m = a·U_m (a ∈ [0, 1]): the skin load is linear in a.
+// surface point"). The skin over a muscle is tied to it by the tissue between them: every skin
+// vertex i over the muscle gets a zero-length linear spring to the muscle's surface point below it
+// (its closest point on the muscle, barycentric over the muscle's nodes b with weights β_b):
+//   E_c = ½ k_i ‖Σ_b β_b u_b − u_i‖²
+// The muscle is fed forward (u_b known), so on the skin side K_c = diag(k_i) ⊗ I₃ joins the
+// skin's stiffness and the load is f_i = k_i Σ_b β_b u_b. The muscle moves in one shape, its static
+// response to the activation load, u_b = a·U_b (a ∈ [0, 1]): the skin load is linear in a. Tied
+// this way, the coupling does not depend on how finely the muscle is meshed, and no two springs
+// pull one skin vertex towards different places (docs/anatomical_model.md, "Couplings").
 //
-// Stiffness: k_c = G(t)·A_node/depth (dyn/cm) with A_node the muscle's surface area per node (cm²),
-// depth the node's distance to the skin (cm) and G(t) (dyn/cm²) a profile along the muscle,
-// t = 0 at the origin, 1 at the insertion: none at the origin, weak along the belly (loose areolar
-// tissue), strong at the insertion (fibres into the dermis). A head twice as large keeps G and the
-// strain, so its muscles move twice as far.
+// Stiffness: a shear layer, k_i = G(t)·A_i/δ_i (dyn/cm) with A_i the vertex's lumped area (cm²),
+// δ_i its distance to the muscle (cm) and G(t) (dyn/cm²) a profile along the muscle, t = 0 at the
+// origin, 1 at the insertion: none at the origin, weak along the belly (loose areolar tissue),
+// strong at the insertion (fibres into the dermis); faded to 0 as δ_i reaches `footprintReach` ×
+// the muscle's depth there (the footprint's edge). A head twice as large keeps G and the strain,
+// so its muscles move twice as far.
 //
 // Strength: one head-independent rule: at a = 1 the muscle shortens by `shortening` × its rest
 // length (the insertion ring's mean motion along the muscle), whatever the muscle and head.
@@ -35,10 +36,10 @@ struct MuscleCouplingSettings {
   // Shortening at a = 1 as a fraction of the rest length: zygomaticus major in a joyful expression
   // shortens to 85.6 % of its rest length (MRI, Rams et al. 2024, Aesthetic Plast Surg 48:2722).
   double shortening = 0.144;
-  // Patch radius as a multiple of the muscle's half-width (its surface area / (4 × rest length) for
-  // a flat ring), and never below 1.5 mean skin edges. 0: the closest point alone (barycentric).
-  // 2: the fibres spread over the muscle's width (docs/anatomical_model.md, "Couplings").
-  double patchRadius = 2.0;
+  // The footprint: skin vertices within footprintReach × the muscle's depth (at the point below
+  // them) of the muscle's surface, the muscle beneath them. 2: the fibres fan out to about 1.7
+  // depths beyond the muscle's edge (docs/anatomical_model.md, "Couplings").
+  double footprintReach = 2.0;
   ShellMaterial muscle = [] {  // as the thesis face's muscles (docs/face_model.md)
     ShellMaterial m;
     m.kA = 1.0e3;
@@ -56,12 +57,14 @@ struct CoupledMuscle {
   MatX3 fullShape;       // U_m: the muscle's displacement at a = 1 (nodes×3, cm), origin rows 0
   double naturalFrequency = 0.0;  // ω = √(φᵀKφ/φᵀMφ) of that shape (rad/s), for its dynamics
   struct Spring {
-    int node = -1;               // muscle node
-    std::vector<int> skin;         // the patch's skin vertices
-    std::vector<double> weights;   // w_j ≥ 0, Σ w_j = 1
+    int skin = -1;                 // the skin vertex
+    std::vector<int> nodes;        // the muscle's nodes around the point below it
+    std::vector<double> weights;   // their barycentric weights β_b (Σ = 1)
     double t = 0.0;              // position along the muscle (0 origin, 1 insertion)
-    double depth = 0.0;          // distance to the skin at rest, cm
-    double stiffness = 0.0;      // k_c, dyn/cm (> 0)
+    double depth = 0.0;          // δ: distance to the muscle at rest, cm
+    double stiffness = 0.0;      // k_i, dyn/cm (> 0)
+    // Σ_b β_b U_b (cm) for a muscle displacement U (nodes×3).
+    Vec3 muscleDisplacement(const MatX3& muscleU) const;
   };
   std::vector<Spring> springs;   // nodes with k_c > 0 only
 };
@@ -71,9 +74,9 @@ struct CoupledMuscle {
 // muscle is singular.
 CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings = {});
 
-// Σ over springs of K_c = k_c w wᵀ ⊗ I₃ into a 3n×3n triplet list (dyn/cm).
+// Σ over springs of K_c = k_i I₃ at the spring's skin vertex, into a 3n×3n triplet list (dyn/cm).
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets);
-// The skin load at a = 1 (n×3, dyn): f_j = Σ_springs k_c w_j U_m(node).
+// The skin load at a = 1 (n×3, dyn): f_i = Σ_springs at i k_i Σ_b β_b U_b.
 MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount);
 
 }  // namespace myo
