@@ -1,5 +1,6 @@
 // `myoshell figures --out DIR [--scenes DIR] [--cache DIR] [--only fig18,fig26] [--size PX]`:
-// renders the thesis's Figures 17–27 from the scenes of scenes/thesis/ (docs/thesis_experiments.md)
+// renders the thesis's Figures 17–27 from the scenes of scenes/thesis/ (docs/thesis_experiments.md),
+// and `anatomical`: the anatomical model on ICT beside the artist's shapes (docs/anatomical_model.md),
 // through the shared face painter (headless OpenGL, or the software rasterizer where OpenGL is not
 // available or with --software): one contact sheet per figure, each captioned with
 // the thesis's figure number. Deformed skin is coloured by displacement magnitude (viridis, the
@@ -19,6 +20,11 @@
 #include "resources.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/face/shape_metric.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/mesh/obj_reader.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/face_picture.h"
@@ -61,13 +67,13 @@ class Figures {
   }
 
   // The default head framed whole; a whole head (ICT) framed on its face.
-  Camera camera(const FaceModel& model, ViewPreset preset) const {
+  Camera camera(const FaceSystem& model, ViewPreset preset) const {
     return faceCamera(model, preset, opt_.size, opt_.size,
                       model.head().name == "default" ? FaceFraming::head : FaceFraming::face);
   }
 
   // One tile: the face picture of `state` with `overlays`.
-  Image tile(const FaceModel& model, const Camera& cam, const FaceFrameState& state, const FaceOverlays& overlays) const {
+  Image tile(const FaceSystem& model, const Camera& cam, const FaceFrameState& state, const FaceOverlays& overlays) const {
     return painter_->paint(faceScene(model, state, cam, opt_.size, opt_.size, overlays));
   }
 
@@ -348,6 +354,54 @@ void fig27(Figures& F, const FigureOptions& opt) {
                 false, "fig27_ict_head.png", "Fig. 27: facial animation with a user-specific mesh (ICT-FaceKit head)");
 }
 
+// The anatomical model on the ICT head (docs/anatomical_model.md): each muscle alone at a = 1,
+// settled, beside the artist's shape it is compared with (one colour scale per row), and gravity
+// face-down and face-up, no pins. ICT's shapes only: skipped when the data is absent.
+void anatomicalFigure(Figures& F, const FigureOptions& opt) {
+  const fs::path ict = dataDir(opt.dataDir).dir / "ict";
+  if (dataDir(opt.dataDir).dir.empty() || !fs::exists(ict / "head_skin.obj")) {
+    fmt::print("anatomical skipped: the ICT head ({}) is absent (give --data DIR or set MYOSHELL_DATA)\n", (ict / "head_skin.obj").string());
+    return;
+  }
+  const Head head = loadHead((ict / "head_skin.obj").string(), (ict / "landmarks_multipie68.json").string());
+  const auto face = std::make_shared<const AnatomicalFace>(head, thesisMuscleDefs(), AnatomicalSettings{}, std::vector<DragDef>{});
+  const AnatomicalSkin& skin = face->skin();
+  const Camera cam = faceCamera(*face, ViewPreset::front, opt.size, opt.size, FaceFraming::face);
+  auto loads = [&](const std::string& muscle, const Vec3& pose) {
+    SkinLoads l;
+    l.activations = VecX::Zero(face->muscleCount());
+    if (!muscle.empty()) l.activations(skin.muscleIndex(muscle)) = 1.0;
+    l.gravity = gravityForPose(head.frame(), pose, skin.settings().gravity);
+    return l;
+  };
+  auto state = [&](const MatX3& u) {
+    FaceFrameState s = restFrameState(*face);
+    s.skin = head.mesh.V + u;
+    s.displacement = u;
+    return s;
+  };
+  std::vector<Image> tiles;
+  std::vector<std::string> caps;
+  for (const auto& [muscle, shape] : {std::pair<std::string, std::string>{"zygomaticus_major_left", "expression_mouthSmile_L"},
+                                      {"depressor_anguli_oris_left", "expression_mouthFrown_L"}}) {
+    const MatX3 u = skin.settle(loads(muscle, Vec3::Zero()), skin.settings().warping).u;
+    const MatX3 e = readObjLike((ict / (shape + ".obj")).string(), head.mesh).V - head.mesh.V;
+    const ShapeComparison c = compareShapes(u, e, head.mesh.V);
+    const double maxU = std::max(maxNorm(u), maxNorm(e));
+    tiles.push_back(F.tile(*face, cam, state(u), displacementOn(maxU)));
+    caps.push_back(fmt::format("{}, a = 1 (cos {:.2f}, ratio {:.2f})", muscle, c.cosine, c.magnitudeRatio));
+    tiles.push_back(F.tile(*face, cam, state(e), displacementOn(maxU)));
+    caps.push_back("artist: " + shape);
+  }
+  for (const auto& [name, pose] : {std::pair<std::string, Vec3>{"face-down (pitch +90)", Vec3(90, 0, 0)}, {"face-up (pitch -90)", Vec3(-90, 0, 0)}}) {
+    const MatX3 u = skin.settle(loads("", pose), skin.settings().warping).u;
+    tiles.push_back(F.tile(*face, cam, state(u), displacementOn(maxNorm(u))));
+    caps.push_back("gravity " + name + ", no pins");
+  }
+  F.save("anatomical_ict.png", tiles, caps, 2,
+         "Anatomical model, ICT head, settled: each muscle beside the artist's shape; gravity relative to the upright rest");
+}
+
 int runFigures(FigureOptions opt) {
   if (opt.size < 64 || opt.size > 2048) throw InputError("--size must be in [64, 2048]");
   if (opt.scenesDir.empty()) opt.scenesDir = (shippedScenesDir().dir / "thesis").string();
@@ -355,14 +409,15 @@ int runFigures(FigureOptions opt) {
       {"fig17", [](Figures& F) { fig17(F); }},    {"fig18", [](Figures& F) { fig18(F); }},
       {"fig20", [](Figures& F) { fig19_20(F); }}, {"fig22", [](Figures& F) { fig21_22(F); }},
       {"fig23", [](Figures& F) { fig23(F); }},    {"fig25", [](Figures& F) { fig24_25(F); }},
-      {"fig26", [](Figures& F) { fig26(F); }},    {"fig27", [&](Figures& F) { fig27(F, opt); }}};
+      {"fig26", [](Figures& F) { fig26(F); }},    {"fig27", [&](Figures& F) { fig27(F, opt); }},
+      {"anatomical", [&](Figures& F) { anatomicalFigure(F, opt); }}};
   std::set<std::string> want;
   std::stringstream ss(opt.only);
   std::string item;
   while (std::getline(ss, item, ','))
     if (!item.empty()) {
       if (std::none_of(all.begin(), all.end(), [&](const auto& p) { return p.first == item; }))
-        throw InputError("unknown figure '" + item + "' (fig17 fig18 fig20 fig22 fig23 fig25 fig26 fig27)");
+        throw InputError("unknown figure '" + item + "' (fig17 fig18 fig20 fig22 fig23 fig25 fig26 fig27 anatomical)");
       want.insert(item);
     }
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
@@ -378,7 +433,7 @@ int runFigures(FigureOptions opt) {
 
 const CommandRegistrar figuresRegistrar("figures", [](CLI::App& app) {
   auto opt = std::make_shared<FigureOptions>();
-  CLI::App* sub = app.add_subcommand("figures", "Render the thesis's Figures 17-27 from scenes/thesis into PNGs");
+  CLI::App* sub = app.add_subcommand("figures", "Render the thesis's Figures 17-27 from scenes/thesis, and the anatomical model's picture on ICT, into PNGs");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
   sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes (default: the shipped scenes/thesis)");
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");

@@ -37,12 +37,19 @@ ViewerRun runViewer(const std::string& prefix, const std::string& args, const fs
   // it up (seen once under ctest -j2, with another X test beside it): each run gets a folder of its own.
   const fs::path tmp = dir.parent_path() / (dir.filename().string() + "_xvfb_tmp");
   fs::create_directories(tmp);
-  const std::string cmd = "cd '" + dir.string() + "' && TMPDIR='" + tmp.string() + "' " + prefix + " '" +
-                          std::string(MYO_VIEWER_PATH) + "' --cache '" +
-                          cache.string() + "' " + args + " > '" + log.string() + "' 2>&1";
+  // The viewer's own exit status goes to a file: xvfb-run's cleanup failing (exit 5, seen under
+  // load with its own TMPDIR too) must not hide what the viewer returned.
+  const fs::path code = dir / "viewer.exit";
+  fs::remove(code);
+  const std::string inner = "'" + std::string(MYO_VIEWER_PATH) + "' --cache '" + cache.string() + "' " + args +
+                            " > '" + log.string() + "' 2>&1; echo $? > '" + code.string() + "'";
+  std::string quoted;  // inner, single-quoted for sh -c
+  for (char c : inner) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const std::string cmd = "cd '" + dir.string() + "' && TMPDIR='" + tmp.string() + "' " + prefix + " sh -c '" + quoted + "'";
   const int status = std::system(cmd.c_str());
   ViewerRun run;
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (std::ifstream codeIn(code); codeIn) codeIn >> run.exitCode;
   std::ifstream in(log);
   std::ostringstream text;
   text << in.rdbuf();
