@@ -28,7 +28,7 @@ TEST(MuscleCouplingProfile, AStifferInsertionModulusGivesProportionallyStifferIn
   ASSERT_EQ(same.springs.size(), base.springs.size());
   for (size_t k = 0; k < base.springs.size(); ++k) EXPECT_EQ(same.springs[k].stiffness, base.springs[k].stiffness);
 
-  // Twice the insertion modulus: every spring scales by G'(t)/G(t), the insertion ring's by nearly 2
+  // Twice the insertion modulus: every spring scales by G'(t)/G(t), the skin over the insertion by nearly 2
   // (exactly 2 at t = 1), the belly's not at all.
   def.coupling->insertionModulus = 2.0 * CouplingProfile{}.insertionModulus;
   const CoupledMuscle stiff = coupleMuscle(def, head);
@@ -37,13 +37,13 @@ TEST(MuscleCouplingProfile, AStifferInsertionModulusGivesProportionallyStifferIn
   for (size_t k = 0; k < base.springs.size(); ++k) {
     const auto& a = base.springs[k];
     const auto& b = stiff.springs[k];
-    ASSERT_EQ(a.node, b.node);
+    ASSERT_EQ(a.skin, b.skin);
     ASSERT_EQ(a.t, b.t);
     const double ratio = def.coupling->modulus(a.t) / CouplingProfile{}.modulus(a.t);
-    EXPECT_NEAR(b.stiffness / a.stiffness, ratio, 1e-12 * ratio) << "node " << a.node << " t " << a.t;
-    if (a.t >= 0.95) {  // the insertion ring
+    EXPECT_NEAR(b.stiffness / a.stiffness, ratio, 1e-12 * ratio) << "skin vertex " << a.skin << " t " << a.t;
+    if (a.t >= 0.95) {  // over the insertion
       ++atInsertion;
-      EXPECT_GT(b.stiffness / a.stiffness, 1.9) << "node " << a.node << " t " << a.t;
+      EXPECT_GT(b.stiffness / a.stiffness, 1.9) << "skin vertex " << a.skin << " t " << a.t;
     }
     if (a.t <= CouplingProfile{}.insertionStart) {
       ++unchanged;
