@@ -1,0 +1,325 @@
+// Fitting activations (face/activation_fit.h, docs/fitting.md): the bounded solver against brute
+// force, the alignment against a known transform, recovery of shapes the model made itself (dense
+// and from 68 moved and turned markers), the bounds, the sparsity term, exact errors; on ICT
+// (../shared/data; skipped when absent) the two artist shapes, figures recorded as test properties.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/face/activation_fit.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/mesh/obj_reader.h"
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+double qpObjective(const MatX& H, const VecX& c, const VecX& x) { return 0.5 * x.dot(H * x) - c.dot(x); }
+
+// Every pattern of (at lo, free, at hi) for m ≤ 6 variables: the best feasible stationary point.
+VecX bruteForceBoxQp(const MatX& H, const VecX& c, const VecX& lo, const VecX& hi) {
+  const Eigen::Index m = c.size();
+  int patterns = 1;
+  for (Eigen::Index i = 0; i < m; ++i) patterns *= 3;
+  VecX best;
+  double bestF = std::numeric_limits<double>::infinity();
+  for (int p = 0; p < patterns; ++p) {
+    VecX x(m);
+    std::vector<Eigen::Index> F;
+    int code = p;
+    for (Eigen::Index i = 0; i < m; ++i, code /= 3) {
+      if (code % 3 == 0) x(i) = lo(i);
+      else if (code % 3 == 2) x(i) = hi(i);
+      else F.push_back(i), x(i) = 0;
+    }
+    if (!F.empty()) {
+      const auto nf = static_cast<Eigen::Index>(F.size());
+      MatX Hff(nf, nf);
+      VecX rhs(nf);
+      for (Eigen::Index a = 0; a < nf; ++a) {
+        rhs(a) = c(F[static_cast<size_t>(a)]);
+        for (Eigen::Index j = 0; j < m; ++j)
+          if (std::find(F.begin(), F.end(), j) == F.end()) rhs(a) -= H(F[static_cast<size_t>(a)], j) * x(j);
+        for (Eigen::Index b = 0; b < nf; ++b) Hff(a, b) = H(F[static_cast<size_t>(a)], F[static_cast<size_t>(b)]);
+      }
+      const VecX z = Hff.ldlt().solve(rhs);
+      bool ok = true;
+      for (Eigen::Index a = 0; a < nf; ++a) {
+        const Eigen::Index i = F[static_cast<size_t>(a)];
+        ok = ok && z(a) >= lo(i) - 1e-12 && z(a) <= hi(i) + 1e-12;
+        x(i) = z(a);
+      }
+      if (!ok) continue;
+    }
+    const double f = qpObjective(H, c, x);
+    if (f < bestF) bestF = f, best = x;
+  }
+  return best;
+}
+
+TEST(BoxQp, MatchesBruteForceOnRandomProblems) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> N(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Index m = 1 + trial % 6;
+    MatX B(m + 3, m);
+    for (Eigen::Index i = 0; i < B.size(); ++i) B.data()[i] = N(rng);
+    const MatX H = B.transpose() * B;
+    VecX c(m);
+    for (Eigen::Index i = 0; i < m; ++i) c(i) = 2.0 * N(rng);
+    const VecX lo = VecX::Zero(m), hi = VecX::Ones(m);
+    const BoxQpResult r = solveBoxQp(H, c, lo, hi);
+    ASSERT_TRUE(r.converged) << trial;
+    const VecX ref = bruteForceBoxQp(H, c, lo, hi);
+    EXPECT_LT((r.x - ref).cwiseAbs().maxCoeff(), 1e-9) << trial;
+    EXPECT_TRUE((r.x.array() >= 0.0).all() && (r.x.array() <= 1.0).all()) << trial;
+  }
+}
+
+TEST(BoxQp, ABoundSolutionLiesExactlyOnTheBoundAndSymmetricBoundsWork) {
+  // One variable whose unconstrained minimum is 3: held at hi = 1 exactly; at lo = −2 for −3.
+  const MatX H = MatX::Identity(1, 1);
+  EXPECT_EQ(solveBoxQp(H, VecX::Constant(1, 3.0), VecX::Zero(1), VecX::Ones(1)).x(0), 1.0);
+  EXPECT_EQ(solveBoxQp(H, VecX::Constant(1, -3.0), VecX::Constant(1, -2.0), VecX::Ones(1)).x(0), -2.0);
+  // Two identical columns (singular H): any split is optimal; the sum must be the unconstrained value.
+  MatX H2(2, 2);
+  H2 << 1, 1, 1, 1;
+  const VecX x = solveBoxQp(H2, VecX::Constant(2, 0.7), VecX::Zero(2), VecX::Ones(2)).x;
+  EXPECT_NEAR(x.sum(), 0.7, 1e-9);
+}
+
+TEST(Alignment, UmeyamaRecoversAKnownSimilarity) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> N(0.0, 1.0);
+  MatX3 p(20, 3);
+  for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = N(rng);
+  SimilarityTransform T;
+  T.rotation = Eigen::AngleAxisd(0.4, Vec3(1, 2, -1).normalized()).toRotationMatrix();
+  T.translation = Vec3(1.0, -2.0, 0.5);
+  T.scale = 1.3;
+  const MatX3 q = T.apply(p);
+  const SimilarityTransform S = fitSimilarity(p, q, true);
+  EXPECT_NEAR(S.scale, 1.3, 1e-12);
+  EXPECT_LT((S.rotation - T.rotation).norm(), 1e-12);
+  EXPECT_LT((S.translation - T.translation).norm(), 1e-12);
+  const SimilarityTransform R = fitSimilarity(p, q, false);  // rigid: the same rotation, scale 1
+  EXPECT_EQ(R.scale, 1.0);
+  EXPECT_LT((R.rotation - T.rotation).norm(), 1e-12);
+  EXPECT_THROW(fitSimilarity(p.topRows(2), q.topRows(2), false), InputError);
+}
+
+// One anatomical model of the built-in head (thesis muscles, ~10 s) for every test of the suite,
+// which ctest runs in one process (tests/CMakeLists.txt, ONE_PROCESS).
+class ActivationFitDefaultHead : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!skin_) skin_ = std::make_shared<const AnatomicalSkin>(loadDefaultHead(), thesisMuscleDefs());
+  }
+  static void TearDownTestSuite() { skin_.reset(); }
+  static std::shared_ptr<const AnatomicalSkin> skin_;
+
+  static VecX acts(const std::vector<std::pair<std::string, double>>& list) {
+    VecX a = VecX::Zero(static_cast<Eigen::Index>(skin_->muscles().size()));
+    for (const auto& p : list) a(skin_->muscleIndex(p.first)) = p.second;
+    return a;
+  }
+  // The model's own settled shape, gravity off.
+  static MatX3 shape(const VecX& a) {
+    SkinLoads l;
+    l.activations = a;
+    l.gravity = skin_->restGravity();
+    return skin_->settle(l, skin_->settings().warping).u;
+  }
+  static FitTarget dense(const MatX3& u) {
+    FitTarget t;
+    t.displacement = u;
+    return t;
+  }
+};
+std::shared_ptr<const AnatomicalSkin> ActivationFitDefaultHead::skin_;
+
+const std::vector<std::pair<std::string, double>> kFourRegions = {{"zygomaticus_major_left", 0.6},
+                                                                  {"corrugator_supercilii_right", 0.4},
+                                                                  {"depressor_labii_inferioris_left", 0.3},
+                                                                  {"depressor_anguli_oris_right", 0.5}};
+
+TEST_F(ActivationFitDefaultHead, RecoversFourMusclesFromTheirDenseShape) {
+  const VecX truth = acts(kFourRegions);
+  const MatX3 e = shape(truth);
+  const ActivationFit fit = fitActivations(*skin_, dense(e));
+  EXPECT_LT((fit.activations - truth).cwiseAbs().maxCoeff(), 0.02);
+  EXPECT_LT(10.0 * (fit.displacement - e).rowwise().norm().maxCoeff(), 0.1);  // mm
+  EXPECT_LT(fit.maxMm, 0.1);
+  EXPECT_GT(fit.metric.cosine, 0.999);
+  EXPECT_NEAR(fit.metric.magnitudeRatio, 1.0, 1e-3);
+  EXPECT_EQ(fit.fitted.size(), skin_->muscles().size());
+  EXPECT_GE(fit.conditionNumber, 1.0);
+  EXPECT_TRUE(std::isfinite(fit.conditionNumber));
+  RecordProperty("activation_error", std::to_string((fit.activations - truth).cwiseAbs().maxCoeff()));
+  RecordProperty("max_mm", std::to_string(fit.maxMm));
+  RecordProperty("condition_number", std::to_string(fit.conditionNumber));
+  RecordProperty("seconds", std::to_string(fit.seconds));
+}
+
+TEST_F(ActivationFitDefaultHead, RecoversFromSixtyEightMovedAndTurnedMarkers) {
+  const VecX truth = acts(kFourRegions);
+  const MatX3 e = shape(truth);
+  const Head& head = skin_->head();
+  SimilarityTransform move;
+  move.rotation = Eigen::AngleAxisd(12.0 * M_PI / 180.0, Vec3(0.3, 1.0, 0.2).normalized()).toRotationMatrix();
+  move.translation = Vec3(1.5, -0.8, 2.0);
+  FitTarget t;
+  t.markerVertices = head.landmarks.multipie68;
+  ASSERT_EQ(t.markerVertices.size(), 68u);
+  MatX3 pos(68, 3);
+  for (Eigen::Index r = 0; r < 68; ++r) {
+    const int v = t.markerVertices[static_cast<size_t>(r)];
+    pos.row(r) = head.mesh.V.row(v) + e.row(v);
+  }
+  t.markerPositions = move.apply(pos);
+  FitSettings s;
+  s.alignment = FitAlignment::Rigid;
+  const ActivationFit fit = fitActivations(*skin_, t, s);
+  const double actErr = (fit.activations - truth).cwiseAbs().maxCoeff();
+  const double faceMaxMm = 10.0 * (fit.displacement - e).rowwise().norm().maxCoeff();
+  RecordProperty("activation_error", std::to_string(actErr));
+  RecordProperty("full_face_max_mm", std::to_string(faceMaxMm));
+  RecordProperty("marker_rms_mm", std::to_string(fit.rmsMm));
+  RecordProperty("alignment_rounds", std::to_string(fit.iterations));
+  RecordProperty("condition_number", std::to_string(fit.conditionNumber));
+  EXPECT_LT(actErr, 0.02);
+  EXPECT_LT(faceMaxMm, 0.1);
+  EXPECT_LT(fit.rmsMm, 0.05);
+  // The alignment undoes the move.
+  EXPECT_LT((fit.alignment.rotation - move.rotation.transpose()).norm(), 1e-3);
+  EXPECT_EQ(fit.alignment.scale, 1.0);
+}
+
+TEST_F(ActivationFitDefaultHead, ATargetBeyondFullActivationGivesExactlyOne) {
+  const MatX3 e = 1.5 * shape(acts({{"zygomaticus_major_left", 1.0}}));
+  const ActivationFit fit = fitActivations(*skin_, dense(e));
+  EXPECT_EQ(fit.activations(skin_->muscleIndex("zygomaticus_major_left")), 1.0);
+  EXPECT_TRUE((fit.activations.array() >= 0.0).all() && (fit.activations.array() <= 1.0).all());
+  // A target opposite to a muscle's pull gives it 0 exactly (the lower bound).
+  const ActivationFit opposite =
+      fitActivations(*skin_, dense(-shape(acts({{"corrugator_supercilii_right", 0.5}}))),
+                     FitSettings{FitAlignment::None, {"corrugator_supercilii_right"}, 0.0, 100, 3, 0.05});
+  EXPECT_EQ(opposite.activations(skin_->muscleIndex("corrugator_supercilii_right")), 0.0);
+}
+
+TEST_F(ActivationFitDefaultHead, TheSparsityTermZeroesMusclesThatHardlyHelp) {
+  const VecX truth = acts({{"zygomaticus_major_left", 0.8}, {"corrugator_supercilii_right", 0.03}});
+  const MatX3 e = shape(truth);
+  const ActivationFit plain = fitActivations(*skin_, dense(e));
+  EXPECT_NEAR(plain.activations(skin_->muscleIndex("corrugator_supercilii_right")), 0.03, 1e-3);
+  FitSettings s;
+  s.lambda = 0.02;
+  const ActivationFit sparse = fitActivations(*skin_, dense(e), s);
+  for (int k = 0; k < static_cast<int>(skin_->muscles().size()); ++k)
+    if (k != skin_->muscleIndex("zygomaticus_major_left")) EXPECT_EQ(sparse.activations(k), 0.0) << k;
+  EXPECT_GT(sparse.activations(skin_->muscleIndex("zygomaticus_major_left")), 0.5);
+  // It is the optimum of the regularised objective: no better than the plain fit's activations there.
+  auto objective = [&](const VecX& a) {
+    MatX3 u = MatX3::Zero(e.rows(), 3);
+    const std::vector<MatX3> cols = activationColumns(*skin_, sparse.fitted);
+    for (size_t j = 0; j < cols.size(); ++j) u += a(sparse.fitted[j]) * cols[j];
+    return (u - e).squaredNorm() + s.lambda * e.squaredNorm() * a.sum();
+  };
+  EXPECT_LE(objective(sparse.activations), objective(plain.activations) * (1 + 1e-12));
+}
+
+TEST_F(ActivationFitDefaultHead, BadInputIsRefusedWithExactMessages) {
+  auto message = [&](const FitTarget& t, const FitSettings& s) {
+    try {
+      fitActivations(*skin_, t, s);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto n = skin_->head().mesh.vertexCount();
+  EXPECT_EQ(message(dense(MatX3::Zero(10, 3)), {}), "fit: the target has 10 vertices, the head " + std::to_string(n));
+  FitTarget markers;
+  markers.markerVertices = {0, n};
+  markers.markerPositions = MatX3::Zero(2, 3);
+  EXPECT_EQ(message(markers, {}),
+            "fit: marker vertex " + std::to_string(n) + " is not a vertex of the head (it has " + std::to_string(n) + ")");
+  markers.markerVertices = {0, 1};
+  FitSettings rigid;
+  rigid.alignment = FitAlignment::Rigid;
+  EXPECT_EQ(message(markers, rigid), "fit: alignment needs at least 3 markers, got 2");
+  markers.markerVertices = {0, 0};
+  EXPECT_EQ(message(markers, {}), "fit: marker vertex 0 is given twice");
+  FitSettings unknown;
+  unknown.muscles = {"frontalis"};
+  EXPECT_EQ(message(dense(MatX3::Zero(n, 3)), unknown), "anatomical model: unknown muscle 'frontalis'");
+  FitSettings twice;
+  twice.muscles = {"zygomaticus_major_left", "zygomaticus_major_left"};
+  EXPECT_EQ(message(dense(MatX3::Zero(n, 3)), twice), "fit: muscle 'zygomaticus_major_left' is listed twice");
+  FitSettings negative;
+  negative.lambda = -1;
+  EXPECT_EQ(message(dense(MatX3::Zero(n, 3)), negative), "fit: lambda must be a finite number ≥ 0, got -1.000000");
+  MatX3 nan = MatX3::Zero(n, 3);
+  nan(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message(dense(nan), {}), "fit: the target has a coordinate that is not a finite number");
+}
+
+// ICT's artist shapes with the eight muscles (about 30 s for the model; one process).
+class ActivationFitIct : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!test::haveSharedData()) return;
+    if (!skin_) {
+      const auto dir = test::sharedDataDir() / "ict";
+      skin_ = std::make_shared<const AnatomicalSkin>(
+          loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string()), thesisMuscleDefs());
+    }
+  }
+  static void TearDownTestSuite() { skin_.reset(); }
+  static std::shared_ptr<const AnatomicalSkin> skin_;
+};
+std::shared_ptr<const AnatomicalSkin> ActivationFitIct::skin_;
+
+TEST_F(ActivationFitIct, ArtistShapesFitAtLeastAsWellAsTheBestSingleMuscle) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head& h = skin_->head();
+  for (const std::string name : {"expression_mouthSmile_L", "expression_mouthFrown_L"}) {
+    FitTarget t;
+    t.displacement = readObjLike((test::sharedDataDir() / "ict" / (name + ".obj")).string(), h.mesh).V - h.mesh.V;
+    const ActivationFit fit = fitActivations(*skin_, t);
+    RecordProperty(name + "_cosine", std::to_string(fit.metric.cosine));
+    RecordProperty(name + "_magnitude_ratio", std::to_string(fit.metric.magnitudeRatio));
+    RecordProperty(name + "_rms_mm", std::to_string(fit.rmsMm));
+    RecordProperty(name + "_max_mm", std::to_string(fit.maxMm));
+    RecordProperty(name + "_condition_number", std::to_string(fit.conditionNumber));
+    RecordProperty(name + "_seconds", std::to_string(fit.seconds));
+    std::string acts;
+    for (Eigen::Index k = 0; k < fit.activations.size(); ++k) acts += (k ? " " : "") + std::to_string(fit.activations(k));
+    RecordProperty(name + "_activations", acts);
+    const double residual = (fit.displacement - t.displacement).squaredNorm();
+    double bestSingleCosine = -1.0;
+    for (const CoupledMuscle& m : skin_->muscles()) {
+      FitSettings one;
+      one.muscles = {m.muscle.def.name};
+      const ActivationFit single = fitActivations(*skin_, t, one);
+      // The joint fit's least-squares objective is the minimum over a larger box.
+      EXPECT_LE(residual, (single.displacement - t.displacement).squaredNorm() * (1 + 1e-9)) << name << " " << one.muscles[0];
+      bestSingleCosine = std::max(bestSingleCosine, single.metric.cosine);
+    }
+    RecordProperty(name + "_best_single_cosine", std::to_string(bestSingleCosine));
+    EXPECT_GE(fit.metric.cosine, bestSingleCosine - 1e-9) << name;
+    EXPECT_GT(fit.metric.cosine, 0.0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace myo
