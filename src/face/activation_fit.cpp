@@ -65,8 +65,8 @@ BoxQpResult solveBoxQp(const MatX& H, const VecX& c, const VecX& lo, const VecX&
   if ((lo.array() > hi.array()).any()) throw CheckError("solveBoxQp: lo > hi");
   BoxQpResult r;
   VecX& x = r.x;
-  // Start from the bound nearest 0, every variable held.
-  x = VecX::Zero(m).cwiseMax(lo).cwiseMin(hi);
+  // Start with every variable held at its lower bound (a held variable always sits on a bound).
+  x = lo;
   std::vector<bool> freeVar(static_cast<size_t>(m), false);
   // A ridge far below any meaningful curvature keeps the free block solvable when columns coincide.
   const double scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
