@@ -20,12 +20,13 @@ Vec3 gravityForRotation(const FaceFrame& frame, const Eigen::Quaterniond& rotati
 }
 
 AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& muscles,
-                               const AnatomicalSettings& settings, std::vector<DragDef> drags, bool gravity)
+                               const AnatomicalSettings& settings, std::vector<DragDef> drags, bool gravity,
+                               BasisCache* cache)
     : drags_(std::move(drags)), gravity_(gravity) {
   Stopwatch clock;
-  auto skin = std::make_unique<AnatomicalSkin>(head, muscles, settings);
-  for (const DragDef& d : drags_) skin->addDrag(d.vertex, d.radius);
-  skin_ = std::move(skin);
+  std::vector<DragSite> sites;
+  for (const DragDef& d : drags_) sites.push_back({d.vertex, d.radius});
+  skin_ = std::make_shared<const AnatomicalSkin>(head, muscles, settings, sites, cache);
   buildSeconds_ = clock.seconds();
 }
 

@@ -2,10 +2,12 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <optional>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/mesh/edge_table.h"
+#include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/reduce/rotation_operator.h"
 
 namespace myo {
@@ -59,6 +61,10 @@ Vec3 gravityForPose(const FaceFrame& frame, const Vec3& pyr, double gravity) {
 }
 
 AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& defs, const AnatomicalSettings& settings)
+    : AnatomicalSkin(head, defs, settings, {}, nullptr) {}
+
+AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& defs, const AnatomicalSettings& settings,
+                               const std::vector<DragSite>& dragSites, BasisCache* cache)
     : head_(head), settings_(settings) {
   settings_.validate();
   const MatX3& V = head_.mesh.V;
@@ -86,20 +92,91 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   for (int i = 0; i < n; ++i)  // isolated vertices: hold them so K̂ stays positive definite
     if (!(tissue_.area(i) > 0))
       for (int c = 0; c < 3; ++c) Kextra_.coeffRef(3 * i + c, 3 * i + c) += 1.0;
-  const SparseMat Khat = shell_->stiffnessAtRest() + Kextra_;
+  Khat_ = shell_->stiffnessAtRest() + Kextra_;
+  Khat_.makeCompressed();
   gRest_ = Vec3(0.0, -settings_.gravity, 0.0);
+  for (const DragSite& site : dragSites) drags_.push_back({dragVertices(site.vertex, site.radius)});
 
-  RitzSettings rs;
-  rs.modes.modeCount = std::min(settings_.skinModes, 3 * n);
-  builder_ = std::make_unique<RitzBasisBuilder>(Khat, mass_, V, F, rs);
-  for (const MatX3& f : muscleLoads_) builder_->addLoad(f);
-  for (int a = 0; a < 3; ++a) {  // gravity along x, y, z: M·ê_a
+  ritz_.modes.modeCount = std::min(settings_.skinModes, 3 * n);
+  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, diagonalise; then
+  // per drag its x, y, z patterns and diagonalise (as addDrag). Bump when the sequence changes.
+  constexpr int kSequenceVersion = 1;
+  const auto gravityPattern = [&](int a) {
     MatX3 g = MatX3::Zero(n, 3);
     g.col(a) = mass_;
-    builder_->addLoad(g);
-  }
+    return g;
+  };
+  const auto dragPattern = [&](const Drag& d, int a) {
+    MatX3 f = MatX3::Zero(n, 3);
+    for (int v : d.vertices) f(v, a) = 1.0 / static_cast<double>(d.vertices.size());
+    return f;
+  };
+
+  KeyHasher h;
+  h.str("myoshell.anatomical_skin_basis").pod(kModalBasisFormatVersion).pod(kSequenceVersion);
+  const int64_t nv = n, nt = F.rows();
+  h.pod(nv).bytes(V.data(), sizeof(double) * static_cast<size_t>(V.size()));
+  h.pod(nt).bytes(F.data(), sizeof(int) * static_cast<size_t>(F.size()));
+  const int64_t nnz = Khat_.nonZeros();
+  h.pod(nnz).bytes(Khat_.outerIndexPtr(), sizeof(SparseMat::StorageIndex) * static_cast<size_t>(Khat_.outerSize() + 1));
+  h.bytes(Khat_.innerIndexPtr(), sizeof(SparseMat::StorageIndex) * static_cast<size_t>(nnz));
+  h.bytes(Khat_.valuePtr(), sizeof(double) * static_cast<size_t>(nnz));
+  h.bytes(mass_.data(), sizeof(double) * static_cast<size_t>(n));
+  const ModalSettings& ms = ritz_.modes;
+  h.pod(ms.modeCount).pod(static_cast<int>(ms.solver)).pod(ms.denseMaxDofs).pod(ms.shift).pod(ms.tolerance);
+  h.pod(ms.maxIterations).pod(ms.ncvMin).pod(ritz_.deflationTolerance);
+  h.pod(static_cast<int64_t>(muscleLoads_.size()));
+  for (const MatX3& f : muscleLoads_) h.bytes(f.data(), sizeof(double) * static_cast<size_t>(f.size()));
+  h.pod(static_cast<int64_t>(drags_.size()));  // gravity's patterns are M·ê_a (the masses are in)
+  for (const Drag& d : drags_)
+    h.pod(static_cast<int64_t>(d.vertices.size())).bytes(d.vertices.data(), sizeof(int) * d.vertices.size());
+  key_ = h.key();
+
+  if (cache)
+    if (std::optional<ModalBasis> hit = cache->load(key_)) {
+      const Eigen::Index d = hit->lambda.size();
+      // A stored copy that does not fit this skin is a miss (the key makes that ~impossible).
+      if (hit->fullVertexCount == n && hit->freeCount() == n && hit->Phi.rows() == 3 * n && hit->Phi.cols() == d &&
+          hit->Psi.rows() == 3 * n && hit->Psi.cols() == d && hit->freeMass.size() == n && hit->freeMass == mass_) {
+        hit->fromCache = true;
+        hit->solveSeconds = 0.0;
+        basis_ = std::make_shared<const ModalBasis>(std::move(*hit));
+        fromCache_ = true;
+        return;
+      }
+    }
+
+  Stopwatch clock;
+  builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, V, F, ritz_);
+  for (const MatX3& f : muscleLoads_) builder_->addLoad(f);
+  for (int a = 0; a < 3; ++a) builder_->addLoad(gravityPattern(a));  // gravity along x, y, z: M·ê_a
   builder_->diagonalize();
-  basis_ = std::make_shared<const ModalBasis>(builder_->basis());
+  for (const Drag& d : drags_) {
+    for (int a = 0; a < 3; ++a) builder_->addLoad(dragPattern(d, a));
+    builder_->diagonalize();
+  }
+  ModalBasis b = builder_->basis();
+  b.solveSeconds = clock.seconds();
+  if (cache && b.modeCount() > 0) cache->store(key_, b);
+  basis_ = std::make_shared<const ModalBasis>(std::move(b));
+}
+
+RitzBasisBuilder& AnatomicalSkin::builder() const {
+  std::lock_guard<std::mutex> lock(builderMutex_);
+  if (!builder_)
+    builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_, *basis_);
+  return *builder_;
+}
+
+std::vector<int> AnatomicalSkin::dragVertices(int vertex, double radius) const {
+  const MatX3& V = head_.mesh.V;
+  const int n = head_.mesh.vertexCount();
+  if (vertex < 0 || vertex >= n)
+    throw InputError("drag: vertex " + std::to_string(vertex) + " is outside [0, " + std::to_string(n) + ")");
+  std::vector<int> out;
+  for (int v = 0; v < n; ++v)
+    if ((V.row(v) - V.row(vertex)).norm() <= radius) out.push_back(v);
+  return out;
 }
 
 int AnatomicalSkin::muscleIndex(const std::string& name) const {
@@ -110,20 +187,16 @@ int AnatomicalSkin::muscleIndex(const std::string& name) const {
 
 int AnatomicalSkin::addDrag(int vertex, double radius, double* seconds) {
   Stopwatch clock;
-  const MatX3& V = head_.mesh.V;
   const int n = head_.mesh.vertexCount();
-  if (vertex < 0 || vertex >= n)
-    throw InputError("drag: vertex " + std::to_string(vertex) + " is outside [0, " + std::to_string(n) + ")");
-  Drag d;
-  for (int v = 0; v < n; ++v)
-    if ((V.row(v) - V.row(vertex)).norm() <= radius) d.vertices.push_back(v);
+  Drag d{dragVertices(vertex, radius)};
+  RitzBasisBuilder& b = builder();
   for (int a = 0; a < 3; ++a) {
     MatX3 f = MatX3::Zero(n, 3);
     for (int v : d.vertices) f(v, a) = 1.0 / static_cast<double>(d.vertices.size());
-    builder_->addLoad(f);
+    b.addLoad(f);
   }
-  builder_->diagonalize();
-  basis_ = std::make_shared<const ModalBasis>(builder_->basis());
+  b.diagonalize();
+  basis_ = std::make_shared<const ModalBasis>(b.basis());
   drags_.push_back(std::move(d));
   if (seconds) *seconds = clock.seconds();
   return static_cast<int>(drags_.size()) - 1;
@@ -161,7 +234,7 @@ MatX3 AnatomicalSkin::worldLoad(const SkinLoads& loads) const {
 }
 
 MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const {
-  return builder_->staticResponse(worldLoad(loads));
+  return builder().staticResponse(worldLoad(loads));
 }
 
 SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {

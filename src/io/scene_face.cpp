@@ -64,7 +64,7 @@ std::shared_ptr<const FaceSystem> buildSceneFace(const SceneDesc& scene, BasisCa
   if (scene.modelKind == FaceModelKind::Thesis) return buildThesisFace(scene, cache);
   SceneInputs in = readSceneInputs(scene);
   return std::make_shared<const AnatomicalFace>(in.head, in.muscles, in.anatomical, in.settings.drags,
-                                                in.settings.gravity);
+                                                in.settings.gravity, cache);
 }
 
 std::shared_ptr<const FaceModel> buildThesisFace(const SceneDesc& scene, BasisCache* cache) {

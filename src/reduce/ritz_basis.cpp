@@ -13,18 +13,8 @@ namespace myo {
 RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, const MatX3& rest,
                                    const MatX3i& F, const RitzSettings& settings)
     : K_(K), settings_(settings) {
+  factorize(vertexMass, rest, F);
   const Eigen::Index n = rest.rows();
-  if (K.rows() != 3 * n || K.cols() != 3 * n || vertexMass.size() != n)
-    throw InputError("Ritz basis: K must be 3n×3n and the masses n (n = " + std::to_string(n) + ")");
-  if (settings.modes.modeCount < 0 || settings.modes.modeCount > 3 * n)
-    throw InputError("Ritz basis: mode count must lie in [0, 3n]");
-  if (!(vertexMass.minCoeff() > 0.0)) throw InputError("Ritz basis: every vertex mass must be > 0");
-  ldlt_.compute(K_);
-  if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0))
-    throw NumericalError("Ritz basis: K is not positive definite");
-  W_ = rotationOperator(rest, F);
-  mass3_.resize(3 * n);
-  for (Eigen::Index i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(vertexMass(i));
   basis_.fullVertexCount = static_cast<int>(n);
   basis_.freeVertices.resize(static_cast<size_t>(n));
   std::iota(basis_.freeVertices.begin(), basis_.freeVertices.end(), 0);
@@ -38,6 +28,34 @@ RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, c
     basis_.lambda.resize(0);
   }
   basis_.Psi = W_ * basis_.Phi;
+}
+
+RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, const MatX3& rest,
+                                   const MatX3i& F, const RitzSettings& settings, ModalBasis start)
+    : K_(K), settings_(settings) {
+  const Eigen::Index n = rest.rows();
+  const Eigen::Index d = start.lambda.size();
+  bool fits = start.fullVertexCount == n && start.freeCount() == n && start.Phi.rows() == 3 * n &&
+              start.Phi.cols() == d && start.Psi.rows() == 3 * n && start.Psi.cols() == d;
+  for (Eigen::Index i = 0; fits && i < n; ++i) fits = start.freeVertices[static_cast<size_t>(i)] == i;
+  if (!fits) throw InputError("Ritz basis: the start basis does not fit this mesh (n = " + std::to_string(n) + ")");
+  factorize(vertexMass, rest, F);
+  basis_ = std::move(start);
+}
+
+void RitzBasisBuilder::factorize(const VecX& vertexMass, const MatX3& rest, const MatX3i& F) {
+  const Eigen::Index n = rest.rows();
+  if (K_.rows() != 3 * n || K_.cols() != 3 * n || vertexMass.size() != n)
+    throw InputError("Ritz basis: K must be 3n×3n and the masses n (n = " + std::to_string(n) + ")");
+  if (settings_.modes.modeCount < 0 || settings_.modes.modeCount > 3 * n)
+    throw InputError("Ritz basis: mode count must lie in [0, 3n]");
+  if (!(vertexMass.minCoeff() > 0.0)) throw InputError("Ritz basis: every vertex mass must be > 0");
+  ldlt_.compute(K_);
+  if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0))
+    throw NumericalError("Ritz basis: K is not positive definite");
+  W_ = rotationOperator(rest, F);
+  mass3_.resize(3 * n);
+  for (Eigen::Index i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(vertexMass(i));
 }
 
 MatX3 RitzBasisBuilder::staticResponse(const MatX3& f) const {

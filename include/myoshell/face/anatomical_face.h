@@ -30,10 +30,11 @@ Vec3 gravityForRotation(const FaceFrame& frame, const Eigen::Quaterniond& rotati
 
 class AnatomicalFace : public FaceSystem {
  public:
-  // Builds the skin (AnatomicalSkin) and registers each drag (addDrag at its vertex and radius).
-  // `gravity` false: no gravity load at all. Throws InputError / NumericalError as AnatomicalSkin.
+  // Builds the skin (AnatomicalSkin) with each drag registered at its vertex and radius, its basis
+  // from `cache` when given and holding it (else computed and stored there). `gravity` false: no
+  // gravity load at all. Throws InputError / NumericalError as AnatomicalSkin.
   AnatomicalFace(const Head& head, const std::vector<MuscleDef>& muscles, const AnatomicalSettings& settings,
-                 std::vector<DragDef> drags, bool gravity = true);
+                 std::vector<DragDef> drags, bool gravity = true, BasisCache* cache = nullptr);
 
   const AnatomicalSkin& skin() const { return *skin_; }
   std::shared_ptr<const AnatomicalSkin> skinPtr() const { return skin_; }
@@ -53,7 +54,7 @@ class AnatomicalFace : public FaceSystem {
   std::vector<int> pinnedVertices() const override { return {}; }
   std::unique_ptr<FaceStepper> makeStepper(std::shared_ptr<const FaceSystem> self) const override;
   double buildSeconds() const override { return buildSeconds_; }
-  int cacheHits() const override { return 0; }
+  int cacheHits() const override { return skin_->basisFromCache() ? 1 : 0; }  // the one basis
 
  private:
   std::shared_ptr<const AnatomicalSkin> skin_;

@@ -9,14 +9,19 @@
 //   gravity relative to the rest pose (GravityReading), drags.
 //
 // Precompute once (constructor); settle() solves the reduced static equilibrium directly;
-// AnatomicalStepper steps it in time with the per-mode exact stepper.
+// AnatomicalStepper steps it in time with the per-mode exact stepper. With a BasisCache the Ritz
+// basis (the expensive part: factorising K̂, its d lowest modes, the static responses) is kept
+// between runs under anatomicalBasisKey; a hit is the very basis a fresh build makes (bit for bit),
+// and K̂ is then factorised only when something needs it (addDrag, linearFullResponse).
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/reduce/basis_cache.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/muscle_coupling.h"
 #include "myoshell/face/tissue_attachment.h"
@@ -70,6 +75,13 @@ struct SkinLoads {
   std::vector<Vec3> drags;          // one force per registered drag (dyn, spread over its vertices)
 };
 
+// A drag known when the skin is built: a force spread over the vertices within `radius` (cm) of
+// `vertex` (as addDrag).
+struct DragSite {
+  int vertex = -1;
+  double radius = 0.0;
+};
+
 struct SettledSkin {
   MatX3 u;              // n×3 displacement, cm
   VecX q;               // d modal amplitudes
@@ -82,6 +94,10 @@ class AnatomicalSkin {
  public:
   // Throws InputError (bad settings, muscles, landmarks), NumericalError (solves).
   AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& muscles, const AnatomicalSettings& settings = {});
+  // As above, with `drags` registered at build time (as addDrag, in order) and the basis taken
+  // from `cache` when it holds this skin's key, else computed and stored there (cache may be null).
+  AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& muscles, const AnatomicalSettings& settings,
+                 const std::vector<DragSite>& drags, BasisCache* cache);
 
   const Head& head() const { return head_; }
   const AnatomicalSettings& settings() const { return settings_; }
@@ -91,11 +107,21 @@ class AnatomicalSkin {
   int muscleIndex(const std::string& name) const;  // InputError naming the unknown muscle
   // K_att + Σ K_c (3n×3n, dyn/cm): the quadratic terms the full-space reference adds to the shell.
   const SparseMat& extraStiffness() const { return Kextra_; }
-  const SparseMat& stiffness() const { return builder_->stiffness(); }  // K̂
+  const SparseMat& stiffness() const { return Khat_; }  // K̂
   const VecX& vertexMass() const { return mass_; }                     // n, g
   std::shared_ptr<const ModalBasis> basis() const { return basis_; }
   const Vec3& restGravity() const { return gRest_; }
   const MatX3& muscleLoad(int m) const { return muscleLoads_[static_cast<size_t>(m)]; }  // a = 1, dyn
+  // True when the basis came from the BasisCache given to the constructor.
+  bool basisFromCache() const { return fromCache_; }
+  // The cache key of this skin's basis as built (before any later addDrag): a hash of K̂ (its
+  // sparsity and values: mesh, skin material, attachment map with its overrides, muscle
+  // couplings), the masses, rest positions and triangles, the Ritz settings (d, eigen-solver,
+  // deflation), every load pattern in the order it enters (muscle coupling loads: muscle defs,
+  // coupling settings, shortening; gravity along x, y, z; the build-time drags' vertex sets), the
+  // build sequence's version and kModalBasisFormatVersion. The magnitude of gravity is not in it:
+  // the gravity patterns are M·ê_a whatever |g| is.
+  const BasisKey& basisKey() const { return key_; }
 
   // Registers a drag: a force spread equally over the vertices within radius (cm) of `vertex`; adds
   // its unit patterns' static responses (x, y, z) to the basis from the kept factorisation and
@@ -115,6 +141,8 @@ class AnatomicalSkin {
  private:
   friend class AnatomicalStepper;
   void validateLoads(const SkinLoads& loads) const;
+  std::vector<int> dragVertices(int vertex, double radius) const;
+  RitzBasisBuilder& builder() const;  // made on first use after a cache hit
   Head head_;
   AnatomicalSettings settings_;
   std::unique_ptr<DiscreteShell> shell_;
@@ -126,10 +154,15 @@ class AnatomicalSkin {
   };
   std::vector<Drag> drags_;
   SparseMat Kextra_;
+  SparseMat Khat_;
   VecX mass_;
   Vec3 gRest_ = Vec3::Zero();
-  std::unique_ptr<RitzBasisBuilder> builder_;
+  RitzSettings ritz_;
+  mutable std::mutex builderMutex_;
+  mutable std::unique_ptr<RitzBasisBuilder> builder_;
   std::shared_ptr<const ModalBasis> basis_;
+  BasisKey key_;
+  bool fromCache_ = false;
 };
 
 // Time stepping of one AnatomicalSkin: each muscle's activation level follows its target with a

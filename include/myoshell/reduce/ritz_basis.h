@@ -37,6 +37,12 @@ class RitzBasisBuilder {
   // definite or the eigen-solve fails, InputError on bad shapes or settings.
   RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, const MatX3& rest, const MatX3i& F,
                    const RitzSettings& settings = {});
+  // Continues from `start`, a diagonalised basis a builder with the same K, masses, mesh and
+  // settings made earlier (a cached one): factorises K but skips step 1, so further loads give
+  // what they would have given on the builder that made `start`. InputError when start's shape
+  // does not fit (n vertices, all free; Phi, Psi 3n×d; d eigenvalues).
+  RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, const MatX3& rest, const MatX3i& F,
+                   const RitzSettings& settings, ModalBasis start);
 
   // Step 2 for one load f (n×3, dyn): returns true when a vector was appended, false when it was
   // deflated (or f = 0). The reduced system is not re-diagonalised until diagonalize().
@@ -66,6 +72,7 @@ class RitzBasisBuilder {
   bool diagonal_ = true;
   int appended_ = 0;
   int deflated_ = 0;
+  void factorize(const VecX& vertexMass, const MatX3& rest, const MatX3i& F);
 };
 
 }  // namespace myo
