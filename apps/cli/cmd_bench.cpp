@@ -10,6 +10,12 @@
 // reports the median of the runs' steps per second. Table 2 rows ("muscle only") count only the
 // muscle phase of the step (StepTimings::muscles, the thesis's muscle deformation without skin);
 // every other row counts whole steps (muscles + springs + skin channels).
+//
+// Rows `thesis_full` and `anatomical_full` (scenes/bench/, the folder beside --scenes): all eight
+// muscles + gravity + one drag with each model (`model: thesis` and `model: anatomical`), side by
+// side on each head. Besides steps/s they report the cold precompute (built into an empty basis
+// cache of their own), the cached start (built again from it) and the mean phases of a step
+// (StepTimings: muscles, springs / force assembly, skin channels).
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -21,13 +27,18 @@
 #include <sstream>
 #include <thread>
 
+#include <unistd.h>
+
 #include "command.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/face_model.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/face/simulator.h"
+#include "myoshell/io/basis_cache_file.h"
 #include "myoshell/verify/reference_solver.h"
 #include "resources.h"
 
@@ -60,7 +71,23 @@ struct BenchRow {
   double t0 = 0.0, t1 = 1.0;      // timeline window played in a loop, s
   bool muscleOnly = false;        // time only the muscle phase (Table 2)
   double thesisFps = 0.0;         // the thesis's number
+  std::string folder = "thesis";  // "thesis": --scenes; "bench": scenes/bench beside it
 };
+
+// The two models side by side: 8 muscles + gravity + one drag, [0, 1) s of scenes/bench/*.
+std::vector<BenchRow> fullRows() {
+  std::vector<BenchRow> r;
+  r.push_back({"full", "thesis_full", "8 muscles + gravity + drag, model: thesis", "full_thesis.json", {}, 0.0, 1.0,
+               false, 0, "bench"});
+  r.push_back({"full", "anatomical_full", "8 muscles + gravity + drag, model: anatomical", "full_anatomical.json", {},
+               0.0, 1.0, false, 0, "bench"});
+  return r;
+}
+
+fs::path rowFolder(const BenchOptions& opt, const BenchRow& row) {
+  if (row.folder == "thesis") return opt.scenesDir;
+  return (fs::path(opt.scenesDir) / ".." / row.folder).lexically_normal();
+}
 
 std::vector<BenchRow> thesisRows() {
   const std::string zr = "zygomaticus_major_right", cr = "corrugator_supercilii_right",
@@ -125,20 +152,20 @@ SceneDesc ictHead(const BenchOptions& opt) {
 // The row's scene on the given head: the ICT head is the one fig27_ict_head.json names (its paths
 // are relative to the same folder), the default head the built-in one.
 SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::string& head) {
-  SceneDesc scene = readScene((fs::path(opt.scenesDir) / row.scene).string());
+  SceneDesc scene = readScene((rowFolder(opt, row) / row.scene).string());
   if (head == "default") {
     scene.head = HeadDesc{};
   } else {
     scene.head = ictHead(opt).head;
+    // The head's paths as fig27_ict_head.json meant them, whatever folder the row's scene is in.
+    for (std::string* p : {&scene.head.obj, &scene.head.landmarks, &scene.head.gravityPins, &scene.head.skull})
+      if (!p->empty() && fs::path(*p).is_relative()) *p = (fs::path(opt.scenesDir) / *p).string();
+    if (scene.modelKind == FaceModelKind::Anatomical) scene.head.gravityPins.clear();  // held by its tissue
     // Drags name default-head vertex ids: move each to the ICT vertex nearest the same point of
     // the face frame (so the drag still grabs the right cheek).
     if (!scene.drags.empty()) {
       const Head from = loadDefaultHead();
-      const auto resolve = [&](const std::string& p) {
-        return p.empty() ? p : (fs::path(opt.scenesDir) / p).string();
-      };
-      const Head to = loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks), resolve(scene.head.gravityPins),
-                               scene.head.units);
+      const Head to = loadHead(scene.head.obj, scene.head.landmarks, scene.head.gravityPins, scene.head.units);
       const FaceFrame ff = from.frame(), tf = to.frame();
       for (DragDesc& d : scene.drags) {
         if (d.vertex < 0) continue;
@@ -165,8 +192,10 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-// Plays the window once; returns (steps, seconds counted).
-std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row, double budget) {
+// Plays the window once; returns (steps, seconds counted). `phases`, when given, sums each whole
+// step's StepTimings.
+std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row, double budget,
+                                        StepTimings* phases = nullptr) {
   const double dt = player.model().dt();
   long long steps = 0;
   double counted = 0.0;
@@ -187,6 +216,13 @@ std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row
       while (player.time() < row.t1 - 0.5 * dt) {
         player.step();
         ++n;
+        if (phases) {
+          const StepTimings& t = player.simulator().lastTimings();
+          phases->muscles += t.muscles;
+          phases->springs += t.springs;
+          phases->channels += t.channels;
+          phases->total += t.total;
+        }
         if ((n & 15) == 0 && counted + sw.seconds() >= budget) break;
       }
       counted += sw.seconds();
@@ -243,6 +279,79 @@ nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std:
   return j;
 }
 
+// A row of the two models side by side: cold precompute into an empty cache of its own, cached start
+// from it, then steps/s as benchRow, with the mean phases of a step.
+nlohmann::json benchFullRow(const BenchOptions& opt, const BenchRow& row, const std::string& head) {
+  const SceneDesc scene = rowScene(opt, row, head);
+  const fs::path dir = fs::temp_directory_path() / fmt::format("myoshell_bench_{}_{}_{}", ::getpid(), row.id, head);
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  double cold = 0.0, cached = 0.0;
+  int coldHits = 0;
+  std::shared_ptr<const FaceSystem> model;
+  {
+    FileBasisCache fresh(dir);
+    Stopwatch sw;
+    coldHits = buildSceneFace(scene, &fresh)->cacheHits();
+    cold = sw.seconds();
+    sw = Stopwatch();
+    model = buildSceneFace(scene, &fresh);
+    cached = sw.seconds();
+  }
+  fs::remove_all(dir, ec);
+  ScenePlayer player(scene, model);
+  playWindow(player, row, 0.05);
+  std::vector<double> rates, stepUs;
+  StepTimings phases;
+  long long counted = 0;
+  const double budget = opt.seconds / opt.runs;
+  for (int r = 0; r < opt.runs; ++r) {
+    const auto [steps, secs] = playWindow(player, row, budget, &phases);
+    rates.push_back(steps / std::max(secs, 1e-12));
+    stepUs.push_back(1e6 * secs / std::max<long long>(steps, 1));
+    counted += steps;
+  }
+  const double perStep = 1e6 / static_cast<double>(std::max<long long>(counted, 1));
+  nlohmann::json j;
+  j["table"] = row.table;
+  j["id"] = row.id;
+  j["label"] = row.label;
+  j["head"] = head;
+  j["scene"] = "bench/" + row.scene;
+  j["model"] = toString(model->kind());
+  j["window_s"] = {row.t0, row.t1};
+  j["timed"] = "whole step";
+  j["dt"] = model->dt();
+  j["skin_vertices"] = model->head().mesh.vertexCount();
+  j["muscles"] = model->muscleCount();
+  j["drags"] = static_cast<int>(model->drags().size());
+  j["gravity"] = model->hasGravity();
+  nlohmann::json ch = nlohmann::json::array();
+  if (const auto* thesis = dynamic_cast<const FaceModel*>(model.get())) {
+    j["d"] = thesis->settings().skinModes;
+    for (const SkinChannel& c : thesis->channels())
+      ch.push_back({{"name", c.name}, {"free_vertices", c.basis->freeCount()}, {"modes", c.basis->modeCount()}});
+  } else if (const auto* anatomical = dynamic_cast<const AnatomicalFace*>(model.get())) {
+    const auto basis = anatomical->skin().basis();
+    j["d"] = anatomical->skin().settings().skinModes;
+    ch.push_back({{"name", "skin"}, {"free_vertices", basis->freeCount()}, {"modes", basis->modeCount()}});
+  }
+  j["channels"] = ch;
+  j["cold_precompute_seconds"] = cold;
+  j["cold_cache_hits"] = coldHits;
+  j["cached_start_seconds"] = cached;
+  j["cache_hits"] = model->cacheHits();
+  j["runs_steps_per_second"] = rates;
+  j["steps_per_second"] = median(rates);
+  j["step_us"] = median(stepUs);
+  j["phase_us"] = {{"muscles", perStep * phases.muscles},
+                   {"springs", perStep * phases.springs},
+                   {"channels", perStep * phases.channels},
+                   {"total", perStep * phases.total}};
+  j["realtime_factor"] = median(rates) * model->dt();
+  return j;
+}
+
 // One implicit-Euler step of the full skin (all free vertices, the head's gravity pins) under
 // gravity with the full-space Newton reference solver, from rest.
 nlohmann::json benchReference(const BenchOptions& opt, const std::string& head, BasisCache& cache) {
@@ -295,6 +404,7 @@ int runBench(BenchOptions opt) {
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
     throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
   std::vector<BenchRow> rows = thesisRows();
+  for (BenchRow& r : fullRows()) rows.push_back(std::move(r));
   if (!opt.rows.empty()) {
     const auto want = splitList(opt.rows);
     std::vector<BenchRow> keep;
@@ -335,6 +445,19 @@ int runBench(BenchOptions opt) {
       }
     }
     for (const BenchRow& row : rows) {
+      if (row.table == "full") {
+        nlohmann::json j = benchFullRow(opt, row, head);
+        if (!opt.json) {
+          const auto& p = j["phase_us"];
+          fmt::print("{:7} {:<51} {:>10.0f} steps/s  cold {:.1f} s, cached start {:.2f} s; step {:.0f} us (muscles {:.0f}, "
+                     "springs/forces {:.0f}, skin {:.0f})\n",
+                     head, row.label, j["steps_per_second"].get<double>(), j["cold_precompute_seconds"].get<double>(),
+                     j["cached_start_seconds"].get<double>(), p["total"].get<double>(), p["muscles"].get<double>(),
+                     p["springs"].get<double>(), p["channels"].get<double>());
+        }
+        results.push_back(std::move(j));
+        continue;
+      }
       nlohmann::json j = benchRow(opt, row, head, *cache);
       if (!opt.json)
         fmt::print("{:7} T{} {:<48} {:>10.0f} steps/s  thesis {:>4.0f}  x{:>6.1f}{}\n", head, row.table, row.label,
@@ -357,7 +480,22 @@ int runBench(BenchOptions opt) {
     for (const auto& r : references)
       if (r["head"] == j["head"])
         j["speedup_vs_reference"] = j["steps_per_second"].get<double>() * r["step_seconds_median"].get<double>();
+  // The two models side by side: anatomical steps/s over thesis steps/s, per head.
+  nlohmann::json sideBySide = nlohmann::json::array();
+  for (const std::string& head : heads) {
+    const nlohmann::json *t = nullptr, *a = nullptr;
+    for (const auto& j : results)
+      if (j["head"] == head) {
+        if (j["id"] == "thesis_full") t = &j;
+        if (j["id"] == "anatomical_full") a = &j;
+      }
+    if (!t || !a) continue;
+    const double ratio = (*a)["steps_per_second"].get<double>() / (*t)["steps_per_second"].get<double>();
+    sideBySide.push_back({{"head", head}, {"anatomical_over_thesis", ratio}});
+    if (!opt.json) fmt::print("{:7} anatomical / thesis steps per second: {:.2f}\n", head, ratio);
+  }
   out["rows"] = results;
+  out["full_side_by_side"] = sideBySide;
   out["reference"] = references;
   out["notes"] = notes;
   if (opt.json) fmt::print("{}\n", out.dump(2));
@@ -366,7 +504,7 @@ int runBench(BenchOptions opt) {
 
 const CommandRegistrar benchRegistrar("bench", [](CLI::App& app) {
   auto opt = std::make_shared<BenchOptions>();
-  CLI::App* sub = app.add_subcommand("bench", "Re-measure the thesis's Tables 2-4 (steps per second) on the thesis scenes");
+  CLI::App* sub = app.add_subcommand("bench", "Re-measure the thesis's Tables 2-4 (steps per second) on the thesis scenes, and both models side by side");
   sub->add_flag("--json", opt->json, "Print the results as JSON");
   sub->add_option("--threads", opt->threads, "Threads (the simulator is single-threaded: 1 is used)")
       ->capture_default_str();

@@ -315,6 +315,7 @@ AnatomicalStepper::AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin)
 
 void AnatomicalStepper::step(const SkinLoads& loads) {
   skin_->validateLoads(loads);
+  Stopwatch clock;
   const double h = skin_->settings().dt;
   // Muscles: critically damped follow of the target at ω (implicit Euler: stable for any ω).
   for (Eigen::Index m = 0; m < level_.size(); ++m) {
@@ -323,6 +324,7 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     levelRate_(m) = (levelRate_(m) + h * w * w * (a - level_(m))) / (1.0 + 2.0 * h * w + h * h * w * w);
     level_(m) += h * levelRate_(m);
   }
+  times_.levels = clock.seconds();
   // Reading (b): Σ level_m F_m + M(g − g_rest) + drags, built in place.
   const Vec3 dg = loads.gravity - skin_->gRest_;
   const VecX& mass = skin_->mass_;
@@ -333,7 +335,9 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     const auto& vs = skin_->drags_[k].vertices;
     for (int v : vs) force_.row(v) += loads.drags[k].transpose() / static_cast<double>(vs.size());
   }
+  times_.force = clock.seconds() - times_.levels;
   integrator_.step(force_);
+  times_.modal = clock.seconds() - times_.levels - times_.force;
 }
 
 bool AnatomicalStepper::isAtRest(double tol) const {

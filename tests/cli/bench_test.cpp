@@ -87,6 +87,53 @@ TEST(BenchCommand, TextTableNamesTheThesisColumns) {
   EXPECT_THAT(r.out, HasSubstr("thesis   96"));
 }
 
+// The two models side by side (scenes/bench/, beside --scenes): eight muscles, gravity and one drag
+// each; the cold precompute goes into an empty cache of the row's own, the cached start reads it.
+TEST(BenchCommand, FullRowsRunBothModelsSideBySide) {
+  const test::CliResult r =
+      bench("--json --seconds 0.02 --runs 1 --heads default --no-reference --rows thesis_full,anatomical_full");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 2u);
+  const auto& thesis = j["rows"][0];
+  const auto& anatomical = j["rows"][1];
+  EXPECT_EQ(thesis["id"], "thesis_full");
+  EXPECT_EQ(thesis["model"], "thesis");
+  EXPECT_EQ(anatomical["id"], "anatomical_full");
+  EXPECT_EQ(anatomical["model"], "anatomical");
+  for (const auto& row : j["rows"]) {
+    EXPECT_EQ(row["scene"].get<std::string>().rfind("bench/full_", 0), 0u) << row["scene"];
+    EXPECT_EQ(row["muscles"], 8);
+    EXPECT_EQ(row["drags"], 1);
+    EXPECT_EQ(row["gravity"], true);
+    EXPECT_EQ(row["skin_vertices"], 7152);
+    EXPECT_GT(row["steps_per_second"].get<double>(), 0.0);
+    EXPECT_GT(row["cold_precompute_seconds"].get<double>(), 0.0);
+    EXPECT_GT(row["cached_start_seconds"].get<double>(), 0.0);
+    // From an empty cache a build reads back only what it stored itself (the thesis's gravity and
+    // drag channels share one basis); the second build reads everything back.
+    EXPECT_LT(row["cold_cache_hits"].get<int>(), row["cache_hits"].get<int>());
+    for (const char* phase : {"muscles", "springs", "channels", "total"})
+      EXPECT_GE(row["phase_us"][phase].get<double>(), 0.0) << phase;
+  }
+  // Thesis: eight muscle channels, gravity and the drag; anatomical: one skin whose basis holds
+  // the d modes and the static responses of the muscles, gravity (x, y, z) and the drag (x, y, z).
+  EXPECT_EQ(thesis["channels"].size(), 10u);
+  EXPECT_EQ(thesis["cache_hits"], 18);  // 8 muscles' modes + 10 skin channels
+  ASSERT_EQ(anatomical["channels"].size(), 1u);
+  EXPECT_EQ(anatomical["channels"][0]["name"], "skin");
+  EXPECT_EQ(anatomical["channels"][0]["free_vertices"], 7152);
+  EXPECT_GT(anatomical["channels"][0]["modes"].get<int>(), 30);
+  EXPECT_LE(anatomical["channels"][0]["modes"].get<int>(), 30 + 8 + 3 + 3);
+  EXPECT_EQ(thesis["cold_cache_hits"], 1);
+  EXPECT_EQ(anatomical["cache_hits"], 1);
+  EXPECT_EQ(anatomical["cold_cache_hits"], 0);
+  ASSERT_EQ(j["full_side_by_side"].size(), 1u);
+  EXPECT_EQ(j["full_side_by_side"][0]["head"], "default");
+  EXPECT_NEAR(j["full_side_by_side"][0]["anatomical_over_thesis"].get<double>(),
+              anatomical["steps_per_second"].get<double>() / thesis["steps_per_second"].get<double>(), 1e-9);
+}
+
 TEST(BenchCommand, BadArgumentsAreInputErrors) {
   test::CliResult r = bench("--rows no_such_row", true);
   EXPECT_EQ(r.exitCode, 2);

@@ -51,9 +51,10 @@ std::vector<nlohmann::json> tracksOf(const nlohmann::json& scene) {
 
 TEST_F(CheckCommand, ItsOutputPassesCheckAndPrintsTheSameForEveryShippedScene) {
   std::vector<fs::path> scenes = {test::sourceDir() / "scenes" / "demo.json"};
-  for (const auto& entry : fs::directory_iterator(test::sourceDir() / "scenes" / "thesis"))
-    if (entry.path().extension() == ".json") scenes.push_back(entry.path());
-  ASSERT_GE(scenes.size(), 12u);
+  for (const char* folder : {"thesis", "bench"})
+    for (const auto& entry : fs::directory_iterator(test::sourceDir() / "scenes" / folder))
+      if (entry.path().extension() == ".json") scenes.push_back(entry.path());
+  ASSERT_GE(scenes.size(), 14u);
   int checked = 0;
   for (const fs::path& scene : scenes) {
     if (scene.stem() == "fig27_ict_head" && !test::haveSharedData()) continue;
@@ -74,7 +75,7 @@ TEST_F(CheckCommand, ItsOutputPassesCheckAndPrintsTheSameForEveryShippedScene) {
     EXPECT_GT(keyed, 0) << scene << ": every other key says how it goes on";
     ++checked;
   }
-  EXPECT_GE(checked, 11);
+  EXPECT_GE(checked, 13);
 }
 
 TEST_F(CheckCommand, TheDemoEasesItsRisesAsItsFileSays) {

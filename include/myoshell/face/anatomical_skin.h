@@ -177,9 +177,16 @@ class AnatomicalStepper {
   const MatX3& displacement() const { return integrator_.freeDisplacement(); }  // n×3, cm
   const VecX& muscleLevels() const { return level_; }
   bool isAtRest(double tol) const;
+  // Wall time of the last step's phases (s): the activation levels, the n×3 force assembly
+  // (muscle loads, gravity, drags), the modal step (Φᵀf, the per-mode update, u = Φq).
+  struct Times {
+    double levels = 0.0, force = 0.0, modal = 0.0;
+  };
+  const Times& lastTimes() const { return times_; }
 
  private:
   std::shared_ptr<const AnatomicalSkin> skin_;
+  Times times_;
   ModalWarpingIntegrator integrator_;
   VecX level_, levelRate_;
   MatX3 force_;

@@ -32,7 +32,7 @@ struct DragDef {
 // Wall time of the parts of the last step (s). A model fills what it has; total always.
 struct StepTimings {
   double muscles = 0.0;   // muscles (thesis step 1; anatomical: the activation levels)
-  double springs = 0.0;   // thesis step 2 (springs onto the skin channels)
+  double springs = 0.0;   // thesis step 2 (springs onto the skin channels); anatomical: the force assembly
   double channels = 0.0;  // the skin's modal steps (thesis steps 3–4)
   double total = 0.0;
 };
