@@ -168,7 +168,7 @@ TEST(AnatomicalBasisCache, EveryInputOfTheBasisChangesTheKey) {
   with("tissue density", [](AnatomicalSettings& s) { s.attachment.tissueDensity *= 1.01; });
   with("coupling shortening", [](AnatomicalSettings& s) { s.coupling.shortening = 0.15; });
   with("coupling insertion modulus", [](AnatomicalSettings& s) { s.coupling.profile.insertionModulus *= 1.01; });
-  with("patch radius", [](AnatomicalSettings& s) { s.coupling.patchRadius = 1.5; });
+  with("footprint reach", [](AnatomicalSettings& s) { s.coupling.footprintReach = 1.5; });
   changed.emplace_back("drag radius", keyOf(head, muscles, base, {{205, 1.2}}));
   changed.emplace_back("drag vertex", keyOf(head, muscles, base, {{206, 1.0}}));
   changed.emplace_back("a second drag", keyOf(head, muscles, base, {{205, 1.0}, {100, 1.0}}));
