@@ -1,5 +1,5 @@
 // `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--scene S]
-// [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--out SHAPE.obj] [--json]`:
+// [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--out SHAPE.obj] [--cache DIR] [--json]`:
 // the settled shape of the anatomical face under fixed activations and gravity — the static
 // equilibrium of its reduced system (AnatomicalSkin::settle; docs/anatomical_model.md), linear or
 // warped as the model's settings say — written in the head's own vertex order and units: a head read
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "command.h"
+#include "resources.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_face.h"
@@ -45,6 +46,7 @@ struct PoseArgs {
   std::string gravity;            // "on", "off", or "" (on; a scene's own switch with --scene)
   std::string headPose = "0,0,0";
   std::string out;
+  std::string cacheDir;           // --cache; "" = the default (resources.h)
   bool json = false;
   // Whether a head option was given (they exclude --scene).
   const CLI::Option* headOption = nullptr;
@@ -166,7 +168,8 @@ int runPose(const PoseArgs& a) {
   const bool gravity = a.gravity.empty() ? inputs.settings.gravity : a.gravity == "on";
 
   const Stopwatch buildClock;
-  const std::shared_ptr<const FaceSystem> system = buildSceneFace(scene);
+  const auto cache = openBasisCache(a.cacheDir);
+  const std::shared_ptr<const FaceSystem> system = buildSceneFace(scene, cache.get());
   const auto* face = dynamic_cast<const AnatomicalFace*>(system.get());
   if (!face) throw CheckError("pose: the scene did not build an anatomical face");
   const double buildSeconds = buildClock.seconds();
@@ -252,6 +255,8 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--head-pose", args->headPose, "P,Y,R: pitch, yaw, roll in degrees about the face frame's x, y, "
                                                   "z (face-down: 90,0,0; default upright)");
   sub->add_option("--out", args->out, "write the settled shape as OBJ (its folder must exist)");
+  sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
+                                             "~/.cache/myoshell)");
   sub->add_flag("--json", args->json, "print activations, max_displacement_cm/_vertex and seconds as JSON");
   return [args] { return runPose(*args); };
 });
