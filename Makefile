@@ -39,8 +39,8 @@ test-asan: asan-build
 	@cd build-asan && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) $(ASAN_EXCLUDE)
 
 # The part of test-asan that CI runs (.ci/run): the parser and I/O layers and the CLI's bad-input
-# catalogue. Builds only what those tests need.
-ASAN_CI_TARGETS = test_core test_mesh test_anim test_io test_cli
+# catalogue. Builds only what those tests need (the catalogue is its own program, test_bad_inputs).
+ASAN_CI_TARGETS = test_core test_mesh test_anim test_io test_bad_inputs
 test-asan-ci: setup
 	@$(ASAN_CMAKE)
 	@cmake --build build-asan -j $(JOBS) --target $(ASAN_CI_TARGETS)
