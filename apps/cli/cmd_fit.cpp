@@ -21,13 +21,13 @@
 #include <vector>
 
 #include "command.h"
+#include "fit_head.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/activation_fit.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/head_checks.h"
-#include "myoshell/io/head_files.h"
 #include "myoshell/io/marker_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"
@@ -72,14 +72,6 @@ FitAlignment parseAlignment(const std::string& text) {
   throw InputError("--align: '" + text + "' is not one of none, rigid, similarity");
 }
 
-double parseLambda(const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0.0)
-    throw InputError("--lambda: '" + text + "' is not a number ≥ 0");
-  return v;
-}
-
 std::vector<std::string> splitNames(const std::string& list) {
   std::vector<std::string> names;
   if (list.empty()) return names;
@@ -100,41 +92,6 @@ bool isMarkerFile(const std::string& path) {
   return ext == ".json" || ext == ".yaml" || ext == ".yml";
 }
 
-// The output's folder must exist and the path must not be a folder.
-void checkOutputPath(const std::string& out) {
-  if (out.empty()) return;
-  const fs::path p(out);
-  if (fs::is_directory(p)) throw InputError("--out: is a folder; give the JSON file to write", out);
-  const fs::path parent = p.parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) throw InputError("--out: no such folder '" + parent.string() + "'");
-}
-
-// The head as an anatomical scene names it, with the anatomical model's muscles and settings.
-SceneInputs headInputs(const FitArgs& a, bool rigHead) {
-  SceneDesc scene;
-  scene.name = "fit";
-  if (!rigHead) {
-    const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, "", a.units);
-    scene.head.obj = files.obj;
-    scene.head.landmarks = files.landmarks;
-    scene.head.units = files.unit;
-  }
-  return readSceneInputs(scene);
-}
-
-// The rig's base mesh as a head, with the landmark file given (checked as loadHead checks an OBJ).
-Head rigHead(const RigFile& rig, const std::string& landmarks) {
-  Head head;
-  head.name = fs::path(rig.path).stem().string();
-  head.mesh = rig.base;
-  head.landmarks = readLandmarks(landmarks, head.mesh.vertexCount());
-  head.landmarks.requireAll();
-  checkLoadedHead(head, LengthUnit::cm);
-  head.gravityPins = defaultGravityPins(head.mesh, head.landmarks);
-  head.pinsSource = "longest boundary loop + nasion_approx + Multi-PIE 28";
-  return head;
-}
-
 int runFit(const FitArgs& a) {
   const Stopwatch total;
   const FitAlignment alignment = parseAlignment(a.align);
@@ -142,7 +99,7 @@ int runFit(const FitArgs& a) {
   settings.alignment = alignment;
   settings.lambda = parseLambda(a.lambda);
   settings.muscles = splitNames(a.muscles);
-  checkOutputPath(a.out);
+  checkOutputFile(a.out, "--out", "JSON file");
 
   const TargetKind kind = isRigShapeArgument(a.target) ? TargetKind::Rig
                           : isMarkerFile(a.target)      ? TargetKind::Markers
@@ -159,14 +116,14 @@ int runFit(const FitArgs& a) {
     rigShapeName = ref.shape;
     rig.shape(rigShapeName);  // InputError listing the rig's shapes when it has no such one
   }
-  const bool useRigHead = kind == TargetKind::Rig && a.headOption->count() == 0;
-  if (useRigHead && a.landmarks.empty())
-    throw InputError("fit " + a.target + ": the head is the rig's base mesh, which carries no landmarks: give "
-                     "--landmarks FILE (or the head with --head)");
-  if (useRigHead && a.unitsOption->count() > 0)
-    throw InputError("--units: a glTF rig is in metres by specification and read in cm; --units applies to an OBJ head");
-  SceneInputs inputs = headInputs(a, useRigHead);
-  if (useRigHead) inputs.head = rigHead(rig, a.landmarks);
+  FitHeadOptions headOptions;
+  headOptions.head = a.head;
+  headOptions.landmarks = a.landmarks;
+  headOptions.units = a.units;
+  headOptions.headGiven = a.headOption->count() > 0;
+  headOptions.unitsGiven = a.unitsOption->count() > 0;
+  const RigFile* rigOrNull = kind == TargetKind::Rig ? &rig : nullptr;
+  const SceneInputs inputs = fitHeadInputs(headOptions, rigOrNull, "fit " + a.target);
   const Head& head = inputs.head;
   const int n = head.mesh.vertexCount();
 
@@ -200,7 +157,7 @@ int runFit(const FitArgs& a) {
     }
     case TargetKind::Obj: {
       // The target is in the head's own units (the unit its OBJ was read in).
-      const LengthUnit unit = useRigHead ? LengthUnit::cm : resolveHeadArgument(a.head, a.landmarks, "", a.units).unit;
+      const LengthUnit unit = fitHeadUnit(headOptions, rigOrNull);
       TriMesh rest = head.mesh;
       rest.V /= centimetresPer(unit);
       const TriMesh shape = readObjLike(a.target, rest);

@@ -14,6 +14,7 @@
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/rig_export.h"
 #include "myoshell/mesh/geometry.h"
 
 namespace myo {
@@ -89,59 +90,54 @@ std::vector<int> glbFrameIndices(int frameCount, int maxMorphTargets) {
   return out;
 }
 
-void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, int maxMorphTargets) {
-  detail::checkFrames(frames);
-  MYO_CHECK_GT(frames.fps, 0.0);
-  MYO_CHECK_GT(frames.triangles.rows(), 0);
-  const auto n = static_cast<size_t>(frames.rest.rows());
-  MYO_CHECK(frames.triangles.minCoeff() >= 0 && static_cast<size_t>(frames.triangles.maxCoeff()) < n,
-            "triangle indices must lie in [0, " << n << ")");
-  MYO_CHECK(frames.uv.rows() == 0 || static_cast<size_t>(frames.uv.rows()) == n,
-            "uv must have 0 or " << n << " rows (one per vertex), got " << frames.uv.rows());
-  const std::vector<int> exported = glbFrameIndices(static_cast<int>(frames.positions.size()), maxMorphTargets);
-  const size_t T = exported.size();
+namespace {
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "Myoshell";
-  BufferBuilder bb(model);
+// The one mesh with its morph targets, in a single primitive: POSITION, NORMAL, TEXCOORD_0 (when
+// there are UVs), UNSIGNED_INT indices, one POSITION target per delta named in
+// meshes[0].extras.targetNames, and the node that places it. Positions and deltas (cm) are
+// multiplied by `toFile` as written; the node's scale (when not 1) turns them into metres.
+void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& name, const MatX3& rest,
+                  const MatX3i& triangles, const MatX2& uvs, const std::vector<MatX3>& deltas,
+                  const std::vector<std::string>& names, double toFile, double nodeScale) {
+  const auto n = static_cast<size_t>(rest.rows());
+  const size_t T = deltas.size();
 
   // Indices.
-  std::vector<uint32_t> indices(static_cast<size_t>(frames.triangles.size()));
-  for (Eigen::Index t = 0; t < frames.triangles.rows(); ++t)
-    for (int c = 0; c < 3; ++c) indices[3 * t + c] = static_cast<uint32_t>(frames.triangles(t, c));
+  std::vector<uint32_t> indices(static_cast<size_t>(triangles.size()));
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) indices[3 * t + c] = static_cast<uint32_t>(triangles(t, c));
   const int indexAccessor =
       bb.addAccessor(bb.addView(indices.data(), indices.size() * 4, kElementArrayBuffer), 0,
                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR);
 
   // Rest positions and normals.
   std::vector<double> lo, hi;
-  const std::vector<float> rest = toFloat(frames.rest);
-  bounds(rest, lo, hi);
-  const int positionAccessor = bb.addAccessor(bb.addView(rest.data(), rest.size() * 4, kArrayBuffer), 0,
+  const std::vector<float> restFloats = toFloat(rest * toFile);
+  bounds(restFloats, lo, hi);
+  const int positionAccessor = bb.addAccessor(bb.addView(restFloats.data(), restFloats.size() * 4, kArrayBuffer), 0,
                                               TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
-  const std::vector<float> normals = toFloat(vertexNormals(frames.rest, frames.triangles));
+  const std::vector<float> normals = toFloat(vertexNormals(rest, triangles));
   const int normalAccessor = bb.addAccessor(bb.addView(normals.data(), normals.size() * 4, kArrayBuffer), 0,
                                             TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
 
   // Texture coordinates, when the head has them: glTF's v runs down the image, OBJ's up.
   int texcoordAccessor = -1;
-  if (frames.uv.rows() > 0) {
+  if (uvs.rows() > 0) {
     std::vector<float> uv(2 * n);
     for (size_t i = 0; i < n; ++i) {
-      uv[2 * i] = static_cast<float>(frames.uv(static_cast<Eigen::Index>(i), 0));
-      uv[2 * i + 1] = static_cast<float>(1.0 - frames.uv(static_cast<Eigen::Index>(i), 1));
+      uv[2 * i] = static_cast<float>(uvs(static_cast<Eigen::Index>(i), 0));
+      uv[2 * i + 1] = static_cast<float>(1.0 - uvs(static_cast<Eigen::Index>(i), 1));
     }
     texcoordAccessor = bb.addAccessor(bb.addView(uv.data(), uv.size() * 4, kArrayBuffer), 0,
                                       TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC2);
   }
 
-  // Morph targets: displacement from the rest, all in one view.
+  // Morph targets, all in one view.
   std::vector<float> targets;
   targets.reserve(T * 3 * n);
   std::vector<std::pair<std::vector<double>, std::vector<double>>> targetBounds;
-  for (const int f : exported) {
-    std::vector<float> d = toFloat(frames.positions[f] - frames.rest);
+  for (const MatX3& delta : deltas) {
+    std::vector<float> d = toFloat(delta * toFile);
     bounds(d, lo, hi);
     targetBounds.emplace_back(lo, hi);
     targets.insert(targets.end(), d.begin(), d.end());
@@ -159,11 +155,11 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
     const int a = bb.addAccessor(targetView, k * 3 * n * 4, TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3,
                                  targetBounds[k].first, targetBounds[k].second);
     prim.targets.push_back({{"POSITION", a}});
-    targetNames.emplace_back(fmt::format("frame_{:04d}", exported[k]));
+    targetNames.emplace_back(names[k]);
   }
 
   tinygltf::Mesh mesh;
-  mesh.name = frames.name;
+  mesh.name = name;
   mesh.primitives.push_back(prim);
   mesh.weights.assign(T, 0.0);
   tinygltf::Value::Object extras;
@@ -171,17 +167,57 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   mesh.extras = tinygltf::Value(std::move(extras));
   model.meshes.push_back(mesh);
 
-  // The node carries the cm → m scale (glTF's unit is the metre); accessors stay in cm.
   tinygltf::Node node;
-  node.name = frames.name;
+  node.name = name;
   node.mesh = 0;
-  node.scale = {0.01, 0.01, 0.01};
+  if (nodeScale != 1.0) node.scale = {nodeScale, nodeScale, nodeScale};
   model.nodes.push_back(node);
   tinygltf::Scene scene;
-  scene.name = frames.name;
+  scene.name = name;
   scene.nodes = {0};
   model.scenes.push_back(scene);
   model.defaultScene = 0;
+}
+
+void checkMesh(const MatX3& rest, const MatX3i& triangles, const MatX2& uv) {
+  const auto n = static_cast<size_t>(rest.rows());
+  MYO_CHECK_GT(triangles.rows(), 0);
+  MYO_CHECK(triangles.minCoeff() >= 0 && static_cast<size_t>(triangles.maxCoeff()) < n,
+            "triangle indices must lie in [0, " << n << ")");
+  MYO_CHECK(uv.rows() == 0 || static_cast<size_t>(uv.rows()) == n,
+            "uv must have 0 or " << n << " rows (one per vertex), got " << uv.rows());
+}
+
+void writeModel(const std::filesystem::path& path, tinygltf::Model& model) {
+  std::ostringstream out;
+  tinygltf::TinyGLTF gltf;
+  if (!gltf.WriteGltfSceneToStream(&model, out, false, true))
+    throw InputError("cannot serialise the GLB", path.string());
+  writeFileAtomically(path.string(), out.str());
+}
+
+}  // namespace
+
+void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, int maxMorphTargets) {
+  detail::checkFrames(frames);
+  MYO_CHECK_GT(frames.fps, 0.0);
+  checkMesh(frames.rest, frames.triangles, frames.uv);
+  const std::vector<int> exported = glbFrameIndices(static_cast<int>(frames.positions.size()), maxMorphTargets);
+  const size_t T = exported.size();
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "Myoshell";
+  BufferBuilder bb(model);
+  // Frame k's target is its displacement from the rest; the node carries the cm → m scale
+  // (glTF's unit is the metre), accessors stay in cm.
+  std::vector<MatX3> deltas;
+  std::vector<std::string> names;
+  for (const int f : exported) {
+    deltas.push_back(frames.positions[f] - frames.rest);
+    names.push_back(fmt::format("frame_{:04d}", f));
+  }
+  addMorphMesh(model, bb, frames.name, frames.rest, frames.triangles, frames.uv, deltas, names, 1.0, 0.01);
 
   // Animation: keyframe k at exported[k] / fps with one-hot weights e_k.
   std::vector<float> times(T), weights(T * T, 0.0f);
@@ -207,11 +243,20 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   anim.channels.push_back(channel);
   model.animations.push_back(anim);
 
-  std::ostringstream out;
-  tinygltf::TinyGLTF gltf;
-  if (!gltf.WriteGltfSceneToStream(&model, out, false, true))
-    throw InputError("cannot serialise the GLB", path.string());
-  writeFileAtomically(path.string(), out.str());
+  writeModel(path, model);
+}
+
+void writeRigGlb(const std::filesystem::path& path, const RigExport& rig) {
+  checkMesh(rig.rest, rig.triangles, rig.uv);
+  MYO_CHECK_EQ(rig.names.size(), rig.deltas.size());
+  for (const MatX3& d : rig.deltas)
+    MYO_CHECK(d.rows() == rig.rest.rows() && d.allFinite(), "every delta must be n×3 and finite");
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "Myoshell";
+  BufferBuilder bb(model);
+  addMorphMesh(model, bb, rig.name, rig.rest, rig.triangles, rig.uv, rig.deltas, rig.names, 0.01, 1.0);  // cm → m
+  writeModel(path, model);
 }
 
 }  // namespace myo

@@ -16,6 +16,8 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/face/activation_fit.h"
 #include "myoshell/face/muscle_def.h"
+#include "myoshell/face/retarget_map.h"
+#include "myoshell/face/rig_fit.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/test_data.h"
@@ -278,6 +280,84 @@ TEST_F(ActivationFitDefaultHead, BadInputIsRefusedWithExactMessages) {
 
 // With warping on, Gauss–Newton on the warped solve improves on the linear fit of a warped shape (0.0057 → < 10⁻⁶ in the activations);
 // with warping off (the fixture's model) it does not run.
+// A rig made by the model itself, in both spellings: every reachable shape is recovered, ICT's
+// halves of browInnerUp add into one entry, mouthClose is stored as its difference from jawOpen,
+// the eye rotations are listed with their reason and not fitted, a name that is no ARKit name is
+// skipped; the map reads back to itself.
+TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsADifference) {
+  const std::vector<std::pair<std::string, double>> jaw = {{"depressor_labii_inferioris_left", 0.5},
+                                                           {"depressor_labii_inferioris_right", 0.5}};
+  const std::vector<std::pair<std::string, double>> jawAndClose = {{"depressor_labii_inferioris_left", 0.2},
+                                                                   {"depressor_labii_inferioris_right", 0.3},
+                                                                   {"zygomaticus_major_left", 0.4}};
+  std::vector<RigTarget> rig = {
+      {"mouthSmileLeft", shape(acts({{"zygomaticus_major_left", 0.7}}))},
+      {"browInnerUp_L", shape(acts({{"corrugator_supercilii_left", 0.6}}))},
+      {"browInnerUp_R", shape(acts({{"corrugator_supercilii_right", 0.3}}))},
+      {"jawOpen", shape(acts(jaw))},
+      {"mouthClose", shape(acts(jawAndClose)) - shape(acts(jaw))},
+      {"eyeLookIn_L", shape(acts({{"corrugator_supercilii_left", 0.2}}))},
+      {"myStudioSneer", shape(acts({{"zygomaticus_major_right", 0.2}}))}};
+  FitSettings plain;  // λ = 0: the exact activations come back
+  const RigFit fit = fitRig(*skin_, rig, plain);
+
+  ASSERT_EQ(fit.map.shapes.size(), 5u);  // ARKit order: eyeLookInLeft, jawOpen, mouthClose, mouthSmileLeft, browInnerUp
+  EXPECT_EQ(fit.map.shapes[0].name, "eyeLookInLeft");
+  EXPECT_FALSE(fit.map.shapes[0].reachable);
+  EXPECT_EQ(fit.map.shapes[0].reason, *unreachableReason("eyeLookInLeft"));
+  EXPECT_FALSE(fit.shapes[0].fit.has_value());
+  EXPECT_EQ(fit.skipped, std::vector<std::string>{"myStudioSneer"});
+  auto value = [&](const std::string& shapeName, const std::string& muscle) {
+    for (const auto& [name, v] : fit.map.find(shapeName)->activations)
+      if (name == muscle) return v;
+    return 0.0;
+  };
+  EXPECT_NEAR(value("mouthSmile_L", "zygomaticus_major_left"), 0.7, 1e-6);
+  EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_left"), 0.6, 1e-6);
+  EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_right"), 0.3, 1e-6);
+  EXPECT_EQ(fit.shapes[4].sources, (std::vector<std::string>{"browInnerUp_L", "browInnerUp_R"}));
+  const RetargetShape& close = *fit.map.find("mouthClose");
+  EXPECT_EQ(close.correctiveOf, "jawOpen");
+  EXPECT_NEAR(value("mouthClose", "depressor_labii_inferioris_left"), 0.2 - 0.5, 1e-6);
+  EXPECT_NEAR(value("mouthClose", "depressor_labii_inferioris_right"), 0.3 - 0.5, 1e-6);
+  EXPECT_NEAR(value("mouthClose", "zygomaticus_major_left"), 0.4, 1e-6);
+  for (const auto& [muscle, total] : fit.map.totalActivations(close))
+    EXPECT_NEAR(total, muscle == "zygomaticus_major_left" ? 0.4 : muscle == "depressor_labii_inferioris_left" ? 0.2 : 0.3, 1e-6);
+  for (const RigShapeFit& s : fit.shapes)
+    if (s.fit) {
+      EXPECT_GT(s.fit->metric.cosine, 1.0 - 1e-9) << s.name;
+      EXPECT_LT(s.fit->rmsMm, 1e-5) << s.name;
+    }
+  EXPECT_GT(fit.medianCosine, 1.0 - 1e-9);
+
+  std::vector<std::string> muscles;
+  for (const auto& m : skin_->muscles()) muscles.push_back(m.muscle.def.name);
+  const RetargetMap back = parseRetargetMap(serialiseRetargetMap(fit.map), "map.json", muscles);
+  EXPECT_EQ(serialiseRetargetMap(back), serialiseRetargetMap(fit.map));
+}
+
+TEST_F(ActivationFitDefaultHead, FitRigRefusesRepeatedNamesAndACorrectiveWithoutItsBase) {
+  const MatX3 u = shape(acts({{"zygomaticus_major_left", 0.5}}));
+  auto message = [&](const std::vector<RigTarget>& rig) {
+    try {
+      fitRig(*skin_, rig, {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({{"mouthSmile_L", u}, {"mouthSmileLeft", u}}),
+            "fit-rig: the rig names mouthSmileLeft twice ('mouthSmile_L' and 'mouthSmileLeft')");
+  EXPECT_EQ(message({{"browInnerUp_L", u}, {"browInnerUp", u}}),
+            "fit-rig: the rig names browInnerUp twice ('browInnerUp_L' and 'browInnerUp')");
+  EXPECT_EQ(message({{"mouthClose", u}}),
+            "fit-rig: mouthClose is a corrective on jawOpen (it closes the lips of an open jaw), and the rig has no jawOpen");
+  EXPECT_EQ(message({{"smile", u}}),
+            "fit-rig: the rig has no shape with an ARKit name (it has: smile); docs/rigs.md lists the names in both spellings");
+  EXPECT_EQ(message({{"jawOpen", u.topRows(10)}}), "fit-rig: shape 'jawOpen' has 10 vertices, the head " +
+                                                        std::to_string(u.rows()));
+}
+
 TEST_F(ActivationFitDefaultHead, GaussNewtonRefinesOnTheWarpedSolveOnlyWhenWarpingIsOn) {
   EXPECT_FALSE(fitActivations(*skin_, dense(shape(acts(kFourRegions)))).refined);
   AnatomicalSettings warping;

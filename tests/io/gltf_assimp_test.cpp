@@ -15,6 +15,7 @@
 
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/obj_writer.h"
+#include "myoshell/io/rig_export.h"
 #include "support/cli_runner.h"
 
 namespace myo {
@@ -210,6 +211,34 @@ TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
   ASSERT_TRUE(mesh->HasTextureCoords(0));
   ASSERT_TRUE(obj->mMeshes[0]->HasTextureCoords(0));
   EXPECT_LT(maxCornerUvDifference(mesh, obj->mMeshes[0]), 1e-6);
+}
+
+
+// A rig (io/rig_export.h): one anim mesh per name, named from extras.targetNames, holding the base
+// plus the delta; everything in metres as written (the node has no transform).
+TEST_F(GltfAssimp, ReadsARigsNamedTargetsInMetres) {
+  const AnimationFrames a = bulgeAnimation(3);
+  RigExport rig;
+  rig.name = "bulge";
+  rig.rest = a.rest;
+  rig.triangles = a.triangles;
+  rig.names = {"mouthSmileLeft", "jawOpen", "cheekPuff"};
+  for (const MatX3& p : a.positions) rig.deltas.push_back(p - a.rest);
+  writeRigGlb(dir_ / "rig.glb", rig);
+
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile((dir_ / "rig.glb").string(), 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(scene->mNumMeshes, 1u);
+  const aiMesh* mesh = scene->mMeshes[0];
+  ASSERT_EQ(mesh->mNumVertices, static_cast<unsigned>(a.rest.rows()));
+  EXPECT_LT(maxDifference(mesh->mVertices, a.rest * 0.01), 1e-7);
+  ASSERT_EQ(mesh->mNumAnimMeshes, 3u);
+  for (unsigned k = 0; k < 3; ++k) {
+    EXPECT_EQ(std::string(mesh->mAnimMeshes[k]->mName.C_Str()), rig.names[k]);
+    EXPECT_LT(maxDifference(mesh->mAnimMeshes[k]->mVertices, a.positions[k] * 0.01), 1e-7) << k;
+  }
+  EXPECT_EQ(scene->mNumAnimations, 0u);
 }
 
 }  // namespace

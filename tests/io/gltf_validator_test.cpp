@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/rig_export.h"
 #include "support/cli_runner.h"
 #include "support/test_data.h"
 
@@ -164,6 +165,35 @@ TEST_F(GltfValidator, CliRunGlbHasNoErrors) {
                               " --format glb");
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   expectValid(dir_ / "out" / "small.glb");
+}
+
+
+// A rig of the 52 ARKit names (io/rig_export.h), with UVs, most targets zero as `myoshell rig`
+// writes them for unmapped names.
+TEST_F(GltfValidator, RigGlbHasNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  const AnimationFrames a = rippleAnimation(2);
+  RigExport rig;
+  rig.rest = a.rest;
+  rig.triangles = a.triangles;
+  rig.uv.resize(a.rest.rows(), 2);
+  for (Eigen::Index v = 0; v < a.rest.rows(); ++v) rig.uv.row(v) << a.rest(v, 0) / 7.0, a.rest(v, 1) / 5.0;
+  for (int k = 0; k < 52; ++k) {
+    rig.names.push_back("shape" + std::to_string(k));
+    rig.deltas.push_back(k == 7 ? MatX3(a.positions[1] - a.rest) : MatX3(MatX3::Zero(a.rest.rows(), 3)));
+  }
+  writeRigGlb(dir_ / "rig.glb", rig);
+  expectValid(dir_ / "rig.glb");
+}
+
+
+// The rig `myoshell rig` makes on the built-in head from the shipped ICT map.
+TEST_F(GltfValidator, CliRigGlbHasNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  const auto r = test::runCli("rig --head default --map " + shellQuote((test::sourceDir() / "assets/retarget/arkit_ict.json").string()) +
+                              " --out " + shellQuote((dir_ / "rig.glb").string()));
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  expectValid(dir_ / "rig.glb");
 }
 
 }  // namespace

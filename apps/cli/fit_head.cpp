@@ -1,0 +1,72 @@
+#include "fit_head.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/face/head_checks.h"
+#include "myoshell/io/head_files.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The rig's base mesh as a head, with the landmark file given (checked as loadHead checks an OBJ).
+Head rigBaseHead(const RigFile& rig, const std::string& landmarks) {
+  Head head;
+  head.name = fs::path(rig.path).stem().string();
+  head.mesh = rig.base;
+  head.landmarks = readLandmarks(landmarks, head.mesh.vertexCount());
+  head.landmarks.requireAll();
+  checkLoadedHead(head, LengthUnit::cm);
+  head.gravityPins = defaultGravityPins(head.mesh, head.landmarks);
+  head.pinsSource = "longest boundary loop + nasion_approx + Multi-PIE 28";
+  return head;
+}
+
+}  // namespace
+
+SceneInputs fitHeadInputs(const FitHeadOptions& o, const RigFile* rig, const std::string& what) {
+  SceneDesc scene;
+  scene.name = "fit";
+  if (usesRigBase(o, rig)) {
+    if (o.landmarks.empty())
+      throw InputError(what + ": the head is the rig's base mesh, which carries no landmarks: give --landmarks FILE (or "
+                              "the head with --head)");
+    if (o.unitsGiven)
+      throw InputError("--units: a glTF rig is in metres by specification and read in cm; --units applies to an OBJ head");
+    SceneInputs inputs = readSceneInputs(scene);
+    inputs.head = rigBaseHead(*rig, o.landmarks);
+    return inputs;
+  }
+  const HeadFiles files = resolveHeadArgument(o.head, o.landmarks, "", o.units);
+  scene.head.obj = files.obj;
+  scene.head.landmarks = files.landmarks;
+  scene.head.units = files.unit;
+  return readSceneInputs(scene);
+}
+
+LengthUnit fitHeadUnit(const FitHeadOptions& o, const RigFile* rig) {
+  if (usesRigBase(o, rig)) return LengthUnit::cm;
+  return resolveHeadArgument(o.head, o.landmarks, "", o.units).unit;
+}
+
+double parseLambda(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0.0)
+    throw InputError("--lambda: '" + text + "' is not a number ≥ 0");
+  return v;
+}
+
+void checkOutputFile(const std::string& path, const std::string& option, const std::string& what) {
+  if (path.empty()) return;
+  const fs::path p(path);
+  if (fs::is_directory(p)) throw InputError(option + ": is a folder; give the " + what + " to write", path);
+  const fs::path parent = p.parent_path();
+  if (!parent.empty() && !fs::is_directory(parent)) throw InputError(option + ": no such folder '" + parent.string() + "'");
+}
+
+}  // namespace myo::cli

@@ -1,0 +1,196 @@
+// `myoshell rig` and `myoshell fit-rig` on the built-in head: a hand-made map becomes a glTF rig of
+// the 52 ARKit shapes (read back by our reader), whose smile moves the mouth corner up and out, whose
+// mirror pairs agree, whose corrective is what it adds to its base; fit-rig on that rig gives the
+// map back. The shipped ICT map reads with the model's muscles. Bad arguments fail before the build.
+// Every run shares ctest's basis cache ($MYOSHELL_CACHE): one model build for the file.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "myoshell/face/arkit_names.h"
+#include "myoshell/face/retarget_map.h"
+#include "myoshell/face/head.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/io/retarget_map_file.h"
+#include "myoshell/io/rig_file.h"
+#include "support/cli_runner.h"
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::path(testing::TempDir()) / ("myo_rig_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+void writeText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+// Mirror pairs at equal activations, an open jaw made of the lower-lip depressors, a corrective
+// that adds a tenth of the left smile, and an eye rotation.
+const char* kMap = R"({"format": "myoshell-retarget-map", "version": 1, "model": "anatomical", "shapes": [
+  {"name": "eyeLookInLeft", "reachable": false, "reason": "eye rotation"},
+  {"name": "jawOpen", "activations": {"depressor_labii_inferioris_left": 0.5, "depressor_labii_inferioris_right": 0.5}},
+  {"name": "mouthClose", "corrective_of": "jawOpen", "activations": {"zygomaticus_major_left": 0.1}},
+  {"name": "mouthSmile_L", "activations": {"zygomaticus_major_left": 0.8}},
+  {"name": "mouthSmile_R", "activations": {"zygomaticus_major_right": 0.8}},
+  {"name": "mouthFrownLeft", "activations": {"depressor_anguli_oris_left": 0.6}},
+  {"name": "mouthFrownRight", "activations": {"depressor_anguli_oris_right": 0.6}},
+  {"name": "browDownLeft", "activations": {"corrugator_supercilii_left": 0.7}},
+  {"name": "browDownRight", "activations": {"corrugator_supercilii_right": 0.7}}]})";
+
+// For each vertex, the vertex nearest its mirror image across x = 0 (the built-in head's midplane).
+std::vector<int> mirrorVertices(const MatX3& V) {
+  std::vector<int> mirror(static_cast<size_t>(V.rows()));
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Vec3 m(-V(i, 0), V(i, 1), V(i, 2));
+    Eigen::Index best = 0;
+    (V.rowwise() - m.transpose()).rowwise().squaredNorm().minCoeff(&best);
+    mirror[static_cast<size_t>(i)] = static_cast<int>(best);
+  }
+  return mirror;
+}
+
+// ‖d_L − mirror(d_R)‖ / ‖d_L‖ over the vertices where either moves more than 0.5 mm.
+double mirrorMismatch(const MatX3& left, const MatX3& right, const std::vector<int>& mirror) {
+  double diff = 0, norm = 0;
+  for (Eigen::Index i = 0; i < left.rows(); ++i) {
+    Vec3 r = right.row(mirror[static_cast<size_t>(i)]).transpose();
+    r.x() = -r.x();
+    if (left.row(i).norm() <= 0.05 && r.norm() <= 0.05) continue;
+    diff += (left.row(i).transpose() - r).squaredNorm();
+    norm += left.row(i).squaredNorm();
+  }
+  return std::sqrt(diff / norm);
+}
+
+TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
+  const fs::path dir = scratch("roundtrip");
+  writeText(dir / "map.json", kMap);
+  const test::CliResult made =
+      test::runCli("rig --head default --map " + quoted(dir / "map.json") + " --out " + quoted(dir / "rig.glb") + " --json");
+  ASSERT_EQ(made.exitCode, 0) << made.merged;
+  const nlohmann::json report = nlohmann::json::parse(made.out);
+  EXPECT_EQ(report["shapes_made"], 8);
+  ASSERT_EQ(report["shapes"].size(), 52u);
+
+  const RigFile rig = readRig((dir / "rig.glb").string());
+  EXPECT_EQ(rig.names, arkitNames());
+  const Head head = loadDefaultHead();
+  ASSERT_EQ(rig.vertexCount(), head.mesh.vertexCount());
+  EXPECT_LT((rig.base.V - head.mesh.V).cwiseAbs().maxCoeff(), 1e-5);  // float32 metres, read back in cm
+
+  // The smile moves the left mouth corner up (+y) and out (+x: the subject's left).
+  const int corner = head.landmarks.named.at("mouth_corner_left");
+  const MatX3 smileL = rig.delta("mouthSmileLeft");
+  EXPECT_GT(smileL(corner, 1), 0.05) << smileL.row(corner);
+  EXPECT_GT(smileL(corner, 0), 0.0) << smileL.row(corner);
+  // Mirror pairs agree within 5 % over the moved region.
+  const std::vector<int> mirror = mirrorVertices(head.mesh.V);
+  for (const auto& [l, r] : std::vector<std::pair<std::string, std::string>>{
+           {"mouthSmileLeft", "mouthSmileRight"}, {"mouthFrownLeft", "mouthFrownRight"}, {"browDownLeft", "browDownRight"}}) {
+    const double mismatch = mirrorMismatch(rig.delta(l), rig.delta(r), mirror);
+    RecordProperty(l + "_mirror_mismatch", std::to_string(mismatch));
+    EXPECT_LT(mismatch, 0.05) << l << " / " << r;
+  }
+  // The corrective is what it adds to jawOpen: a tenth of the left smile's eighth (warping off: linear).
+  const MatX3 close = rig.delta("mouthClose");
+  EXPECT_LT((close - smileL / 8.0).norm(), 1e-4 * smileL.norm());
+  // Unmapped and unreachable names are zero targets.
+  EXPECT_EQ(rig.delta("eyeLookInLeft").cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(rig.delta("cheekPuff").cwiseAbs().maxCoeff(), 0.0);
+
+  // fit-rig on the physics-made rig, no sparsity: every activation back to 1e-3.
+  const test::CliResult fitted = test::runCli("fit-rig " + quoted(dir / "rig.glb") + " --head default --lambda 0 --out " +
+                                              quoted(dir / "back.json") + " --report " + quoted(dir / "report") + " --json");
+  ASSERT_EQ(fitted.exitCode, 0) << fitted.merged;
+  const nlohmann::json j = nlohmann::json::parse(fitted.out);
+  ASSERT_EQ(j["shapes"].size(), 52u);
+  int unreachable = 0;
+  for (const auto& s : j["shapes"])
+    if (!s["reachable"].get<bool>()) {
+      ++unreachable;
+      EXPECT_FALSE(s["reason"].get<std::string>().empty());
+      EXPECT_TRUE(s["cosine"].is_null());
+    }
+  EXPECT_EQ(unreachable, 10);
+  EXPECT_GT(j["median_cosine"].get<double>(), 0.999);
+  const RetargetMap original = parseRetargetMap(kMap, "map.json");
+  const RetargetMap back = readRetargetMapFile((dir / "back.json").string());
+  for (const RetargetShape& want : original.shapes) {
+    if (!want.reachable) continue;
+    const RetargetShape* got = back.find(want.name);
+    ASSERT_NE(got, nullptr) << want.name;
+    EXPECT_EQ(got->correctiveOf, want.correctiveOf) << want.name;
+    for (const auto& [muscle, value] : want.activations) {
+      double found = 0;
+      for (const auto& [m, v] : got->activations)
+        if (m == muscle) found = v;
+      EXPECT_NEAR(found, value, 1e-3) << want.name << " " << muscle;
+    }
+    double others = 0;  // no muscle the shape does not use
+    for (const auto& [m, v] : got->activations)
+      if (std::none_of(want.activations.begin(), want.activations.end(), [&](const auto& p) { return p.first == m; }))
+        others = std::max(others, std::abs(v));
+    EXPECT_LT(others, 1e-3) << want.name;
+  }
+  EXPECT_TRUE(fs::exists(dir / "report" / "report.md"));
+  EXPECT_TRUE(fs::exists(dir / "report" / "mouthSmileLeft.png"));
+  EXPECT_FALSE(fs::exists(dir / "report" / "eyeLookInLeft.png"));
+  fs::remove_all(dir);
+}
+
+TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFitted) {
+  std::vector<std::string> muscles;
+  for (const MuscleDef& d : thesisMuscleDefs()) muscles.push_back(d.name);
+  const RetargetMap map = readRetargetMapFile((test::sourceDir() / "assets/retarget/arkit_ict.json").string(), muscles);
+  int reachable = 0;
+  for (const RetargetShape& s : map.shapes) {
+    EXPECT_EQ(s.reachable, !unreachableReason(s.name).has_value()) << s.name;
+    if (!s.reachable) continue;
+    ++reachable;
+    EXPECT_TRUE(s.fit.has_value()) << s.name;
+  }
+  // The rig's 37 ICT shapes are 35 ARKit names (two pairs of halves); 8 eye rotations and cheekPuff are unreachable.
+  EXPECT_EQ(reachable, 26);
+}
+
+TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
+  const fs::path dir = scratch("bad");
+  writeText(dir / "map.json", kMap);
+  writeText(dir / "unknown_muscle.json",
+            R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "jawOpen", "activations": {"masseter": 1}}]})");
+  auto run = [&](const std::string& args) { return test::runCli(args); };
+  test::CliResult r = run("rig --head default --map " + quoted(dir / "map.json") + " --out " + quoted(dir / "rig.obj"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("--out: a rig is written as a glTF binary; give a file name ending in .glb"));
+  r = run("rig --head default --map " + quoted(dir / "map.json") + " --out " + quoted(dir / "nowhere" / "rig.glb"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("--out: no such folder"));
+  r = run("rig --head default --map " + quoted(dir / "unknown_muscle.json") + " --out " + quoted(dir / "rig.glb"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("unknown_muscle.json:1:98: key 'shapes[0].activations.masseter': unknown muscle 'masseter'"));
+  EXPECT_FALSE(fs::exists(dir / "rig.glb"));
+  r = run("fit-rig " + quoted(dir / "missing.glb") + " --head default");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("missing.glb"));
+  r = run("fit-rig " + quoted(dir / "map.json") + " --head default --lambda -1");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("--lambda: '-1' is not a number ≥ 0"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace myo
