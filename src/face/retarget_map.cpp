@@ -80,10 +80,10 @@ NamedValues RetargetMap::totalActivations(const RetargetShape& shape) const {
   if (shape.correctiveOf.empty()) return out;
   const RetargetShape* base = find(shape.correctiveOf);
   MYO_CHECK(base != nullptr, "corrective of a shape the map does not hold: " << shape.correctiveOf);
-  for (const auto& [muscle, value] : base->activations) {
-    auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == muscle; });
-    if (it == out.end()) out.emplace_back(muscle, value);
-    else it->second += value;
+  for (const auto& entry : base->activations) {
+    auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == entry.first; });
+    if (it == out.end()) out.push_back(entry);
+    else it->second += entry.second;
   }
   return out;
 }

@@ -141,9 +141,9 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
       EXPECT_NEAR(found, value, 1e-3) << want.name << " " << muscle;
     }
     double others = 0;  // no muscle the shape does not use
-    for (const auto& [m, v] : got->activations)
-      if (std::none_of(want.activations.begin(), want.activations.end(), [&](const auto& p) { return p.first == m; }))
-        others = std::max(others, std::abs(v));
+    for (const auto& entry : got->activations)
+      if (std::none_of(want.activations.begin(), want.activations.end(), [&](const auto& p) { return p.first == entry.first; }))
+        others = std::max(others, std::abs(entry.second));
     EXPECT_LT(others, 1e-3) << want.name;
   }
   EXPECT_TRUE(fs::exists(dir / "report" / "report.md"));
