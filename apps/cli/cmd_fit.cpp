@@ -45,6 +45,7 @@ struct FitArgs {
   std::string landmarks;
   std::string units = "cm";
   std::string muscles;         // comma-separated; "" = every muscle
+  std::string library = "builtin";
   std::string align = "none";
   std::string lambda = "0.02";
   std::string out;
@@ -120,6 +121,7 @@ int runFit(const FitArgs& a) {
   headOptions.head = a.head;
   headOptions.landmarks = a.landmarks;
   headOptions.units = a.units;
+  headOptions.library = a.library;
   headOptions.headGiven = a.headOption->count() > 0;
   headOptions.unitsGiven = a.unitsOption->count() > 0;
   const RigFile* rigOrNull = kind == TargetKind::Rig ? &rig : nullptr;
@@ -228,6 +230,7 @@ static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--align", args->align, "none, rigid or similarity: remove the target's motion first (default none)");
   sub->add_option("--lambda", args->lambda, "sparsity weight ≥ 0 (default 0.02; 0 = plain bounded least squares)");
   sub->add_option("--out", args->out, "write the activations and figures as JSON (its folder must exist)");
+  sub->add_option("--library", args->library, "muscles: builtin (the thesis's eight, default), face (the whole face, docs/muscles.md) or a library file");
   sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
                                              "~/.cache/myoshell)");
   sub->add_flag("--json", args->json, "print the activations and figures as JSON");

@@ -31,6 +31,7 @@ Head rigBaseHead(const RigFile& rig, const std::string& landmarks) {
 SceneInputs fitHeadInputs(const FitHeadOptions& o, const RigFile* rig, const std::string& what) {
   SceneDesc scene;
   scene.name = "fit";
+  scene.muscleLibrary = o.library;
   if (usesRigBase(o, rig)) {
     if (o.landmarks.empty())
       throw InputError(what + ": the head is the rig's base mesh, which carries no landmarks: give --landmarks FILE (or "

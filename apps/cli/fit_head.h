@@ -1,7 +1,7 @@
 // The head a fitting command (`fit`, `fit-rig`) works on: --head default|DIR|OBJ (with --landmarks
 // and --units) as every command reads it, or, for a glTF rig without a head option, the rig's base
 // mesh with the landmark file given (a glTF file carries no landmarks). With the anatomical model's
-// muscles and settings.
+// settings and the muscles of --library.
 #pragma once
 
 #include <string>
@@ -15,6 +15,7 @@ struct FitHeadOptions {
   std::string head = "default";
   std::string landmarks;
   std::string units = "cm";
+  std::string library = "builtin";  // --library: "builtin" (the thesis's eight), "face" (the whole face) or a file
   bool headGiven = false;   // --head on the command line
   bool unitsGiven = false;  // --units on the command line
 };

@@ -371,8 +371,8 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   if (!isThesis) an.validate();
   // The muscle names: against the built-in library here; a library file is io's to read, so here
   // only the timeline against an explicit selection (io checks the rest: readSceneInputs).
-  if (scene.muscleLibrary == "builtin") {
-    sceneMuscles(scene, thesisMuscleDefs());
+  if (const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary)) {
+    sceneMuscles(scene, *builtin);
   } else if (!scene.muscles.empty()) {
     std::vector<MuscleDef> named(scene.muscles.size());
     for (size_t i = 0; i < named.size(); ++i) named[i].name = scene.muscles[i];

@@ -110,6 +110,9 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
   };
 
   for (const MuscleDef& def : defs) {
+    if (def.isRing())
+      throw InputError("muscle '" + def.name + "': a ring muscle (a sphincter) is played by the anatomical model only "
+                       "(\"model\": \"anatomical\"); the thesis's muscles are linear");
     MuscleUnit unit;
     unit.muscle = buildMuscle(def, head_);
     const TriMesh& mm = unit.muscle.mesh;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
@@ -78,70 +79,120 @@ Muscle importMuscle(const MuscleDef& def) {
   return muscle;
 }
 
+// The centre line of a ring muscle: S stations at equal arc length along the polyline through its
+// path's skin points (closed: around the loop, station 0 not repeated), each re-projected onto the
+// skin and pushed under it at the depth interpolated between the path's anchors.
+void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& frame, const MatX3& normals,
+                    std::vector<Vec3>& centre, std::vector<Vec3>& normal) {
+  std::vector<Vec3> points;
+  std::vector<double> depths;
+  for (const MuscleAnchor& a : def.ring.path) {
+    points.push_back(anchorOnSkin(a, head, frame, normals, def.name).point);
+    depths.push_back(frame.scale * a.depth);
+  }
+  if (def.ring.closed) {
+    points.push_back(points.front());
+    depths.push_back(depths.front());
+  }
+  std::vector<double> arc(points.size(), 0.0);
+  for (size_t k = 1; k < points.size(); ++k) arc[k] = arc[k - 1] + (points[k] - points[k - 1]).norm();
+  if (!(arc.back() > 1e-3 * frame.scale)) throw InputError("muscle '" + def.name + "': its ring path has no length on this head");
+  const int S = def.stations;
+  const int intervals = def.ring.closed ? S : S - 1;
+  size_t seg = 0;
+  for (int s = 0; s < S; ++s) {
+    const double target = arc.back() * s / intervals;
+    while (seg + 2 < points.size() && arc[seg + 1] < target) ++seg;
+    const double len = arc[seg + 1] - arc[seg];
+    const double w = len > 0 ? std::clamp((target - arc[seg]) / len, 0.0, 1.0) : 0.0;
+    const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals, (1 - w) * points[seg] + w * points[seg + 1]);
+    normal[static_cast<size_t>(s)] = p.normal;
+    centre[static_cast<size_t>(s)] = p.point - ((1 - w) * depths[seg] + w * depths[seg + 1]) * p.normal;
+  }
+}
+
 }  // namespace
 
-Muscle buildMuscle(const MuscleDef& def, const Head& head) {
+Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation) {
   def.validate();
   if (def.imported()) return importMuscle(def);
   Muscle muscle;
   muscle.def = def;
   const FaceFrame frame = head.frame();
   const MatX3 normals = vertexNormals(head.mesh.V, head.mesh.F);
-  const SurfacePoint o = anchorOnSkin(def.origin, head, frame, normals, def.name);
-  const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, normals, def.name);
-  if ((o.point - i.point).norm() < 1e-3 * frame.scale)
-    throw InputError("muscle '" + def.name + "': origin and insertion coincide on this head");
-
-  // Centre line: stations between the two skin points, each re-projected onto the skin so the
-  // muscle follows the face's curvature, then pushed under it along the normal (thesis Fig. 10).
   const int S = def.stations, R = def.ringNodes;
   std::vector<Vec3> centre(S), normal(S);
-  // With a skull, the origin sits on the bone: its depth is the skin-to-skull distance under the
-  // origin's skin point (never less than the definition's own depth).
-  double originDepth = frame.scale * def.origin.depth;
-  if (head.hasSkull()) {
-    const MatX3 skullNormals = vertexNormals(head.skull.V, head.skull.F);
-    const SurfacePoint bone = closestSurfacePoint(head.skull.V, head.skull.F, skullNormals, o.point);
-    originDepth = std::max(originDepth, bone.distance);
+  const bool loop = def.isRing() && def.ring.closed;
+  if (def.isRing()) {
+    ringCentreLine(def, head, frame, normals, centre, normal);
+    Vec3 c = Vec3::Zero();
+    for (const MuscleAnchor& a : def.ring.anchors) {
+      const SurfacePoint p = anchorOnSkin(a, head, frame, normals, def.name);
+      c += 0.5 * (p.point - frame.scale * a.depth * p.normal);
+    }
+    muscle.ringCentre = c;
+  } else {
+    const SurfacePoint o = anchorOnSkin(def.origin, head, frame, normals, def.name);
+    const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, normals, def.name);
+    if ((o.point - i.point).norm() < 1e-3 * frame.scale)
+      throw InputError("muscle '" + def.name + "': origin and insertion coincide on this head");
+
+    // Centre line: stations between the two skin points, each re-projected onto the skin so the
+    // muscle follows the face's curvature, then pushed under it along the normal (thesis Fig. 10).
+    // With a skull, the origin sits on the bone: its depth is the skin-to-skull distance under the
+    // origin's skin point (never less than the definition's own depth).
+    double originDepth = frame.scale * def.origin.depth;
+    if (head.hasSkull()) {
+      const MatX3 skullNormals = vertexNormals(head.skull.V, head.skull.F);
+      const SurfacePoint bone = closestSurfacePoint(head.skull.V, head.skull.F, skullNormals, o.point);
+      originDepth = std::max(originDepth, bone.distance);
+    }
+    for (int s = 0; s < S; ++s) {
+      const double t = static_cast<double>(s) / (S - 1);
+      const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals,
+                                                 (1 - t) * o.point + t * i.point);
+      const double depth = (1 - t) * originDepth + t * frame.scale * def.insertion.depth;
+      normal[s] = p.normal;
+      centre[s] = p.point - depth * p.normal;
+    }
   }
-  for (int s = 0; s < S; ++s) {
-    const double t = static_cast<double>(s) / (S - 1);
-    const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals,
-                                               (1 - t) * o.point + t * i.point);
-    const double depth = (1 - t) * originDepth + t * frame.scale * def.insertion.depth;
-    normal[s] = p.normal;
-    centre[s] = p.point - depth * p.normal;
-  }
+  // A loop's neighbours wrap around; an open line's ends use one-sided differences.
+  auto station = [&](int s) { return loop ? (s + S) % S : std::clamp(s, 0, S - 1); };
   std::vector<Vec3> tangent(S);
-  for (int s = 0; s < S; ++s) {
-    const Vec3 d = centre[std::min(s + 1, S - 1)] - centre[std::max(s - 1, 0)];
-    tangent[s] = d.normalized();
-  }
+  for (int s = 0; s < S; ++s) tangent[s] = (centre[station(s + 1)] - centre[station(s - 1)]).normalized();
 
   // Rings: a flat ellipse (width across, thickness along the skin normal); node k at angle
   // π/2 + 2π(k−1)/R, so nodes 1 and 1 + R/2 are the top and bottom middle (the central nodes).
   TriMesh& mesh = muscle.mesh;
   mesh.V.resize(S * R, 3);
   const double halfWidth = 0.5 * def.width * frame.scale, halfThick = 0.5 * def.thickness * frame.scale;
+  // A right muscle's `across` is flipped (after `up` is made from it): reflection turns n × t into
+  // −(its mirror), so the flip makes node k of the right tube the mirror of node k of the left one.
+  const bool flip = orientation == TubeOrientation::MirrorRightSide && def.side == "right";
   for (int s = 0; s < S; ++s) {
-    const Vec3 across = normal[s].cross(tangent[s]).normalized();
+    Vec3 across = normal[s].cross(tangent[s]).normalized();
     const Vec3 up = tangent[s].cross(across).normalized();  // the normal made orthogonal to the axis
+    if (flip) across = -across;
     for (int k = 0; k < R; ++k) {
       const double angle = std::numbers::pi / 2 + 2 * std::numbers::pi * (k - 1) / R;
       mesh.V.row(s * R + k) = centre[s] + halfWidth * std::cos(angle) * across + halfThick * std::sin(angle) * up;
     }
   }
-  // Triangles: two per quad of the tube, fans closing both ends; 2·S·R − 4 in all.
+  // Triangles: two per quad of the tube, fans closing both ends; 2·S·R − 4 in all. A loop joins
+  // its last ring to its first instead (a torus, 2·S·R triangles, no ends).
   std::vector<Eigen::Vector3i> tris;
-  for (int s = 0; s + 1 < S; ++s)
+  for (int s = 0; s + 1 < S || (loop && s < S); ++s)
     for (int k = 0; k < R; ++k) {
-      const int a = s * R + k, b = s * R + (k + 1) % R, c = a + R, d = b + R;
+      const int next = (s + 1) % S;
+      const int a = s * R + k, b = s * R + (k + 1) % R, c = next * R + k, d = next * R + (k + 1) % R;
       tris.emplace_back(a, b, d);
       tris.emplace_back(a, d, c);
     }
-  for (int k = 1; k + 1 < R; ++k) tris.emplace_back(0, k + 1, k);
-  const int last = (S - 1) * R;
-  for (int k = 1; k + 1 < R; ++k) tris.emplace_back(last, last + k, last + k + 1);
+  if (!loop) {
+    for (int k = 1; k + 1 < R; ++k) tris.emplace_back(0, k + 1, k);
+    const int last = (S - 1) * R;
+    for (int k = 1; k + 1 < R; ++k) tris.emplace_back(last, last + k, last + k + 1);
+  }
   mesh.F.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t t = 0; t < tris.size(); ++t) mesh.F.row(static_cast<Eigen::Index>(t)) = tris[t].transpose();
   // Orient outwards: the enclosed volume must be positive.
@@ -150,6 +201,13 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head) {
     volume += Vec3(mesh.V.row(mesh.F(t, 0))).dot(Vec3(mesh.V.row(mesh.F(t, 1))).cross(Vec3(mesh.V.row(mesh.F(t, 2)))));
   if (volume < 0) mesh.F.col(1).swap(mesh.F.col(2));
   mesh.sourcePath = "<muscle " + def.name + ">";
+  muscle.restLength = 0.0;
+  for (int s = 0; s + 1 < S || (loop && s < S); ++s) muscle.restLength += (centre[station(s + 1)] - centre[s]).norm();
+  muscle.originPoint = centre.front();
+  muscle.insertionPoint = centre.back();
+  // A ring has no origin, central or insertion nodes: its contraction about its centre is its
+  // shape (muscle_coupling.cpp), and only the anatomical model plays it.
+  if (def.isRing()) return muscle;
 
   for (int k = 0; k < R; ++k) muscle.originNodes.push_back(k);
   muscle.contractDirection.resize(2 * (S - 1), 3);
@@ -160,10 +218,6 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head) {
       muscle.contractDirection.row(row++) = -tangent[s].transpose();
     }
   for (int k = 0; k < R; ++k) muscle.insertionNodes.push_back((S - 1) * R + k);
-  muscle.originPoint = centre.front();
-  muscle.insertionPoint = centre.back();
-  muscle.restLength = 0.0;
-  for (int s = 0; s + 1 < S; ++s) muscle.restLength += (centre[s + 1] - centre[s]).norm();
   return muscle;
 }
 

@@ -40,22 +40,14 @@ void CouplingProfile::validate(const std::string& owner) const {
     bad("profile positions must satisfy 0 ≤ origin_end < belly_start ≤ insertion_start < 1");
 }
 
-CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings) {
-  const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
-  profile.validate(def.coupling ? "muscle '" + def.name + "': coupling" : "muscle coupling");
-  settings.muscle.validate();
-  if (!(settings.shortening > 0.0 && settings.shortening < 1.0))
-    throw InputError("muscle '" + def.name + "': shortening must lie in (0, 1)");
-  CoupledMuscle cm;
-  cm.muscle = buildMuscle(def, head);
+// A linear muscle's shape at a = 1: the static response of the pinned muscle to its activation load
+// (unit forces along the contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's
+// static-shape variant), scaled so that the insertion ring moves shortening × length along the muscle.
+void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCouplingSettings& settings) {
   const Muscle& mu = cm.muscle;
-  const TriMesh& mm = mu.mesh;
-  const int nm = mm.vertexCount();
-  const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), settings.muscle);
-
-  // The static response of the pinned muscle to its activation load (unit forces along the
-  // contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's static-shape variant).
-  const std::vector<int> freeV = freeVerticesOf(nm, mu.originNodes, mm.F);
+  const MuscleDef& def = mu.def;
+  const int nm = mu.mesh.vertexCount();
+  const std::vector<int> freeV = freeVerticesOf(nm, mu.originNodes, mu.mesh.F);
   std::vector<int> toFree(static_cast<size_t>(nm), -1);
   for (size_t k = 0; k < freeV.size(); ++k) toFree[static_cast<size_t>(freeV[k])] = static_cast<int>(k);
   const SparseMat Kff = restrictToFree(shell.stiffnessAtRest(), freeV, nm);
@@ -90,6 +82,51 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
     cm.naturalFrequency = std::sqrt(x.dot(Kff * x) / mm2);
   }
 
+}
+
+// A ring muscle's shape at a = 1 (docs/muscles.md, "Ring muscles"): the fibres shorten by the
+// ring's `shortening` σ, drawing every node towards the ring's centre c in the face's plane,
+//   u_v = −σ P(p_v − c) + π σ |P(p_v − c)| ẑ,
+// P the projection onto the face frame's x–y plane, ẑ its forward axis, π the ring's `protrusion`.
+// A band of uniform fibres under uniform tension contracts uniformly about its centre: its length
+// falls by σ. The forward term is the lip's incompressibility: tissue squeezed towards the mouth's
+// centre bulges out of the face (π = 0 for the eye, whose ring slides over the bone).
+void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& frame) {
+  const Muscle& mu = cm.muscle;
+  const MuscleDef::Ring& ring = mu.def.ring;
+  const int nm = mu.mesh.vertexCount();
+  const Vec3 x = frame.axes.col(0), y = frame.axes.col(1), z = frame.axes.col(2);
+  cm.fullShape.resize(nm, 3);
+  for (int v = 0; v < nm; ++v) {
+    const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.ringCentre;
+    const Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
+    cm.fullShape.row(v) = (-ring.shortening * inPlane + ring.protrusion * ring.shortening * inPlane.norm() * z).transpose();
+  }
+  // ω from the free band's Rayleigh quotient (the shape has no rigid part: it shrinks the band).
+  VecX u(3 * nm);
+  for (int v = 0; v < nm; ++v) u.segment<3>(3 * v) = cm.fullShape.row(v).transpose();
+  const VecX& mass = shell.lumpedMass();
+  double mm2 = 0.0;
+  for (int v = 0; v < nm; ++v) mm2 += mass(v) * u.segment<3>(3 * v).squaredNorm();
+  cm.naturalFrequency = std::sqrt(u.dot(shell.stiffnessAtRest() * u) / mm2);
+}
+
+CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings) {
+  const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
+  profile.validate(def.coupling ? "muscle '" + def.name + "': coupling" : "muscle coupling");
+  settings.muscle.validate();
+  if (!(settings.shortening > 0.0 && settings.shortening < 1.0))
+    throw InputError("muscle '" + def.name + "': shortening must lie in (0, 1)");
+  CoupledMuscle cm;
+  cm.muscle = buildMuscle(def, head, TubeOrientation::MirrorRightSide);
+  const Muscle& mu = cm.muscle;
+  const TriMesh& mm = mu.mesh;
+  const int nm = mm.vertexCount();
+  const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), settings.muscle);
+
+  if (mu.def.isRing()) ringShape(cm, shell, head.frame());
+  else linearShape(cm, shell, settings);
+
   // Springs from every skin vertex over the muscle to the muscle's surface point below it.
   const MatX3& S = head.mesh.V;
   const MatX3i& F = head.mesh.F;
@@ -97,20 +134,29 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   const MatX3 muscleNormals = vertexNormals(mm.V, mm.F);
   const VecX skinArea = lumpedVertexAreas(S, F);
   const double L = mu.restLength;
-  // Per muscle node: its place along the muscle (t) and its depth below the skin.
+  // Per muscle node: its place along the muscle (t) and its depth below the skin. A ring's fibres
+  // insert into the skin all along it (the lips, the lids): t = 1, the insertion's modulus.
+  const Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
   VecX nodeT(nm), nodeDepth(nm);
   for (int v = 0; v < nm; ++v) {
     const Vec3 p = mm.V.row(v);
-    nodeT(v) = std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
+    nodeT(v) = def.isRing() ? 1.0 : std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
     nodeDepth(v) = closestSurfacePoint(S, F, skinNormals, p).distance;
     if (!(nodeDepth(v) > 1e-9 * L))
       throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
   }
-  const Vec3 middle = 0.5 * (mu.originPoint + mu.insertionPoint);
+  // Skin farther than `searchRadius` from `middle` cannot lie over the muscle: skip the search.
+  const Vec3 middle = def.isRing() ? mu.ringCentre : 0.5 * (mu.originPoint + mu.insertionPoint);
+  double searchRadius = L;
+  if (def.isRing()) {
+    searchRadius = 0.0;
+    for (int v = 0; v < nm; ++v)
+      searchRadius = std::max(searchRadius, (Vec3(mm.V.row(v)) - middle).norm() + settings.footprintReach * nodeDepth(v));
+  }
   const double reachFactor = settings.footprintReach;
   for (Eigen::Index i = 0; i < S.rows(); ++i) {
     const Vec3 x = S.row(i);
-    if ((x - middle).norm() > L) continue;  // cannot lie over the muscle: skip the search
+    if ((x - middle).norm() > searchRadius) continue;
     const SurfacePoint below = closestSurfacePoint(mm.V, mm.F, muscleNormals, x);
     const Eigen::Vector3i tri = mm.F.row(below.triangle).transpose();
     double t = 0.0, depth = 0.0;

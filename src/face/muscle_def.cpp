@@ -12,6 +12,8 @@
 
 namespace myo {
 
+const char* toString(MuscleKind kind) { return kind == MuscleKind::Ring ? "ring" : "linear"; }
+
 void MuscleDef::validate() const {
   auto bad = [&](const std::string& what) { throw InputError("muscle '" + name + "': " + what); };
   if (name.empty()) throw InputError("a muscle has an empty name");
@@ -21,7 +23,19 @@ void MuscleDef::validate() const {
     if (originNodes.size() < 3) bad("an imported muscle needs at least 3 origin_nodes");
     if (centralNodes.empty()) bad("an imported muscle needs central_nodes");
   }
-  for (const MuscleAnchor* a : {&origin, &insertion}) {
+  if (isRing()) {
+    if (imported()) bad("a ring muscle is generated from its path, not imported");
+    if (ring.path.size() < 3) bad("a ring needs a path of at least 3 anchors");
+    if (!(ring.shortening > 0.0 && ring.shortening < 1.0)) bad("ring shortening must lie in (0, 1)");
+    if (!(ring.protrusion >= 0.0) || !std::isfinite(ring.protrusion)) bad("ring protrusion must be ≥ 0");
+  }
+  std::vector<const MuscleAnchor*> anchors = {&origin, &insertion};
+  if (isRing()) {
+    anchors.clear();
+    for (const MuscleAnchor& a : ring.path) anchors.push_back(&a);
+    for (const MuscleAnchor& a : ring.anchors) anchors.push_back(&a);
+  }
+  for (const MuscleAnchor* a : anchors) {
     if (imported()) break;
     if (a->landmark.empty()) bad("an anchor has no landmark");
     if (!a->offset.allFinite()) bad("an anchor offset is not finite");
@@ -119,6 +133,26 @@ MuscleDef readMuscleDef(DocReader& r) {
     d.insertionNodes = ids("insertion_nodes");
     if (d.originNodes.size() < 3) r.fail("origin_nodes", "an imported muscle needs at least 3 origin nodes");
     if (d.centralNodes.empty()) r.fail("central_nodes", "an imported muscle needs central nodes");
+  } else if (r.has("ring")) {
+    d.kind = MuscleKind::Ring;
+    DocReader ring = r.child("ring");
+    const YAML::Node path = ring.node("path");
+    if (!path.IsSequence() || path.size() < 3) ring.failAt(path, ring.keyPath("path"), "must be a list of at least 3 anchors");
+    for (size_t k = 0; k < path.size(); ++k)
+      d.ring.path.push_back(readAnchor(DocReader(path[k], r.file(), ring.keyPath("path") + "[" + std::to_string(k) + "]")));
+    d.ring.closed = ring.boolean("closed", false);
+    const YAML::Node anchors = ring.node("anchors");
+    if (!anchors.IsSequence() || anchors.size() != 2)
+      ring.failAt(anchors, ring.keyPath("anchors"), "must be the two anchors whose midpoint is the ring's centre");
+    for (size_t k = 0; k < 2; ++k)
+      d.ring.anchors[k] = readAnchor(DocReader(anchors[k], r.file(), ring.keyPath("anchors") + "[" + std::to_string(k) + "]"));
+    d.ring.shortening = ring.number("shortening", d.ring.shortening);
+    if (!(d.ring.shortening > 0.0 && d.ring.shortening < 1.0)) ring.fail("shortening", "must lie in (0, 1)");
+    d.ring.protrusion = ring.number("protrusion", d.ring.protrusion);
+    ring.requireAtLeast("protrusion", d.ring.protrusion, 0.0);
+    ring.finish();
+    if (r.has("origin") || r.has("insertion"))
+      r.fail(r.has("origin") ? "origin" : "insertion", "a ring muscle has a path and anchors, not an origin and an insertion");
   } else {
     d.origin = readAnchor(r.child("origin"));
     d.insertion = readAnchor(r.child("insertion"));
@@ -173,6 +207,22 @@ const std::vector<MuscleDef>& thesisMuscleDefs() {
   static const std::vector<MuscleDef> defs =
       parseMuscleDefs(thesisMuscleJson(), "<embedded assets/muscles/thesis_muscles.json>");
   return defs;
+}
+
+namespace detail {
+extern const char kFaceMusclesJson[];
+}  // namespace detail
+
+const std::vector<MuscleDef>& faceMuscleDefs() {
+  static const std::vector<MuscleDef> defs =
+      parseMuscleDefs(detail::kFaceMusclesJson, "<embedded assets/muscles/face_muscles.json>");
+  return defs;
+}
+
+const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name) {
+  if (name == "builtin") return &thesisMuscleDefs();
+  if (name == "face") return &faceMuscleDefs();
+  return nullptr;
 }
 
 }  // namespace myo

@@ -34,8 +34,8 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
     rescaleToCentimetres(in.head.skull, scene.head.units);  // written in the head's unit
   }
 
-  const std::vector<MuscleDef> library = scene.muscleLibrary == "builtin" ? thesisMuscleDefs()
-                                                                           : readMuscleDefs(resolve(scene.muscleLibrary));
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary);
+  const std::vector<MuscleDef> library = builtin ? *builtin : readMuscleDefs(resolve(scene.muscleLibrary));
   in.muscles = sceneMuscles(scene, library);
   readMuscleShells(in.muscles);  // the scene's own imported muscles
 

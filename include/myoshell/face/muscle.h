@@ -24,7 +24,10 @@ struct Muscle {
   MatX3 contractDirection;
   Vec3 originPoint = Vec3::Zero();     // centre of the origin ring, cm
   Vec3 insertionPoint = Vec3::Zero();  // centre of the insertion ring, cm
-  double restLength = 0.0;             // length of the centre line, cm
+  double restLength = 0.0;             // length of the centre line, cm (a loop's all round)
+  Vec3 ringCentre = Vec3::Zero();      // a ring muscle's centre (its anchors' midpoint under the skin), cm
+  // The station (ring of the tube) of a generated muscle's node: node s·ringNodes + k.
+  int stationOf(int node) const { return node / def.ringNodes; }
   int insertionCentre(int k = 0) const;  // a vertex of the insertion ring (k in [0, ringNodes))
 };
 
@@ -34,6 +37,10 @@ struct Muscle {
 // insertion anchor, each station is pushed under the skin along the skin normal at an interpolated
 // depth, and a flat elliptic ring (width × thickness) is placed across it; the ends are closed
 // with fans. Throws InputError naming the muscle when a landmark is missing or the anchors coincide.
-Muscle buildMuscle(const MuscleDef& def, const Head& head);
+// TubeOrientation::MirrorRightSide: a right-side muscle's rings run the other way round, so that its tube is the
+// exact mirror image of its left twin's, node for node and triangle for triangle (the anatomical
+// model: pairs act symmetrically on a symmetric head); false keeps the thesis model's tubes.
+enum class TubeOrientation { Thesis, MirrorRightSide };
+Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation = TubeOrientation::Thesis);
 
 }  // namespace myo

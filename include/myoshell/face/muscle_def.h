@@ -3,6 +3,7 @@
 // The thesis's eight muscles ship in assets/muscles/thesis_muscles.json (docs/muscles.md).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,8 +32,16 @@ struct MuscleAnchor {
   double depth = 0.04;           // face-frame units under the skin (> 0)
 };
 
+// A linear muscle pulls its insertion towards its origin (the thesis's kind). A ring muscle is a
+// sphincter (orbicularis oris, orbicularis oculi): a band along `path` whose activation is a
+// tension along its fibres that draws the ring towards its centre (docs/muscles.md, "Ring
+// muscles"). Only the anatomical model plays ring muscles.
+enum class MuscleKind { Linear, Ring };
+const char* toString(MuscleKind kind);
+
 struct MuscleDef {
   std::string name;              // unique, e.g. "zygomaticus_major_right"
+  MuscleKind kind = MuscleKind::Linear;
   std::string side;              // "right", "left" or "center" (the subject's side)
   std::string facs;              // FACS action unit(s) it drives, e.g. "AU12" (documentation only)
   MuscleAnchor origin;           // fixed end, on the skull side: its station ring is pinned
@@ -52,6 +61,23 @@ struct MuscleDef {
   // written keep CouplingProfile's defaults); none = the model's profile (MuscleCouplingSettings).
   // The thesis model does not read it.
   std::optional<CouplingProfile> coupling;
+
+  // Ring muscles (kind Ring; key `ring`): the band's course through `path` (≥ 3 anchors, in order,
+  // each placed as origin and insertion are), closed into a loop or open (an arc whose ends are the
+  // first and last anchors); the two `anchors` whose midpoint (under the skin) is the ring's
+  // centre — the modioli for the mouth, the medial palpebral ligament and the lateral raphe for the
+  // eye; `shortening` (the fibres' shortening at a = 1, a fraction of their length: the ring's
+  // contraction about its centre) and `protrusion` (forward motion out of the face per unit of
+  // inward motion, from the lip's incompressibility: docs/muscles.md).
+  struct Ring {
+    std::vector<MuscleAnchor> path;
+    bool closed = false;
+    std::array<MuscleAnchor, 2> anchors;
+    double shortening = 0.3;
+    double protrusion = 0.0;
+  };
+  Ring ring;
+  bool isRing() const { return kind == MuscleKind::Ring; }
 
   // Imported muscle (instead of a generated one): an OBJ of the closed muscle shell in the head's
   // space (cm), with its node sets as vertex ids of that OBJ. origin/insertion anchors, width,
@@ -85,5 +111,13 @@ MuscleDef readMuscleDef(DocReader& reader);
 // depressor anguli oris; right and left), from the library embedded at build time.
 const std::vector<MuscleDef>& thesisMuscleDefs();
 const std::string& thesisMuscleJson();
+
+// The whole face's muscles (assets/muscles/face_muscles.json, embedded): 17 pairs and 3 midline
+// muscles, the thesis's eight among them, linear and ring (docs/muscles.md).
+const std::vector<MuscleDef>& faceMuscleDefs();
+
+// A built-in library by its scene name: "builtin" (the thesis's eight, the default) or "face" (the
+// whole face); nullptr for any other name (a library file's path).
+const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name);
 
 }  // namespace myo
