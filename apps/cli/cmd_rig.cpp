@@ -83,6 +83,7 @@ int runRig(RigArgs& a) {
   rig.rest = head.mesh.V;
   rig.triangles = head.mesh.F;
   rig.uv = head.mesh.UV;
+  rig.cornerUV = head.mesh.cornerUV;  // an OBJ head's UV seams become appended duplicate vertices
   nlohmann::ordered_json shapes = nlohmann::ordered_json::array();
   int made = 0;
   for (const std::string& name : arkitNames()) {

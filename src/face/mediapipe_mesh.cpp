@@ -187,6 +187,14 @@ int openMediapipeMouth(TriMesh& mesh) {
   const int removed = mesh.triangleCount() - static_cast<int>(keep.size());
   MatX3i F(static_cast<int>(keep.size()), 3);
   for (size_t i = 0; i < keep.size(); ++i) F.row(static_cast<int>(i)) = mesh.F.row(keep[i]);
+  if (mesh.hasCornerUV()) {  // the kept triangles keep their corners' UVs
+    MatX2 cornerUV(3 * F.rows(), 2);
+    for (size_t i = 0; i < keep.size(); ++i)
+      cornerUV.middleRows(3 * static_cast<Eigen::Index>(i), 3) = mesh.cornerUV.middleRows(3 * keep[i], 3);
+    mesh.cornerUV = std::move(cornerUV);
+  } else {
+    mesh.cornerUV.resize(0, 2);
+  }
   mesh.F = std::move(F);
   mesh.sourcePolygon.clear();
   mesh.polygons.clear();

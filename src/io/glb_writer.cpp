@@ -16,6 +16,7 @@
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/rig_export.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/mesh/uv_seams.h"
 
 namespace myo {
 namespace {
@@ -95,10 +96,13 @@ namespace {
 // The one mesh with its morph targets, in a single primitive: POSITION, NORMAL, TEXCOORD_0 (when
 // there are UVs), UNSIGNED_INT indices, one POSITION target per delta named in
 // meshes[0].extras.targetNames, and the node that places it. Positions and deltas (cm) are
-// multiplied by `toFile` as written; the node's scale (when not 1) turns them into metres.
+// multiplied by `toFile` as written; the node's scale (when not 1) turns them into metres. The
+// normals are given (not computed from these triangles) so that a mesh split along its UV seams
+// can carry the normals of the unsplit mesh: computed on the split one, a seam would show.
 void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& name, const MatX3& rest,
-                  const MatX3i& triangles, const MatX2& uvs, const std::vector<MatX3>& deltas,
-                  const std::vector<std::string>& names, double toFile, double nodeScale) {
+                  const MatX3i& triangles, const MatX2& uvs, const MatX3& normalsPerVertex,
+                  const std::vector<MatX3>& deltas, const std::vector<std::string>& names, double toFile,
+                  double nodeScale) {
   const auto n = static_cast<size_t>(rest.rows());
   const size_t T = deltas.size();
 
@@ -116,7 +120,8 @@ void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& 
   bounds(restFloats, lo, hi);
   const int positionAccessor = bb.addAccessor(bb.addView(restFloats.data(), restFloats.size() * 4, kArrayBuffer), 0,
                                               TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
-  const std::vector<float> normals = toFloat(vertexNormals(rest, triangles));
+  MYO_CHECK_EQ(static_cast<size_t>(normalsPerVertex.rows()), n);
+  const std::vector<float> normals = toFloat(normalsPerVertex);
   const int normalAccessor = bb.addAccessor(bb.addView(normals.data(), normals.size() * 4, kArrayBuffer), 0,
                                             TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3);
 
@@ -217,7 +222,8 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
     deltas.push_back(frames.positions[f] - frames.rest);
     names.push_back(fmt::format("frame_{:04d}", f));
   }
-  addMorphMesh(model, bb, frames.name, frames.rest, frames.triangles, frames.uv, deltas, names, 1.0, 0.01);
+  addMorphMesh(model, bb, frames.name, frames.rest, frames.triangles, frames.uv,
+               vertexNormals(frames.rest, frames.triangles), deltas, names, 1.0, 0.01);
 
   // Animation: keyframe k at exported[k] / fps with one-hot weights e_k.
   std::vector<float> times(T), weights(T * T, 0.0f);
@@ -248,6 +254,9 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
 
 void writeRigGlb(const std::filesystem::path& path, const RigExport& rig) {
   checkMesh(rig.rest, rig.triangles, rig.uv);
+  MYO_CHECK(rig.cornerUV.rows() == 0 || rig.cornerUV.rows() == 3 * rig.triangles.rows(),
+            "cornerUV must have 0 or " << 3 * rig.triangles.rows() << " rows (3 per triangle), got "
+                                       << rig.cornerUV.rows());
   MYO_CHECK_EQ(rig.names.size(), rig.deltas.size());
   for (const MatX3& d : rig.deltas)
     MYO_CHECK(d.rows() == rig.rest.rows() && d.allFinite(), "every delta must be n×3 and finite");
@@ -255,7 +264,20 @@ void writeRigGlb(const std::filesystem::path& path, const RigExport& rig) {
   model.asset.version = "2.0";
   model.asset.generator = "Myoshell";
   BufferBuilder bb(model);
-  addMorphMesh(model, bb, rig.name, rig.rest, rig.triangles, rig.uv, rig.deltas, rig.names, 0.01, 1.0);  // cm → m
+  // Normals of the unsplit mesh, so that both sides of a UV seam shade alike.
+  const MatX3 normals = vertexNormals(rig.rest, rig.triangles);
+  if (rig.cornerUV.rows() == 0) {
+    addMorphMesh(model, bb, rig.name, rig.rest, rig.triangles, rig.uv, normals, rig.deltas, rig.names, 0.01,
+                 1.0);  // cm → m
+  } else {
+    // Seam duplicates appended after the head's own vertices, moving exactly as their originals.
+    const SeamSplit split = splitUvSeams(static_cast<int>(rig.rest.rows()), rig.triangles, rig.uv, rig.cornerUV);
+    std::vector<MatX3> deltas;
+    deltas.reserve(rig.deltas.size());
+    for (const MatX3& d : rig.deltas) deltas.push_back(expandToSplit(split, d));
+    addMorphMesh(model, bb, rig.name, expandToSplit(split, rig.rest), split.triangles, split.uv,
+                 expandToSplit(split, normals), deltas, rig.names, 0.01, 1.0);  // cm → m
+  }
   writeModel(path, model);
 }
 

@@ -1,7 +1,9 @@
 #include "myoshell/io/obj_writer.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -50,33 +52,87 @@ std::vector<std::pair<size_t, size_t>> positionSpans(const std::string& text, bo
   return spans;
 }
 
+// The faces to write (the mesh's polygons when present, else its triangles) with, when the mesh
+// has corner UVs, a texture coordinate index per face corner into `texcoords` (the distinct corner
+// UVs in order of first appearance), so that UV seams are written as seams.
+struct ObjFaces {
+  std::vector<std::vector<int>> vertices;
+  std::vector<std::vector<int>> texcoordIndices;  // parallel to vertices; empty without corner UVs
+  std::vector<Vec2> texcoords;
+};
+
+// Corner UVs onto the faces: each triangle corner's UV goes to the corner of its source polygon at
+// the same vertex. False when that cannot be done (sourcePolygon does not match the polygons, or a
+// polygon corner is covered by no triangle): the caller then writes UVs per vertex.
+bool addCornerTexcoords(const TriMesh& mesh, ObjFaces& faces) {
+  std::map<std::pair<double, double>, int> index;
+  auto texcoordOf = [&](Eigen::Index row) {
+    const std::pair<double, double> uv{mesh.cornerUV(row, 0), mesh.cornerUV(row, 1)};
+    auto [it, fresh] = index.try_emplace(uv, static_cast<int>(faces.texcoords.size()));
+    if (fresh) faces.texcoords.emplace_back(uv.first, uv.second);
+    return it->second;
+  };
+  const Eigen::Index m = mesh.F.rows();
+  if (mesh.polygons.empty()) {
+    for (Eigen::Index t = 0; t < m; ++t)
+      faces.texcoordIndices.push_back({texcoordOf(3 * t), texcoordOf(3 * t + 1), texcoordOf(3 * t + 2)});
+    return true;
+  }
+  if (mesh.sourcePolygon.size() != static_cast<size_t>(m)) return false;
+  for (const auto& p : faces.vertices) faces.texcoordIndices.emplace_back(p.size(), -1);
+  for (Eigen::Index t = 0; t < m; ++t) {
+    const int p = mesh.sourcePolygon[static_cast<size_t>(t)];
+    if (p < 0 || static_cast<size_t>(p) >= faces.vertices.size()) return false;
+    const auto& poly = faces.vertices[static_cast<size_t>(p)];
+    for (int c = 0; c < 3; ++c) {
+      const auto at = std::find(poly.begin(), poly.end(), mesh.F(t, c));
+      if (at == poly.end()) return false;
+      int& slot = faces.texcoordIndices[static_cast<size_t>(p)][static_cast<size_t>(at - poly.begin())];
+      if (slot < 0) slot = texcoordOf(3 * t + c);
+    }
+  }
+  for (const auto& corners : faces.texcoordIndices)
+    if (std::find(corners.begin(), corners.end(), -1) != corners.end()) return false;
+  return true;
+}
+
+ObjFaces objFaces(const TriMesh& mesh) {
+  ObjFaces faces;
+  faces.vertices = mesh.polygons;
+  if (faces.vertices.empty())
+    for (Eigen::Index t = 0; t < mesh.F.rows(); ++t) faces.vertices.push_back({mesh.F(t, 0), mesh.F(t, 1), mesh.F(t, 2)});
+  if (mesh.hasCornerUV() && !addCornerTexcoords(mesh, faces)) {
+    faces.texcoordIndices.clear();
+    faces.texcoords.clear();
+  }
+  return faces;
+}
+
 // Streams the OBJ to `out` (printf into a FILE*: the sequence of a long run writes many MB).
 void putObj(std::FILE* out, const TriMesh& mesh, const MatX3& X) {
   const auto num = shortest;
   char a[40], b[40], c[40];
+  const ObjFaces faces = objFaces(mesh);
   std::fprintf(out, "# written by myoshell: %d vertices, %zu faces\n", static_cast<int>(X.rows()),
-               mesh.polygons.empty() ? static_cast<size_t>(mesh.F.rows()) : mesh.polygons.size());
+               faces.vertices.size());
   for (Eigen::Index i = 0; i < X.rows(); ++i)
     std::fprintf(out, "v %s %s %s\n", num(X(i, 0), a), num(X(i, 1), b), num(X(i, 2), c));
-  const bool uv = mesh.UV.rows() == X.rows() && X.rows() > 0;
-  if (uv)
+  const bool perCorner = !faces.texcoordIndices.empty();
+  const bool perVertex = !perCorner && mesh.UV.rows() == X.rows() && X.rows() > 0;
+  if (perCorner)
+    for (const Vec2& uv : faces.texcoords) std::fprintf(out, "vt %s %s\n", num(uv[0], a), num(uv[1], b));
+  if (perVertex)
     for (Eigen::Index i = 0; i < mesh.UV.rows(); ++i)
       std::fprintf(out, "vt %s %s\n", num(mesh.UV(i, 0), a), num(mesh.UV(i, 1), b));
-  auto face = [&](auto begin, auto end) {
+  for (size_t f = 0; f < faces.vertices.size(); ++f) {
     std::fputc('f', out);
-    for (auto it = begin; it != end; ++it) {
-      if (uv) std::fprintf(out, " %d/%d", *it + 1, *it + 1);
-      else std::fprintf(out, " %d", *it + 1);
+    const auto& p = faces.vertices[f];
+    for (size_t k = 0; k < p.size(); ++k) {
+      if (perCorner) std::fprintf(out, " %d/%d", p[k] + 1, faces.texcoordIndices[f][k] + 1);
+      else if (perVertex) std::fprintf(out, " %d/%d", p[k] + 1, p[k] + 1);
+      else std::fprintf(out, " %d", p[k] + 1);
     }
     std::fputc('\n', out);
-  };
-  if (!mesh.polygons.empty()) {
-    for (const auto& p : mesh.polygons) face(p.begin(), p.end());
-  } else {
-    for (Eigen::Index t = 0; t < mesh.F.rows(); ++t) {
-      const int tri[3] = {mesh.F(t, 0), mesh.F(t, 1), mesh.F(t, 2)};
-      face(tri, tri + 3);
-    }
   }
 }
 

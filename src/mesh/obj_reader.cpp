@@ -371,6 +371,10 @@ struct ParsedObj {
   MatX3 V;
   MatX2 UV;
   std::vector<std::vector<int>> polygons;
+  // Per polygon corner, the 0-based texture coordinate index (-1 when the corner has none), and
+  // the texture coordinates they index; the triangulation turns them into TriMesh::cornerUV.
+  std::vector<std::vector<int>> polygonTexcoords;
+  std::vector<Vec2> texcoords;
   std::vector<int> polygonLine;
   std::map<std::string, std::vector<int>> groups;
   std::vector<MeshFault> faults;  // line faults, file order
@@ -431,12 +435,15 @@ ParsedObj parseObj(const std::string& text, const std::string& name) {
   std::vector<char> assigned(static_cast<size_t>(n), 0);
   MatX2 uv = MatX2::Zero(n, 2);
   out.polygons.reserve(scan.faces.size());
+  out.polygonTexcoords.reserve(scan.faces.size());
   out.polygonLine.reserve(scan.faces.size());
   for (const ScannedFace& face : scan.faces) {
-    std::vector<int> poly;
+    std::vector<int> poly, polyTexcoords;
     poly.reserve(face.corners.size());
+    polyTexcoords.reserve(face.corners.size());
     for (const Corner& c : face.corners) {
       poly.push_back(c.v);
+      polyTexcoords.push_back(c.vt >= 0 && c.vt < nvt ? c.vt : -1);
       if (c.vt >= 0 && c.vt < nvt && !assigned[c.v]) {
         assigned[c.v] = 1;
         anyUv = true;
@@ -448,9 +455,13 @@ ParsedObj parseObj(const std::string& text, const std::string& name) {
       set.insert(set.end(), poly.begin(), poly.end());
     }
     out.polygons.push_back(std::move(poly));
+    out.polygonTexcoords.push_back(std::move(polyTexcoords));
     out.polygonLine.push_back(face.line);
   }
-  if (anyUv) out.UV = std::move(uv);
+  if (anyUv) {
+    out.UV = std::move(uv);
+    out.texcoords = std::move(scan.texcoords);
+  }
   for (auto& [g, set] : out.groups) {
     std::sort(set.begin(), set.end());
     set.erase(std::unique(set.begin(), set.end()), set.end());
@@ -459,35 +470,60 @@ ParsedObj parseObj(const std::string& text, const std::string& name) {
 }
 
 // Triangles of the polygons over rest positions: quads along the shorter diagonal (ties: v0–v2),
-// larger polygons as a fan from their first vertex.
+// larger polygons as a fan from their first vertex. polygonCorner (3m) receives, for corner c of
+// triangle t, the position within its polygon of the corner it came from (row 3t + c), so that
+// per-corner data (texture coordinates) follows the triangulation.
 void triangulate(const MatX3& Vrest, const std::vector<std::vector<int>>& polygons, MatX3i& F,
-                 std::vector<int>& source) {
+                 std::vector<int>& source, std::vector<int>& polygonCorner) {
   size_t m = 0;
   for (const auto& p : polygons) m += p.size() - 2;
   F.resize(static_cast<Eigen::Index>(m), 3);
   source.clear();
   source.reserve(m);
+  polygonCorner.clear();
+  polygonCorner.reserve(3 * m);
   Eigen::Index t = 0;
   for (size_t pi = 0; pi < polygons.size(); ++pi) {
     const auto& p = polygons[pi];
-    auto add = [&](int a, int b, int c) {
-      F.row(t++) << a, b, c;
+    auto add = [&](size_t a, size_t b, size_t c) {
+      F.row(t++) << p[a], p[b], p[c];
       source.push_back(static_cast<int>(pi));
+      for (size_t k : {a, b, c}) polygonCorner.push_back(static_cast<int>(k));
     };
     if (p.size() == 4) {
       const double d02 = (Vrest.row(p[0]) - Vrest.row(p[2])).squaredNorm();
       const double d13 = (Vrest.row(p[1]) - Vrest.row(p[3])).squaredNorm();
       if (!(d13 < d02)) {  // ties (and NaN) take v0–v2
-        add(p[0], p[1], p[2]);
-        add(p[0], p[2], p[3]);
+        add(0, 1, 2);
+        add(0, 2, 3);
       } else {
-        add(p[0], p[1], p[3]);
-        add(p[1], p[2], p[3]);
+        add(0, 1, 3);
+        add(1, 2, 3);
       }
     } else {
-      for (size_t k = 1; k + 1 < p.size(); ++k) add(p[0], p[k], p[k + 1]);
+      for (size_t k = 1; k + 1 < p.size(); ++k) add(0, k, k + 1);
     }
   }
+}
+
+// TriMesh::cornerUV from the polygons' texture coordinate indices: a corner without one (a file
+// that gives `vt` on some faces only) takes its vertex's UV, so that a mesh with texture
+// coordinates has them on every corner. Empty when the file has no texture coordinates.
+MatX2 cornerTexcoords(const ParsedObj& parsed, const MatX2& vertexUV, const std::vector<int>& source,
+                      const std::vector<int>& polygonCorner, const MatX3i& F) {
+  if (vertexUV.rows() == 0) return MatX2(0, 2);
+  MatX2 out(3 * F.rows(), 2);
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const size_t row = static_cast<size_t>(3 * t + c);
+      const int vt = parsed.polygonTexcoords[static_cast<size_t>(source[static_cast<size_t>(t)])]
+                                            [static_cast<size_t>(polygonCorner[row])];
+      if (vt >= 0)
+        out.row(static_cast<Eigen::Index>(row)) = parsed.texcoords[static_cast<size_t>(vt)].transpose();
+      else
+        out.row(static_cast<Eigen::Index>(row)) = vertexUV.row(F(t, c));
+    }
+  return out;
 }
 
 std::string faceWhere(const TriMesh& mesh, const std::vector<int>* polygonLine, int t, int& line) {
@@ -600,10 +636,12 @@ TriMesh assemble(ParsedObj&& parsed, const std::string& name) {
   TriMesh mesh;
   mesh.V = std::move(parsed.V);
   mesh.UV = std::move(parsed.UV);
-  mesh.polygons = std::move(parsed.polygons);
   mesh.groups = std::move(parsed.groups);
   mesh.sourcePath = name;
-  triangulate(mesh.V, mesh.polygons, mesh.F, mesh.sourcePolygon);
+  std::vector<int> polygonCorner;
+  triangulate(mesh.V, parsed.polygons, mesh.F, mesh.sourcePolygon, polygonCorner);
+  mesh.cornerUV = cornerTexcoords(parsed, mesh.UV, mesh.sourcePolygon, polygonCorner, mesh.F);
+  mesh.polygons = std::move(parsed.polygons);
   return mesh;
 }
 
@@ -723,6 +761,10 @@ TriMesh readObjLikeFromString(const std::string& text, const TriMesh& rest, cons
                      path, parsed.polygonLine[f]);
   TriMesh mesh;
   mesh.V = std::move(parsed.V);
+  // The shape's own texture coordinates, when it has any, are kept per vertex only: its corners
+  // (perhaps pre-triangulated) do not map onto the rest triangulation, so its corner UVs are
+  // unknown. Without any, it shares the rest's texture layout, seams included.
+  mesh.cornerUV = parsed.UV.rows() ? MatX2(0, 2) : rest.cornerUV;
   mesh.UV = parsed.UV.rows() ? std::move(parsed.UV) : rest.UV;
   mesh.F = rest.F;  // the rest triangulation, never re-chosen from deformed positions
   mesh.sourcePolygon = rest.sourcePolygon;

@@ -161,6 +161,18 @@ TriMesh loopSubdivide(const TriMesh& mesh, const LoopOptions& options) {
       out.UV.row(n + e) = 0.5 * (mesh.UV.row(edges[static_cast<size_t>(e)].a) +
                                  mesh.UV.row(edges[static_cast<size_t>(e)].b));
   }
+  // Corner UVs follow each triangle's own corners, so a seam stays a seam: an edge point's UV is
+  // the midpoint of its triangle's two corner UVs (the same on both sides of an edge that is not a
+  // seam, since 0.5·(a + b) = 0.5·(b + a) exactly in floating point).
+  if (mesh.hasCornerUV()) {
+    out.cornerUV.resize(12 * m, 2);
+    for (int t = 0; t < m; ++t) {
+      const Vec2 u0 = mesh.cornerUV.row(3 * t), u1 = mesh.cornerUV.row(3 * t + 1), u2 = mesh.cornerUV.row(3 * t + 2);
+      const Vec2 m01 = 0.5 * (u0 + u1), m12 = 0.5 * (u1 + u2), m20 = 0.5 * (u2 + u0);
+      const Vec2 corners[12] = {u0, m01, m20, u1, m12, m01, u2, m20, m12, m01, m12, m20};
+      for (int k = 0; k < 12; ++k) out.cornerUV.row(12 * t + k) = corners[k].transpose();
+    }
+  }
   out.groups = mesh.groups;
   out.sourcePath = mesh.sourcePath;
   return out;

@@ -16,6 +16,8 @@
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/obj_writer.h"
 #include "myoshell/io/rig_export.h"
+#include "myoshell/mesh/obj_reader.h"
+#include "support/uv_seam_mesh.h"
 #include "support/cli_runner.h"
 
 namespace myo {
@@ -239,6 +241,57 @@ TEST_F(GltfAssimp, ReadsARigsNamedTargetsInMetres) {
     EXPECT_LT(maxDifference(mesh->mAnimMeshes[k]->mVertices, a.positions[k] * 0.01), 1e-7) << k;
   }
   EXPECT_EQ(scene->mNumAnimations, 0u);
+}
+
+// A head with UV seams (tests/support/uv_seam_mesh.h): assimp reads the head's 7 vertices plus 2
+// seam duplicates, each face corner with the OBJ's own texture coordinate (as assimp reads it from
+// our OBJ of the same head, and as the reader's corner UVs hold it); every anim mesh moves a
+// duplicate exactly as its original.
+TEST_F(GltfAssimp, ARigWithSeamsHasTheObjsCornerUvs) {
+  const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
+  RigExport rig;
+  rig.name = "seam";
+  rig.rest = head.V;
+  rig.triangles = head.F;
+  rig.uv = head.UV;
+  rig.cornerUV = head.cornerUV;
+  rig.names = {"jawOpen"};
+  MatX3 delta(head.V.rows(), 3);
+  for (int v = 0; v < delta.rows(); ++v) delta.row(v) << 0.1 * v, 0.05 * (v % 2), -0.2 * v;
+  rig.deltas = {delta};
+  writeRigGlb(dir_ / "seam.glb", rig);
+  TriMesh triangles = head;  // assimp's OBJ importer keeps quads: write the triangles to compare faces
+  triangles.polygons.clear();
+  triangles.sourcePolygon.clear();
+  writeObj((dir_ / "seam.obj").string(), triangles);
+
+  Assimp::Importer glbImporter, objImporter;
+  const aiScene* glb = glbImporter.ReadFile((dir_ / "seam.glb").string(), 0);
+  const aiScene* obj = objImporter.ReadFile((dir_ / "seam.obj").string(), 0);
+  ASSERT_NE(glb, nullptr) << glbImporter.GetErrorString();
+  ASSERT_NE(obj, nullptr) << objImporter.GetErrorString();
+  const aiMesh* g = glb->mMeshes[0];
+  ASSERT_EQ(g->mNumVertices, 9u);  // 7 + 2 seam duplicates
+  ASSERT_TRUE(g->HasTextureCoords(0));
+  EXPECT_LT(maxCornerUvDifference(g, obj->mMeshes[0]), 1e-6);
+  double worst = 0;
+  for (unsigned f = 0; f < g->mNumFaces; ++f)
+    for (unsigned c = 0; c < 3; ++c) {
+      const aiVector3D& uv = g->mTextureCoords[0][g->mFaces[f].mIndices[c]];
+      worst = std::max({worst, std::abs(uv.x - head.cornerUV(3 * f + c, 0)), std::abs(uv.y - head.cornerUV(3 * f + c, 1))});
+    }
+  EXPECT_LT(worst, 1e-6);
+
+  const int source[9] = {0, 1, 2, 3, 4, 5, 6, 1, 4};
+  ASSERT_EQ(g->mNumAnimMeshes, 1u);
+  const aiAnimMesh* am = g->mAnimMeshes[0];
+  for (unsigned i = 0; i < 9; ++i) {
+    const Vec3 rest = head.V.row(source[i]), moved = rest + delta.row(source[i]).transpose();
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(g->mVertices[i][k], 0.01 * rest[k], 1e-7) << i;
+      EXPECT_NEAR(am->mVertices[i][k], 0.01 * moved[k], 1e-7) << i;
+    }
+  }
 }
 
 }  // namespace

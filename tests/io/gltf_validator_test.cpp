@@ -14,8 +14,10 @@
 
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/rig_export.h"
+#include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
 #include "support/test_data.h"
+#include "support/uv_seam_mesh.h"
 
 namespace myo {
 namespace {
@@ -136,6 +138,26 @@ TEST_F(GltfValidator, GlbWithTexcoordsHasNoErrors) {
   for (Eigen::Index v = 0; v < a.rest.rows(); ++v) a.uv.row(v) << a.rest(v, 0) / 7.0, a.rest(v, 1) / 5.0;
   writeGlb(dir_ / "uv.glb", a);
   expectValid(dir_ / "uv.glb");
+}
+
+// A rig with UV seam duplicates (tests/support/uv_seam_mesh.h): 9 vertices for the head's 7.
+TEST_F(GltfValidator, RigWithSeamDuplicatesHasNoErrors) {
+  MYO_REQUIRE_GLTF_VALIDATOR();
+  const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
+  RigExport rig;
+  rig.name = "seam";
+  rig.rest = head.V;
+  rig.triangles = head.F;
+  rig.uv = head.UV;
+  rig.cornerUV = head.cornerUV;
+  rig.names = {"jawOpen", "mouthSmileLeft"};
+  for (int k = 0; k < 2; ++k) {
+    MatX3 d(head.V.rows(), 3);
+    for (int v = 0; v < d.rows(); ++v) d.row(v) << 0.1 * v, 0.05 * k, -0.2 * v * k;
+    rig.deltas.push_back(d);
+  }
+  writeRigGlb(dir_ / "seam.glb", rig);
+  expectValid(dir_ / "seam.glb");
 }
 
 // The validator does find errors: a GLB whose binary chunk is cut short fails (exit 1).

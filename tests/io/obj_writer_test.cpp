@@ -13,6 +13,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/mesh/primitives.h"
+#include "support/uv_seam_mesh.h"
 
 namespace myo {
 namespace {
@@ -107,6 +108,32 @@ TEST(WriteObjLikeFile, ReplacesOnlyThePositions) {
   EXPECT_FALSE(writeObjLikeFile(none, src, moved.topRows(3)));
   EXPECT_FALSE(fs::exists(none));
   EXPECT_THROW(writeObjLikeFile(none, (dir.path() / "missing.obj").string(), moved), InputError);
+}
+
+// A mesh read from an OBJ with UV seams is written with its corners' own texture coordinates (the
+// distinct ones, in order of first appearance), so reading it back gives the same corner UVs.
+TEST(WriteObj, KeepsUvSeams) {
+  TempDir dir;
+  const TriMesh m = readObjFromString(test::kUvSeamObj, "seam.obj");
+  const std::string out = (dir.path() / "seam.obj").string();
+  writeObj(out, m);
+  std::ifstream in(out);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("vt 0 0\nvt 0.4 0\nvt 0.4 1\nvt 0 1\nvt 0.6 0\nvt 1 0\nvt 0.6 1\nvt 1 1\nf"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("f 1/1 2/2 5/3 4/4\nf 2/5 3/6 6/8 5/7\nf 3/6 7/1 6/8\n"), std::string::npos) << text;
+  const TriMesh back = readObj(out);
+  EXPECT_EQ(back.polygons, m.polygons);
+  EXPECT_EQ(back.F, m.F);
+  EXPECT_EQ(back.cornerUV, m.cornerUV);
+  EXPECT_EQ(back.UV, m.UV);
+
+  // Without polygons the triangles carry the corner UVs.
+  TriMesh triangles = m;
+  triangles.polygons.clear();
+  triangles.sourcePolygon.clear();
+  writeObj(out, triangles);
+  EXPECT_EQ(readObj(out).cornerUV, m.cornerUV);
 }
 
 TEST(WriteObj, UnwritableDirectoryIsAnInputError) {

@@ -12,6 +12,10 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/io/rig_export.h"
 #include "myoshell/io/rig_file.h"
+#include "myoshell/mesh/geometry.h"
+#include "myoshell/mesh/obj_reader.h"
+#include "myoshell/mesh/uv_seams.h"
+#include "support/uv_seam_mesh.h"
 
 namespace myo {
 namespace {
@@ -105,6 +109,120 @@ TEST(RigExport, OurReaderGetsTheRigBackInCentimetres) {
   EXPECT_LT((back.base.V - rig.rest).cwiseAbs().maxCoeff(), 1e-5);
   EXPECT_EQ(back.base.F, rig.triangles);
   for (size_t k = 0; k < 3; ++k) EXPECT_LT((back.delta(rig.names[k]) - rig.deltas[k]).cwiseAbs().maxCoeff(), 1e-5) << k;
+  fs::remove_all(dir);
+}
+
+// The small OBJ with UV seams (tests/support/uv_seam_mesh.h) as a rig with two targets.
+RigExport seamRig(const TriMesh& mesh) {
+  RigExport rig;
+  rig.name = "seam";
+  rig.rest = mesh.V;
+  rig.triangles = mesh.F;
+  rig.uv = mesh.UV;
+  rig.cornerUV = mesh.cornerUV;
+  rig.names = {"jawOpen", "cheekPuff"};
+  for (int k = 0; k < 2; ++k) {
+    MatX3 d(mesh.V.rows(), 3);
+    for (int v = 0; v < d.rows(); ++v) d.row(v) << 0.1 * v * (k + 1), -0.05 * v, 0.2 * ((v + k) % 3);
+    rig.deltas.push_back(d);
+  }
+  return rig;
+}
+
+// The float VEC2 data of a tightly packed accessor.
+MatX2 accessorVec2(const tinygltf::Model& m, int index) {
+  const tinygltf::Accessor& a = m.accessors[static_cast<size_t>(index)];
+  const tinygltf::BufferView& v = m.bufferViews[static_cast<size_t>(a.bufferView)];
+  const unsigned char* p = m.buffers[static_cast<size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+  MatX2 out(static_cast<Eigen::Index>(a.count), 2);
+  for (size_t i = 0; i < 2 * a.count; ++i) {
+    float f;
+    std::memcpy(&f, p + 4 * i, 4);
+    out(static_cast<Eigen::Index>(i / 2), static_cast<Eigen::Index>(i % 2)) = f;
+  }
+  return out;
+}
+
+// The UNSIGNED_INT triangle indices of a primitive.
+MatX3i triangleIndices(const tinygltf::Model& m, const tinygltf::Primitive& prim) {
+  const tinygltf::Accessor& a = m.accessors[static_cast<size_t>(prim.indices)];
+  EXPECT_EQ(a.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  const tinygltf::BufferView& v = m.bufferViews[static_cast<size_t>(a.bufferView)];
+  const unsigned char* p = m.buffers[static_cast<size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+  MatX3i out(static_cast<Eigen::Index>(a.count / 3), 3);
+  for (size_t i = 0; i < a.count; ++i) {
+    uint32_t k;
+    std::memcpy(&k, p + 4 * i, 4);
+    out(static_cast<Eigen::Index>(i / 3), static_cast<Eigen::Index>(i % 3)) = static_cast<int>(k);
+  }
+  return out;
+}
+
+// With corner UVs the file holds the head's 7 vertices then its 2 seam duplicates (of vertices 1
+// and 4): same position, normal (the unsplit mesh's) and deltas, their own UV (v flipped for glTF);
+// the triangles use them where their corners' UVs differ.
+TEST(RigExport, SeamDuplicatesCopyTheirVertexAndCarryTheirOwnUv) {
+  const fs::path dir = scratch();
+  const TriMesh mesh = readObjFromString(test::kUvSeamObj, "seam.obj");
+  const RigExport rig = seamRig(mesh);
+  writeRigGlb(dir / "rig.glb", rig);
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, (dir / "rig.glb").string())) << err;
+  const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
+  const std::vector<int> source{0, 1, 2, 3, 4, 5, 6, 1, 4};
+  auto copied = [&](const MatX3& perVertex) {
+    MatX3 out(9, 3);
+    for (int i = 0; i < 9; ++i) out.row(i) = perVertex.row(source[static_cast<size_t>(i)]);
+    return out;
+  };
+  const MatX3 positions = accessorData(model, prim.attributes.at("POSITION"));
+  ASSERT_EQ(positions.rows(), 9);
+  EXPECT_LT((positions - copied(rig.rest) * 0.01).cwiseAbs().maxCoeff(), 1e-7);
+  const MatX3 normals = accessorData(model, prim.attributes.at("NORMAL"));
+  EXPECT_LT((normals - copied(vertexNormals(mesh.V, mesh.F))).cwiseAbs().maxCoeff(), 1e-6);
+  const MatX2 uv = accessorVec2(model, prim.attributes.at("TEXCOORD_0"));
+  const SeamSplit split = splitUvSeams(mesh);
+  ASSERT_EQ(uv.rows(), 9);
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_FLOAT_EQ(uv(i, 0), static_cast<float>(split.uv(i, 0))) << i;
+    EXPECT_FLOAT_EQ(uv(i, 1), static_cast<float>(1.0 - split.uv(i, 1))) << i;
+  }
+  EXPECT_EQ(uv(7, 0), 0.6f);  // vertex 1's second UV
+  MatX3i F(5, 3);
+  F << 0, 1, 4, 0, 4, 3, 7, 2, 8, 2, 5, 8, 2, 6, 5;
+  EXPECT_EQ(triangleIndices(model, prim), F);
+  ASSERT_EQ(prim.targets.size(), 2u);
+  for (size_t k = 0; k < 2; ++k)
+    EXPECT_LT((accessorData(model, prim.targets[k].at("POSITION")) - copied(rig.deltas[k]) * 0.01).cwiseAbs().maxCoeff(),
+              1e-8)
+        << k;
+  fs::remove_all(dir);
+}
+
+// Our reader welds the duplicates back: the head's 7 vertices in order, its triangles, its deltas.
+TEST(RigExport, ARigWithSeamDuplicatesReadsBackToTheHeadsVertices) {
+  const fs::path dir = scratch();
+  const TriMesh mesh = readObjFromString(test::kUvSeamObj, "seam.obj");
+  const RigExport rig = seamRig(mesh);
+  writeRigGlb(dir / "rig.glb", rig);
+  const RigFile back = readRig((dir / "rig.glb").string());
+  ASSERT_EQ(back.vertexCount(), mesh.vertexCount());
+  EXPECT_EQ(back.weldedIndex, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 1, 4}));
+  EXPECT_LT((back.base.V - mesh.V).cwiseAbs().maxCoeff(), 1e-5);
+  EXPECT_EQ(back.base.F, mesh.F);
+  EXPECT_EQ(back.names, rig.names);
+  for (size_t k = 0; k < 2; ++k) EXPECT_LT((back.delta(rig.names[k]) - rig.deltas[k]).cwiseAbs().maxCoeff(), 1e-5) << k;
+  fs::remove_all(dir);
+}
+
+TEST(RigExport, CornerUvsOfTheWrongSizeAreACheckError) {
+  const fs::path dir = scratch();
+  RigExport rig = seamRig(readObjFromString(test::kUvSeamObj, "seam.obj"));
+  rig.cornerUV.conservativeResize(rig.cornerUV.rows() - 1, 2);
+  EXPECT_THROW(writeRigGlb(dir / "rig.glb", rig), CheckError);
+  EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   fs::remove_all(dir);
 }
 

@@ -15,9 +15,10 @@
 // stride-th frame (stride = ceil(frames / maxMorphTargets)) and always the last one.
 // TEXCOORD_0 (float VEC2, one per vertex) holds (u, 1 − v) of AnimationFrames::uv: UVs here are
 // per vertex in the OBJ convention (origin at the image's bottom-left, TriMesh::UV), glTF's origin
-// is the top-left. A head whose OBJ gave one vertex several texture coordinates (a UV seam) has
-// already been reduced to the first corner's by the OBJ reader, so the GLB holds exactly the UVs
-// our OBJ exports write, and no vertex is split. Without UVs no TEXCOORD_0 is written.
+// is the top-left. A head whose OBJ gave one vertex several texture coordinates (a UV seam) is
+// written with the first corner's (TriMesh::UV) and no vertex is split, so the GLB keeps the head's
+// vertex order and count, as the PC2 cache and OBJ frames do (those keep the seams' own UVs;
+// docs/exports.md). Rigs split seams (io/rig_export.h). Without UVs no TEXCOORD_0 is written.
 // Both writers go through a temporary name renamed into place; a failure leaves no file.
 #pragma once
 

@@ -10,8 +10,10 @@ namespace myo {
 
 // Writes an OBJ through core's atomic writer (a temporary file renamed into place; nothing is left
 // behind on failure): a comment line, positions (shortest text that reads back to the same double),
-// UVs when the mesh has one per vertex (faces then "f a/a b/b c/c"), then the mesh's polygons when
-// present, else its triangles; 1-based indices. V (n×3, cm) overrides the positions when non-null
+// texture coordinates, then the mesh's polygons when present, else its triangles; 1-based indices.
+// Texture coordinates: with corner UVs (TriMesh::cornerUV), the distinct ones in order of first
+// appearance and each face corner its own (UV seams kept); else, with per-vertex UVs, one per vertex
+// (faces then "f a/a b/b c/c"). V (n×3, cm) overrides the positions when non-null
 // and must have the mesh's vertex count (CheckError otherwise).
 void writeObj(const std::string& path, const TriMesh& mesh, const MatX3* V = nullptr);
 

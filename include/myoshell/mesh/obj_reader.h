@@ -4,6 +4,9 @@
 // positions (ties: the v0–v2 diagonal); larger polygons are fanned from their first vertex.
 // A deformed mesh or an expression shape reuses its rest mesh's triangulation (readObjLike).
 // Vertex order is the file's, exactly.
+// Texture coordinates: TriMesh::UV per vertex (the first face corner's that names the vertex) and
+// TriMesh::cornerUV per triangle corner (every corner's own, so UV seams survive); a corner without
+// a `vt` takes its vertex's UV. Both are empty when no face corner names a texture coordinate.
 #pragma once
 
 #include <string>

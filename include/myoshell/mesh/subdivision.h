@@ -27,7 +27,8 @@ struct LoopOptions {
 // in F (triangle by triangle, edges (0,1), (1,2), (2,0)). Triangle t becomes triangles 4t … 4t+3:
 // (v0, e01, e20), (v1, e12, e01), (v2, e20, e12), (e01, e12, e20) — orientation kept.
 // Interior vertices: (1 − nβ)·v + β·Σ neighbours, β = (5/8 − (3/8 + cos(2π/n)/4)²)/n (Loop);
-// interior edge points 3/8·(a + b) + 1/8·(c + d). UVs, when present, are interpolated linearly.
+// interior edge points 3/8·(a + b) + 1/8·(c + d). UVs, when present, are interpolated linearly
+// (per vertex, and per corner within each triangle so that UV seams stay seams).
 // Groups keep the original vertex ids; sourcePolygon and polygons are dropped. Vertex count of
 // the result: V + E.
 TriMesh loopSubdivide(const TriMesh& mesh, const LoopOptions& options = {});
