@@ -15,7 +15,8 @@
 // muscles + gravity + one drag with each model (`model: thesis` and `model: anatomical`), side by
 // side on each head. Besides steps/s they report the cold precompute (built into an empty basis
 // cache of their own), the cached start (built again from it) and the mean phases of a step
-// (StepTimings: muscles, springs / force assembly, skin channels).
+// (StepTimings: muscles, springs / force assembly, skin channels). Row `whole_face` does the same for
+// the anatomical model with the whole face's 37 muscles (scenes/bench/whole_face.json).
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -74,13 +75,16 @@ struct BenchRow {
   std::string folder = "thesis";  // "thesis": --scenes; "bench": scenes/bench beside it
 };
 
-// The two models side by side: 8 muscles + gravity + one drag, [0, 1) s of scenes/bench/*.
+// The two models side by side: 8 muscles + gravity + one drag, [0, 1) s of scenes/bench/*; and the
+// anatomical model with the whole face's 37 muscles (issue 16).
 std::vector<BenchRow> fullRows() {
   std::vector<BenchRow> r;
   r.push_back({"full", "thesis_full", "8 muscles + gravity + drag, model: thesis", "full_thesis.json", {}, 0.0, 1.0,
                false, 0, "bench"});
   r.push_back({"full", "anatomical_full", "8 muscles + gravity + drag, model: anatomical", "full_anatomical.json", {},
                0.0, 1.0, false, 0, "bench"});
+  r.push_back({"full", "whole_face", "37 muscles (the whole face, 6 rings) at 0.5 + gravity + drag, model: anatomical",
+               "whole_face.json", {}, 0.0, 1.0, false, 0, "bench"});
   return r;
 }
 

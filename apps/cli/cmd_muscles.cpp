@@ -1,0 +1,95 @@
+// `myoshell muscles [--library builtin|face|FILE] [--head default|DIR|OBJ --landmarks F] [--units u]
+// [--json]`: the muscles of a library — name, side, FACS action units, kind (linear or ring) — and,
+// with a head, each one placed on it (its length in cm), so a library or a head whose landmarks do
+// not fit it fails here, naming the muscle. docs/muscles.md.
+#include <fmt/core.h>
+
+#include <cctype>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "fit_head.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/face/muscle.h"
+#include "myoshell/face/muscle_def.h"
+
+namespace myo::cli {
+namespace {
+
+struct MusclesArgs {
+  FitHeadOptions head;
+  bool json = false;
+  const CLI::Option* headOption = nullptr;
+  const CLI::Option* unitsOption = nullptr;
+};
+
+// "AU20 AU21" → {20, 21}; the numbers a muscle's `facs` field names, in its order.
+std::vector<int> actionUnits(const std::string& facs) {
+  std::vector<int> out;
+  for (size_t i = 0; i + 2 < facs.size(); ++i)
+    if (facs.compare(i, 2, "AU") == 0 && std::isdigit(static_cast<unsigned char>(facs[i + 2]))) {
+      size_t end = i + 2;
+      int value = 0;
+      while (end < facs.size() && std::isdigit(static_cast<unsigned char>(facs[end])) && value < 1000)
+        value = 10 * value + (facs[end++] - '0');
+      out.push_back(value);
+      i = end - 1;
+    }
+  return out;
+}
+
+int runMuscles(MusclesArgs& a) {
+  a.head.headGiven = a.headOption->count() > 0;
+  a.head.unitsGiven = a.unitsOption->count() > 0;
+  const SceneInputs inputs = fitHeadInputs(a.head, nullptr, "muscles");
+  const bool placed = a.head.headGiven;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const MuscleDef& d : inputs.muscles) {
+    nlohmann::ordered_json m;
+    m["name"] = d.name;
+    m["side"] = d.side;
+    m["aus"] = actionUnits(d.facs);
+    m["kind"] = toString(d.kind);
+    if (placed) m["length_cm"] = buildMuscle(d, inputs.head, TubeOrientation::MirrorRightSide).restLength;
+    list.push_back(m);
+  }
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["library"] = a.head.library;
+    if (placed) j["head"] = inputs.head.name;
+    j["muscles"] = list;
+    fmt::print("{}\n", j.dump(2));
+    return kExitOk;
+  }
+  fmt::print("{} muscles in library {}{}\n", list.size(), a.head.library,
+             placed ? " placed on " + inputs.head.name : std::string());
+  for (const auto& m : list) {
+    std::string aus;
+    for (const auto& au : m["aus"]) aus += fmt::format("{}AU{}", aus.empty() ? "" : " ", au.get<int>());
+    fmt::print("  {:<44} {:<7} {:<6} {:<26}{}\n", m["name"].get<std::string>(), m["side"].get<std::string>(),
+               m["kind"].get<std::string>(), aus,
+               placed ? fmt::format(" {:.2f} cm", m["length_cm"].get<double>()) : std::string());
+  }
+  return kExitOk;
+}
+
+static CommandRegistrar reg("muscles", [](CLI::App& app) -> std::function<int()> {
+  auto args = std::make_shared<MusclesArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "muscles", "List a muscle library (name, side, FACS action units, linear or ring) and, with --head, place each "
+                 "muscle on that head (docs/muscles.md)");
+  sub->add_option("--library", args->head.library, "builtin (the thesis's eight, default), face (the whole face) or a "
+                                                    "library file");
+  args->headOption = sub->add_option("--head", args->head.head, "'default', an OBJ file (with --landmarks), or a folder "
+                                                                 "like ../shared/data/ict: place every muscle on it");
+  sub->add_option("--landmarks", args->head.landmarks, "landmark file of an OBJ head (docs/heads.md)");
+  args->unitsOption = sub->add_option("--units", args->head.units, "the OBJ head's length unit, m, mm or cm (default cm)");
+  sub->add_flag("--json", args->json, "print {\"muscles\": [{\"name\", \"side\", \"aus\", \"kind\"}]} as JSON");
+  return [args] { return runMuscles(*args); };
+});
+
+}  // namespace
+}  // namespace myo::cli
