@@ -1,7 +1,9 @@
 #include "myoshell/face/anatomical_skin.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "myoshell/core/errors.h"
@@ -37,6 +39,8 @@ void AnatomicalSettings::validate() const {
   if (!std::isfinite(gravity)) bad("gravity is not finite");
   if (!(dt > 0) || !std::isfinite(dt)) bad("dt must be > 0");
   if (!(dampingMass >= 0) || !(dampingStiffness >= 0)) bad("damping must be ≥ 0");
+  if (!(relaxedMuscleModulus >= 0) || !std::isfinite(relaxedMuscleModulus))
+    bad("the relaxed muscles' modulus must be ≥ 0 dyn/cm² (0: muscles hold the skin)");
 }
 
 ShellMaterial anatomicalSkinMaterial(const AnatomicalSettings& s, double meanEdge) {
@@ -84,8 +88,9 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
       if (m.muscle.def.name == def.name) throw InputError("anatomical model: muscle '" + def.name + "' is defined twice");
     muscles_.push_back(coupleMuscle(def, head_, settings_.coupling));
     addCouplingStiffness(muscles_.back(), trip);
-    muscleLoads_.push_back(couplingLoad(muscles_.back(), n));
+    couplingLoads_.push_back(couplingLoad(muscles_.back(), n));
   }
+  muscleLoads_ = couplingLoads_;
   SparseMat Kc(3 * n, 3 * n);
   Kc.setFromTriplets(trip.begin(), trip.end());
   Kextra_ = tissue_.stiffness() + Kc;
@@ -140,8 +145,9 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
           hit->Psi.rows() == 3 * n && hit->Psi.cols() == d && hit->freeMass.size() == n && hit->freeMass == mass_) {
         hit->fromCache = true;
         hit->solveSeconds = 0.0;
-        basis_ = std::make_shared<const ModalBasis>(std::move(*hit));
+        heldBasis_ = std::make_shared<const ModalBasis>(std::move(*hit));
         fromCache_ = true;
+        releaseRelaxedMuscles();
         return;
       }
     }
@@ -158,13 +164,68 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   ModalBasis b = builder_->basis();
   b.solveSeconds = clock.seconds();
   if (cache && b.modeCount() > 0) cache->store(key_, b);
+  heldBasis_ = std::make_shared<const ModalBasis>(std::move(b));
+  releaseRelaxedMuscles();
+}
+
+// Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin").
+// Muscle m moves in its one shape, q_m U_m, with the energy ½κ_m q_m² − a_m F_m q_m (passive belly,
+// active force) + its couplings ½Σ k_i |q_m w_i − u_i|² (w = U at the springs). Eliminating q_m,
+// the skin sees K̂ − γ_m c_m c_mᵀ and the load a_m F_m γ_m c_m, with c_m = K_c,m w and
+// γ_m = 1/(κ_m + s_m), s_m = wᵀK_c,m w: a rank-1 release (κ_m → ∞ gives the held muscle back).
+// F_m is set so that at a_m = 1, alone, the muscle shortens by σ_m (q_m = 1): α_m = F_m γ_m =
+// 1/(1 + γ_m c_mᵀ K⁻¹ c_m), K the released stiffness. The loads are the c_m and the Ritz basis
+// spans K̂⁻¹c_m, so by the Woodbury identity every static response of K lies in the basis: the
+// reduced model stays exact. In it, K_r = Λ − P Γ Pᵀ (P = Φᵀ[c_m]) is re-diagonalised, K_r = Z Λ' Zᵀ,
+// and the basis turned, Φ' = ΦZ (still M-orthonormal: M_r = I), Ψ' = ΨZ.
+void AnatomicalSkin::releaseRelaxedMuscles() {
+  const ModalBasis& held = *heldBasis_;
+  const auto M = static_cast<Eigen::Index>(muscles_.size());
+  if (!(settings_.relaxedMuscleModulus > 0) || M == 0 || held.modeCount() == 0) {
+    basis_ = heldBasis_;
+    release_.resize(0);
+    muscleLoads_ = couplingLoads_;
+    return;
+  }
+  const double scale = head_.frame().scale;
+  release_.resize(M);
+  MatX P(held.modeCount(), M);
+  for (Eigen::Index m = 0; m < M; ++m) {
+    const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
+    const MuscleDef& def = cm.muscle.def;
+    double s = 0.0;  // s_m = Σ k_i |w_i|²
+    for (const auto& spring : cm.springs) s += spring.stiffness * spring.muscleDisplacement(cm.fullShape).squaredNorm();
+    // κ_m = E_p A σ² L: the belly's axial stiffness E_p A / L times the squared shortening σL at q = 1.
+    const double area = 0.25 * std::numbers::pi * (def.width * scale) * (def.thickness * scale);
+    const double sigma = def.isRing() ? def.ring.shortening : settings_.coupling.shortening;
+    const double L = cm.muscle.restLength;
+    const double kappa = settings_.relaxedMuscleModulus * area * sigma * sigma * L;
+    release_(m) = 1.0 / (kappa + s);
+    P.col(m) = held.Phi.transpose() * flat(couplingLoads_[static_cast<size_t>(m)]);
+  }
+  MatX Kr = held.lambda.asDiagonal();
+  Kr.noalias() -= P * release_.asDiagonal() * P.transpose();
+  const Eigen::SelfAdjointEigenSolver<MatX> eig(Kr);
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues().minCoeff() > 0))
+    throw NumericalError("anatomical model: the skin with its relaxed muscles released is not positive definite");
+  const MatX& Z = eig.eigenvectors();
+  ModalBasis b = held;
+  b.Phi = held.Phi * Z;
+  b.Psi = held.Psi * Z;
+  b.lambda = eig.eigenvalues();
+  // α_m = 1/(1 + γ_m p_mᵀ K_r⁻¹ p_m).
+  const MatX ZtP = Z.transpose() * P;
+  for (Eigen::Index m = 0; m < M; ++m) {
+    const double pKp = (ZtP.col(m).array().square() / b.lambda.array()).sum();
+    muscleLoads_[static_cast<size_t>(m)] = couplingLoads_[static_cast<size_t>(m)] / (1.0 + release_(m) * pKp);
+  }
   basis_ = std::make_shared<const ModalBasis>(std::move(b));
 }
 
 RitzBasisBuilder& AnatomicalSkin::builder() const {
   std::lock_guard<std::mutex> lock(builderMutex_);
   if (!builder_)
-    builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_, *basis_);
+    builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_, *heldBasis_);
   return *builder_;
 }
 
@@ -196,7 +257,8 @@ int AnatomicalSkin::addDrag(int vertex, double radius, double* seconds) {
     b.addLoad(f);
   }
   b.diagonalize();
-  basis_ = std::make_shared<const ModalBasis>(b.basis());
+  heldBasis_ = std::make_shared<const ModalBasis>(b.basis());
+  releaseRelaxedMuscles();
   drags_.push_back(std::move(d));
   if (seconds) *seconds = clock.seconds();
   return static_cast<int>(drags_.size()) - 1;
@@ -234,7 +296,25 @@ MatX3 AnatomicalSkin::worldLoad(const SkinLoads& loads) const {
 }
 
 MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const {
-  return builder().staticResponse(worldLoad(loads));
+  RitzBasisBuilder& b = builder();
+  const MatX3 y = b.staticResponse(worldLoad(loads));
+  const auto M = release_.size();
+  if (M == 0) return y;
+  if (heldCouplingResponses_.empty())
+    for (const MatX3& c : couplingLoads_) heldCouplingResponses_.push_back(b.staticResponse(c));
+  // Woodbury: K⁻¹F = y + K̂⁻¹C (Γ⁻¹ − CᵀK̂⁻¹C)⁻¹ Cᵀy.
+  MatX D(M, M);
+  VecX Cy(M);
+  for (Eigen::Index i = 0; i < M; ++i) {
+    Cy(i) = flat(couplingLoads_[static_cast<size_t>(i)]).dot(flat(y));
+    for (Eigen::Index j = 0; j < M; ++j)
+      D(i, j) = (i == j ? 1.0 / release_(i) : 0.0) -
+                flat(couplingLoads_[static_cast<size_t>(i)]).dot(flat(heldCouplingResponses_[static_cast<size_t>(j)]));
+  }
+  const VecX z = D.ldlt().solve(Cy);
+  MatX3 out = y;
+  for (Eigen::Index j = 0; j < M; ++j) out += z(j) * heldCouplingResponses_[static_cast<size_t>(j)];
+  return out;
 }
 
 SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {

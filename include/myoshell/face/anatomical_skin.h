@@ -57,6 +57,12 @@ struct AnatomicalSettings {
   double dampingMass = 8.0;         // ξ, 1/s (Rayleigh)
   double dampingStiffness = 2e-4;   // ζ, s
   double dt = 1.0 / 240.0;          // s
+  // Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin"):
+  // each muscle's coordinate along its shape is condensed out with the passive stiffness
+  // κ_m = E_p A_m σ_m² L_m of its belly (A_m its cross-section, L_m its length, σ_m its shortening at
+  // a = 1), E_p this modulus along the fibres of a muscle at rest. 0: every muscle holds the skin
+  // over it at its rest place whatever its activation (the couplings fed forward only).
+  double relaxedMuscleModulus = 1.0e5;  // dyn/cm² (10 kPa, passive skeletal muscle at rest length)
   void validate() const;            // InputError naming the field
 };
 
@@ -109,9 +115,17 @@ class AnatomicalSkin {
   const SparseMat& extraStiffness() const { return Kextra_; }
   const SparseMat& stiffness() const { return Khat_; }  // K̂
   const VecX& vertexMass() const { return mass_; }                     // n, g
+  // The basis the skin is stepped and settled in: the Ritz basis of K̂, turned so that it is
+  // diagonal for the stiffness with the relaxed muscles released (K̂ − Σ_m γ_m c_m c_mᵀ), or K̂'s own
+  // with relaxedMuscleModulus = 0.
   std::shared_ptr<const ModalBasis> basis() const { return basis_; }
   const Vec3& restGravity() const { return gRest_; }
-  const MatX3& muscleLoad(int m) const { return muscleLoads_[static_cast<size_t>(m)]; }  // a = 1, dyn
+  // The skin load of muscle m at a = 1 (dyn): α_m c_m, c_m = K_c,m U_m its couplings' pull, α_m the
+  // strength that makes it shorten by σ_m against the skin with the other muscles relaxed (1 when
+  // muscles are held).
+  const MatX3& muscleLoad(int m) const { return muscleLoads_[static_cast<size_t>(m)]; }
+  // γ_m = 1/(κ_m + s_m), s_m = U_mᵀ K_c,m U_m: how far muscle m lets go of the skin (0 when held).
+  double muscleRelease(int m) const { return release_.size() ? release_(m) : 0.0; }
   // True when the basis came from the BasisCache given to the constructor.
   bool basisFromCache() const { return fromCache_; }
   // The cache key of this skin's basis as built (before any later addDrag): a hash of K̂ (its
@@ -135,7 +149,8 @@ class AnatomicalSkin {
   // The reduced static equilibrium: linear (q = Λ⁻¹(ΦᵀF + c)) or warped (Newton on q,
   // Λq = Φᵀ R(Ψq)ᵀ F + c, from the linear solution), c the rest-gravity term of reading (a).
   SettledSkin settle(const SkinLoads& loads, bool warped) const;
-  // The full-space linear response K̂⁻¹F (n×3, cm) of the world load (reading (b)).
+  // The full-space linear response (n×3, cm) of the world load (reading (b)): K⁻¹F with K = K̂ and
+  // the relaxed muscles released (Woodbury: K̂⁻¹F + K̂⁻¹C (Γ⁻¹ − CᵀK̂⁻¹C)⁻¹ CᵀK̂⁻¹F, C = [c_m]).
   MatX3 linearFullResponse(const SkinLoads& loads) const;
 
  private:
@@ -143,12 +158,17 @@ class AnatomicalSkin {
   void validateLoads(const SkinLoads& loads) const;
   std::vector<int> dragVertices(int vertex, double radius) const;
   RitzBasisBuilder& builder() const;  // made on first use after a cache hit
+  // basis_ from heldBasis_: the relaxed muscles released and the muscle loads rescaled (α_m).
+  void releaseRelaxedMuscles();
   Head head_;
   AnatomicalSettings settings_;
   std::unique_ptr<DiscreteShell> shell_;
   TissueMap tissue_;
   std::vector<CoupledMuscle> muscles_;
-  std::vector<MatX3> muscleLoads_;
+  std::vector<MatX3> muscleLoads_;     // α_m c_m
+  std::vector<MatX3> couplingLoads_;   // c_m = K_c,m U_m
+  VecX release_;                       // γ_m (empty when muscles are held)
+  mutable std::vector<MatX3> heldCouplingResponses_;  // K̂⁻¹c_m, for linearFullResponse
   struct Drag {
     std::vector<int> vertices;
   };
@@ -160,6 +180,7 @@ class AnatomicalSkin {
   RitzSettings ritz_;
   mutable std::mutex builderMutex_;
   mutable std::unique_ptr<RitzBasisBuilder> builder_;
+  std::shared_ptr<const ModalBasis> heldBasis_;  // diagonal for K̂: the cache's payload, the builder's start
   std::shared_ptr<const ModalBasis> basis_;
   BasisKey key_;
   bool fromCache_ = false;
