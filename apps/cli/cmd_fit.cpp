@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "myoshell/face/activation_fit.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/head_checks.h"
+#include "myoshell/face/retarget_map.h"
 #include "myoshell/io/marker_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"
@@ -178,6 +180,13 @@ int runFit(const FitArgs& a) {
   for (size_t m = 0; m < skin.muscles().size(); ++m)
     acts[skin.muscles()[m].muscle.def.name] = fit.activations(static_cast<Eigen::Index>(m));
   nlohmann::ordered_json j;
+  // The keys of one `fit-rig` shape (name, reachable, reason, …), then the fit's own. A rig shape is
+  // named by its name in the rig; other targets by their file's stem.
+  const std::string shapeName = kind == TargetKind::Rig ? rigShapeName : fs::path(a.target).stem().string();
+  const std::optional<std::string> unreachable = unreachableReason(shapeName);
+  j["name"] = shapeName;
+  j["reachable"] = !unreachable.has_value();
+  j["reason"] = unreachable.value_or("");
   j["target"] = a.target;
   j["kind"] = kindName(kind);
   j["head"] = head.name;

@@ -81,6 +81,9 @@ TEST(Fit, RecoversKnownActivationsOfThreeMusclesFromTheirShape) {
   EXPECT_NEAR(j["magnitude_ratio"].get<double>(), 1.0, 0.01);
   EXPECT_GT(j["condition_number"].get<double>(), 1.0);
   EXPECT_EQ(j["kind"], "obj");
+  EXPECT_EQ(j["name"], "target");  // the keys of a fit-rig shape: name (the file's stem), reachable, reason
+  EXPECT_EQ(j["reachable"], true);
+  EXPECT_EQ(j["reason"], "");
   EXPECT_EQ(j["jaw"], nlohmann::json::object());
   RecordProperty("condition_number", std::to_string(j["condition_number"].get<double>()));
   RecordProperty("fit_seconds", std::to_string(j["fit_seconds"].get<double>()));
