@@ -7,6 +7,7 @@
 // docs/fitting.md, "Making a rig".
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,7 @@
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/arkit_names.h"
+#include "myoshell/face/muscle_def.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_export.h"
 #include "resources.h"
@@ -52,6 +54,12 @@ int runRig(RigArgs& a) {
   const SceneInputs inputs = fitHeadInputs(a.head, nullptr, "rig");
   std::vector<std::string> muscles;
   for (const MuscleDef& d : inputs.muscles) muscles.push_back(d.name);
+  // A map fitted with the whole face's muscles needs that library: say so rather than "unknown muscle".
+  if (a.head.library != "face")
+    for (const std::string& name : readRetargetMapFile(a.map).muscleNames())
+      if (std::find(muscles.begin(), muscles.end(), name) == muscles.end() &&
+          std::any_of(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == name; }))
+        throw InputError("the map uses the whole face's muscles (" + name + ", …): give --library face", a.map);
   const RetargetMap map = readRetargetMapFile(a.map, muscles);
   for (const RetargetShape& s : map.shapes)
     if (!s.jaw.empty())
