@@ -54,13 +54,19 @@ int runRig(RigArgs& a) {
   const SceneInputs inputs = fitHeadInputs(a.head, nullptr, "rig");
   std::vector<std::string> muscles;
   for (const MuscleDef& d : inputs.muscles) muscles.push_back(d.name);
-  // A map fitted with the whole face's muscles needs that library: say so rather than "unknown muscle".
-  if (a.head.library != "face")
-    for (const std::string& name : readRetargetMapFile(a.map).muscleNames())
-      if (std::find(muscles.begin(), muscles.end(), name) == muscles.end() &&
-          std::any_of(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == name; }))
-        throw InputError("the map uses the whole face's muscles (" + name + ", …): give --library face", a.map);
-  const RetargetMap map = readRetargetMapFile(a.map, muscles);
+  RetargetMap map;
+  try {
+    map = readRetargetMapFile(a.map, muscles);
+  } catch (const InputError&) {
+    // A map fitted with the whole face's muscles needs that library: say so rather than "unknown
+    // muscle" (the map is read again, without the muscle list, on this error path only).
+    if (a.head.library != "face")
+      for (const std::string& name : readRetargetMapFile(a.map).muscleNames())
+        if (std::find(muscles.begin(), muscles.end(), name) == muscles.end() &&
+            std::any_of(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == name; }))
+          throw InputError("the map uses the whole face's muscles (" + name + ", …): give --library face", a.map);
+    throw;
+  }
   for (const RetargetShape& s : map.shapes)
     if (!s.jaw.empty())
       throw InputError("shape " + s.name + " sets jaw values, and the anatomical model has no jaw yet", a.map);

@@ -44,4 +44,10 @@ std::vector<std::string> closeNames(const std::string& spelling, const std::vect
   return out;
 }
 
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 }  // namespace myo

@@ -31,23 +31,17 @@ std::string shortNumber(double v) {
   return out.str();
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
 std::string openFaceList() {
   std::vector<std::string> names;
   for (const int au : openFaceIntensityAus()) names.push_back(auName(au));
-  return joined(names);
+  return joinNames(names);
 }
 
 // "unknown muscle 'x' (did you mean a, b?)", or the whole list when nothing is close.
 std::string unknownMuscle(const std::string& muscle, const std::vector<std::string>& known) {
   const std::vector<std::string> close = closeNames(muscle, known);
-  if (!close.empty()) return "unknown muscle '" + muscle + "' (did you mean " + joined(close) + "?)";
-  return "unknown muscle '" + muscle + "' (the muscles: " + joined(known) + ")";
+  if (!close.empty()) return "unknown muscle '" + muscle + "' (did you mean " + joinNames(close) + "?)";
+  return "unknown muscle '" + muscle + "' (the muscles: " + joinNames(known) + ")";
 }
 
 FacsEntry readEntry(DocReader& r, const std::set<std::string>& known, const std::vector<std::string>& knownList) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "myoshell/core/close_names.h"
 #include "myoshell/core/check.h"
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
@@ -49,12 +50,6 @@ NamedValues readNamedValues(DocReader& r, const std::string& key, Check check) {
     check(kv.first, kv.second, at, name, v);
     out.emplace_back(name, v);
   }
-  return out;
-}
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
   return out;
 }
 
@@ -130,7 +125,7 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
     s.activations = readNamedValues(r, "activations", [&](const YAML::Node& key, const YAML::Node& value, const std::string& at,
                                                           const std::string& muscle, double v) {
       if (!muscles.empty() && !muscles.count(muscle))
-        r.failAt(key, at, "unknown muscle '" + muscle + "' (the model's muscles: " + joined(knownMuscles) + ")");
+        r.failAt(key, at, "unknown muscle '" + muscle + "' (the model's muscles: " + joinNames(knownMuscles) + ")");
       if (v < lo || v > 1.0)
         r.failAt(value, at,
                  "activation " + value.Scalar() + " is outside " +

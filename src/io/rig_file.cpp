@@ -13,6 +13,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
 
@@ -503,12 +504,6 @@ RigFile Reader::read() {
   return rig;
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& s : names) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
 }  // namespace
 
 int RigFile::find(const std::string& name) const {
@@ -519,7 +514,7 @@ int RigFile::find(const std::string& name) const {
 
 const MatX3& RigFile::shape(const std::string& name) const {
   const int i = find(name);
-  if (i < 0) throw InputError("no shape '" + name + "' (the rig has: " + joined(names) + ")", path);
+  if (i < 0) throw InputError("no shape '" + name + "' (the rig has: " + joinNames(names) + ")", path);
   return targets[static_cast<std::size_t>(i)];
 }
 

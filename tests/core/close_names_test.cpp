@@ -31,3 +31,15 @@ TEST(CloseNames, TheClosestAndThoseOneEditFurtherAtMostThree) {
 
 }  // namespace
 }  // namespace myo
+
+namespace myo {
+namespace {
+
+TEST(CloseNames, JoinNamesSeparatesWithCommas) {
+  EXPECT_EQ(joinNames({}), "");
+  EXPECT_EQ(joinNames({"a"}), "a");
+  EXPECT_EQ(joinNames({"jawOpen", "mouthClose", "x"}), "jawOpen, mouthClose, x");
+}
+
+}  // namespace
+}  // namespace myo

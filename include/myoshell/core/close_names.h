@@ -1,5 +1,5 @@
-// Suggestions for a misspelt name: the known names a few edits away, so an error can say "did you
-// mean …?" (blendshape names, muscle names).
+// Names in error messages: suggestions for a misspelt name (the known names a few edits away, so an
+// error can say "did you mean …?": blendshape names, muscle names), and lists of names.
 #pragma once
 
 #include <cstddef>
@@ -15,5 +15,8 @@ std::size_t editDistance(const std::string& a, const std::string& b);
 // one), closest first, then those one edit further (so "mouthSmile_l" finds both _L and _R), at
 // most three; ties in alphabetical order. Empty when none is close.
 std::vector<std::string> closeNames(const std::string& spelling, const std::vector<std::string>& candidates);
+
+// "a, b, c" (empty for none).
+std::string joinNames(const std::vector<std::string>& names);
 
 }  // namespace myo
