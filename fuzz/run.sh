@@ -8,7 +8,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
-targets=${FUZZ_TARGETS:-fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map}
+targets=${FUZZ_TARGETS:-fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance}
 bin=build-fuzz/bin
 mkdir -p fuzz/findings build-fuzz/logs
 
@@ -16,6 +16,7 @@ maxLen() {  # longest input per target: a few times the largest seed
   case $1 in
     fuzz_obj) echo 8192 ;;
     fuzz_vertex_set) echo 2048 ;;
+    fuzz_performance) echo 8192 ;;  # a Live Link Face row is 600 bytes
     *) echo 4096 ;;
   esac
 }

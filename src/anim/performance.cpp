@@ -156,9 +156,10 @@ std::string numberText(double x) {
 CellRead readCell(std::string_view cell, double& out) {
   cell = trim(cell);
   if (cell.empty()) return CellRead::Empty;
-  if (cell.front() == '+') cell.remove_prefix(1);
-  if (cell.empty() || cell.front() == '+' || (cell.front() == '-' && cell.size() > 1 && cell[1] == '+'))
-    return CellRead::Unreadable;
+  if (cell.front() == '+') {  // from_chars reads no sign but '-'
+    cell.remove_prefix(1);
+    if (cell.empty() || cell.front() == '+' || cell.front() == '-') return CellRead::Unreadable;
+  }
   const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), out);
   if (end != cell.data() + cell.size()) return CellRead::Unreadable;
   if (ec == std::errc::result_out_of_range) return CellRead::NotFinite;

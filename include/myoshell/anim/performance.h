@@ -25,13 +25,13 @@ PerformanceInput performanceInputFromString(const std::string& name);
 const char* toString(PerformanceInput input);
 
 struct PerformanceOptions {
-  std::optional<PerformanceInput> input;  // detected from the text when not given
+  std::optional<PerformanceInput> input{};  // detected from the text when not given
   // OpenFace: the scale the intensities are written in (5 = raw OpenFace 0–5, 1 = already 0–1).
   // Not given: 5 when the header has `face_id` or any `AUxx_c` column, else 1.
-  std::optional<double> auScale;
+  std::optional<double> auScale{};
   int face = -1;                          // OpenFace: the face_id to read; -1 = the only one (error if several)
   double minConfidence = 0.7;             // OpenFace: frames below it (or success 0) are bridged
-  std::optional<double> inputFps;         // Live Link: the timecode's frame rate (else inferred)
+  std::optional<double> inputFps{};       // Live Link: the timecode's frame rate (else inferred)
 };
 
 // One named curve: a value per frame of the performance (same length as Performance::times).
@@ -48,7 +48,8 @@ struct Performance {
   std::vector<PerformanceChannel> channels;  // in the file's column order; AUs ascending for OpenFace
   // The head's rotation per frame as [pitch, yaw, roll] degrees about the face frame's x, y, z
   // (anim/head_pose_track.h's convention), empty when the file has none. OpenFace: pose_Rx/Ry/Rz
-  // (radians, camera-relative; a level camera is assumed) converted; Live Link: HeadPitch/HeadYaw/HeadRoll.
+  // (radians, camera-relative; a level camera is assumed) converted; Live Link: 180·HeadPitch/HeadYaw/HeadRoll
+  // (the app writes degrees / 180). Signs and sources: docs/performance_input.md, "Formats".
   std::vector<Vec3> headPose;
   int droppedFrames = 0;                // frames bridged by interpolation or trimmed at the ends
   std::vector<std::string> warnings;    // one line each: unknown columns, dropped frames, …
