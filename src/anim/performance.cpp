@@ -143,7 +143,10 @@ std::vector<std::string_view> splitFields(std::string_view line) {
 
 std::string quoted(std::string_view s) {
   constexpr size_t kMax = 40;
-  return "'" + std::string(s.substr(0, kMax)) + (s.size() > kMax ? "…'" : "'");
+  std::string out = "'";  // appended piece by piece: gcc 12's -Wrestrict misreads "'" + std::string(…)
+  out.append(s.substr(0, kMax));
+  out.append(s.size() > kMax ? "…'" : "'");
+  return out;
 }
 
 std::string numberText(double x) {
@@ -231,15 +234,21 @@ Performance assemblePerformance(FrameTable table, PerformanceInput input, const 
     const size_t b = valid[k + 1];
     for (size_t i = a; i < b; ++i) {
       const double s = i == a ? 0.0 : (frames[i].time - frames[a].time) / (frames[b].time - frames[a].time);
+      // Between two values in [0, 1], and kept there against round-off.
       for (size_t c = 0; c < out.channels.size(); ++c)
-        out.channels[c].values[i - first] = (1 - s) * frames[a].values[c] + s * frames[b].values[c];
-      if (table.hasPose) out.headPose[i - first] = (1 - s) * frames[a].pose + s * frames[b].pose;
+        out.channels[c].values[i - first] =
+            std::clamp(frames[a].values[c] + s * (frames[b].values[c] - frames[a].values[c]), 0.0, 1.0);
+      if (table.hasPose) out.headPose[i - first] = frames[a].pose + s * (frames[b].pose - frames[a].pose);
     }
   }
   for (size_t c = 0; c < out.channels.size(); ++c) out.channels[c].values[n - 1] = frames[last].values[c];
   if (table.hasPose) out.headPose[n - 1] = frames[last].pose;
 
   out.fps = table.fps > 0 ? table.fps : static_cast<double>(n - 1) / out.duration();
+  if (!std::isfinite(out.fps))  // times that increase by less than double's range can hold
+    throw InputError("the frames are too close in time: " + std::to_string(n) + " frames within " +
+                         numberText(out.duration()) + " s",
+                     name);
   out.droppedFrames = droppedRows;
   if (droppedRows > 0) {
     const int trimmed = static_cast<int>(first + (frames.size() - 1 - last));

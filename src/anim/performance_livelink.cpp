@@ -189,6 +189,10 @@ Performance parseLiveLink(const std::string& text, const std::string& name, cons
           throw InputError(std::string(header[c]) + " is " + numberText(v) + ", outside [0, 1]", name, line);
         f.values[channelOf[c]] = std::clamp(v, 0.0, 1.0);
       } else {
+        // The plugin maps −180…180° onto −1…1 (above): anything further is not an angle it wrote.
+        if (std::fabs(v) > 1 + kRangeSlack)
+          throw InputError(std::string(header[c]) + " is " + numberText(v) + ", outside [-1, 1] (degrees / 180)", name,
+                           line);
         const int axis = static_cast<int>(c) == headOf[0] ? 0 : static_cast<int>(c) == headOf[1] ? 1 : 2;
         f.pose[axis] = 180.0 * v;  // degrees / 180 as written (above)
       }

@@ -28,6 +28,12 @@ std::string jsonMessage(const nlohmann::json::exception& e) {
   return what;
 }
 
+// A JSON value for a message, cut to 40 characters.
+std::string shown(const nlohmann::json& j) {
+  std::string s = j.dump(-1, ' ', true);  // ASCII: a cut cannot split a character
+  return s.size() > 40 ? s.substr(0, 40) + "…" : s;
+}
+
 }  // namespace
 
 Performance parseMediaPipe(const std::string& text, const std::string& name, const PerformanceOptions&) {
@@ -65,10 +71,10 @@ Performance parseMediaPipe(const std::string& text, const std::string& name, con
       table.leftOut.push_back(std::move(f));
       continue;
     }
-    if (!t.is_number()) throw InputError("timestamp_ms must be a number, got " + t.dump(), name, line);
+    if (!t.is_number()) throw InputError("timestamp_ms must be a number, got " + shown(t), name, line);
     f.time = t.get<double>() / 1000.0;
     if (!shapes.is_array())
-      throw InputError("blendshapes must be a list of {\"categoryName\": …, \"score\": …}, got " + shapes.dump(), name,
+      throw InputError("blendshapes must be a list of {\"categoryName\": …, \"score\": …}, got " + shown(shapes), name,
                        line);
     f.values.assign(table.channels.size(), std::nan(""));
     for (size_t k = 0; k < shapes.size(); ++k) {
@@ -78,7 +84,7 @@ Performance parseMediaPipe(const std::string& text, const std::string& name, con
         throw InputError(at + " must be an object {\"categoryName\": …, \"score\": …}", name, line);
       const nlohmann::json& category = s["categoryName"];
       const nlohmann::json& score = s["score"];
-      if (!category.is_string()) throw InputError(at + ".categoryName must be a string, got " + category.dump(), name, line);
+      if (!category.is_string()) throw InputError(at + ".categoryName must be a string, got " + shown(category), name, line);
       const std::string shape = category.get<std::string>();
       if (shape == "_neutral") continue;
       const std::optional<std::string> arkit = findArkitName(shape);
@@ -87,7 +93,7 @@ Performance parseMediaPipe(const std::string& text, const std::string& name, con
         continue;
       }
       if (score.is_null()) continue;  // an empty cell: the frame is dropped below
-      if (!score.is_number()) throw InputError(at + ".score must be a number, got " + score.dump(), name, line);
+      if (!score.is_number()) throw InputError(at + ".score must be a number, got " + shown(score), name, line);
       const double v = score.get<double>();
       if (!std::isfinite(v)) throw InputError(at + ".score is not finite", name, line);
       if (v < -kRangeSlack || v > 1 + kRangeSlack)

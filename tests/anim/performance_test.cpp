@@ -375,6 +375,8 @@ TEST(PerformanceLiveLink, ErrorsNameTheFileLineAndFault) {
   EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen\n00:00:00:30,1,0\n", {.inputFps = 30.0}),
             "p.csv:2: frame 30 of timecode '00:00:00:30' is not below the frame rate 30");
   EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen\n00:00:00:00,1,1.5\n"), "p.csv:2: JawOpen is 1.5, outside [0, 1]");
+  EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen,HeadYaw,HeadPitch,HeadRoll\n00:00:00:00,1,0,0,-1.5,0\n"),
+            "p.csv:2: HeadPitch is -1.5, outside [-1, 1] (degrees / 180)");
   EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen\n00:00:00:00,1,nan\n"),
             "p.csv:2: non-finite number 'nan' in column 'JawOpen'");
   EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen\n00:00:00:01,1,0\n00:00:00:00,1,0\n"),
