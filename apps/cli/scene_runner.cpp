@@ -24,6 +24,7 @@
 #include "myoshell/core/io_error.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/face_frame.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/output_manifest.h"
@@ -49,6 +50,10 @@ ExportFormats parseFormats(const std::vector<std::string>& names) {
   return f;
 }
 
+// The pivot of --head-motion's turn: about where the skull sits on the spine (the atlanto-occipital
+// joint), below and behind the eyes — 0.9 of the eye distance down and back in the face frame.
+Vec3 headMotionPivot(const FaceFrame& frame) { return frame.fromFrame(Vec3(0.0, -0.9, -0.9)); }
+
 }  // namespace
 
 std::unique_ptr<FacePainter> makePainter(bool software) {
@@ -66,6 +71,8 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   const auto cache = openBasisCache(opt.cacheDir);
 
   const bool tty = !opt.json && isatty(STDOUT_FILENO);
+  if (scene.performanceReport)
+    for (const std::string& w : scene.performanceReport->warnings) fmt::print(stderr, "myoshell: warning: {}\n", w);
   Stopwatch buildClock;
   const auto model = buildSceneFace(scene, cache.get());
   const double buildSeconds = buildClock.seconds();
@@ -102,11 +109,17 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   std::unique_ptr<FacePainter> painter = draw ? makePainter(opt.software) : nullptr;
   std::unique_ptr<VideoWriter> video;
   const fs::path videoPath = out / (scene.name + ".mp4"), gifPath = out / (scene.name + ".gif");
+  const bool panel = opt.video && !opt.videoPanel.curves.empty();
   if (opt.video) {
     VideoOptions vo;
     vo.fps = scene.fps;
-    video = std::make_unique<VideoWriter>(videoPath.string(), opt.size, opt.size, vo);
+    video = std::make_unique<VideoWriter>(videoPath.string(), panel ? 2 * opt.size : opt.size, opt.size, vo);
   }
+  // --head-motion: the rigid turn of every exported frame, about the neck pivot.
+  const bool turnHead = opt.headMotion && !scene.headPose.empty();
+  const FaceFrame& frame = model->head().frame();
+  const Vec3 pivot = headMotionPivot(frame);
+  MatX3 turned;
   std::vector<Image> sheet;
   std::vector<std::string> sheetCaptions;
   const int sheetEvery = std::max(1, (frames - 1) / 5);  // about six frames on the sheet
@@ -122,7 +135,14 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     const FrameSnapshot& snap = player.snapshot(overlays.muscles);
     stepSeconds += snap.stepSeconds;
     steps += snap.steps;
-    const MatX3& positions = snap.positions;
+    const MatX3* shown = &snap.positions;
+    if (turnHead) {
+      // p' = c + A R Aᵀ (p − c): the head pose R is in face-frame axes A (anim/head_pose_track.h).
+      const Mat3 r = frame.axes * scene.headPose.at(snap.time).toRotationMatrix() * frame.axes.transpose();
+      turned = ((snap.positions.rowwise() - pivot.transpose()) * r.transpose()).rowwise() + pivot.transpose();
+      shown = &turned;
+    }
+    const MatX3& positions = *shown;
     if (formats.obj) {
       const std::string rel = fmt::format("obj/{}_{:04d}.obj", scene.name, f);
       writeObj((out / rel).string(), model->head().mesh, &positions);
@@ -133,7 +153,7 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
     const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
     if (video || png || onSheet) {
       const Image image = painter->paint(faceScene(*model, faceFrameState(snap, overlays), view, opt.size, opt.size, overlays));
-      if (video) video->addFrame(image);
+      if (video) video->addFrame(panel ? besideEachOther(image, drawCurvePanel(opt.videoPanel, snap.time, opt.size, opt.size)) : image);
       if (png) {
         const std::string rel = fmt::format("png/{}_{:04d}.png", scene.name, f);
         writePng((out / rel).string(), image);
@@ -204,6 +224,23 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
   stats["cache_hits"] = model->cacheHits();
   if (painter) stats["renderer"] = painter->name();
   stats["steps_per_second"] = steps / std::max(stepSeconds, 1e-12);
+  // Where the wall time went: the simulation's steps, and everything else (snapshots, exports,
+  // pictures) up to the last export written.
+  const double wallSeconds = wall.seconds();
+  stats["simulate_seconds"] = stepSeconds;
+  stats["output_seconds"] = std::max(0.0, wallSeconds - stepSeconds);
+  stats["realtime_factor"] = (frames > 1 ? (frames - 1) / scene.fps : 0.0) / std::max(wallSeconds, 1e-12);
+  if (scene.performanceReport) {
+    const PerformanceReport& p = *scene.performanceReport;
+    stats["performance"] = p.file;
+    stats["input"] = toString(p.input);
+    stats["au_scale"] = p.auScale;
+    stats["fps"] = p.fps;
+    stats["duration"] = p.duration;
+    stats["dropped_frames"] = p.droppedFrames;
+    stats["warnings"] = p.warnings;
+    stats["unmapped"] = p.unmapped;
+  }
   stats["step_ms_mean"] = steps ? 1e3 * stepSeconds / steps : 0.0;
   nlohmann::json ch = nlohmann::json::array();
   nlohmann::json mus = nlohmann::json::array();

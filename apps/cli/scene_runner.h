@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene.h"
+#include "myoshell/render/curve_panel.h"
 #include "myoshell/render/face_picture.h"
 
 namespace myo::cli {
@@ -30,6 +31,11 @@ struct RunOptions {
   // Video: every frame drawn into DIR/<name>.mp4 (H.264, the scene's frame rate) and DIR/<name>.gif
   // (ffmpeg; render/video.h). Implies drawing every frame; PNGs still every renderEvery-th.
   bool video = false;
+  // drive --video: input curves drawn beside the face in every video frame, with a playhead.
+  CurvePanel videoPanel;
+  // drive --head-motion: the exported frames turned by the scene's head pose (about the neck pivot,
+  // headMotionPivot), as the performer's head turned; the simulation's gravity follows the pose anyway.
+  bool headMotion = false;
 };
 
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.

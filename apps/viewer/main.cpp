@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <cctype>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "myoshell/io/scene_face.h"
@@ -17,11 +19,20 @@ namespace {
 constexpr int kExitOk = 0, kExitFailure = 1, kExitBadInput = 2;
 }
 
+// A performance file (OpenFace or Live Link CSV, MediaPipe JSON Lines) rather than a scene.
+static bool isPerformanceFile(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".csv" || ext == ".jsonl";
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"myoshell-view: a live face with a slider per muscle"};
   std::string scenePath, cacheDir, size = "1280x800";
   myo::viewer::ViewerOptions options;
-  app.add_option("scene", scenePath, "scene file (JSON or YAML); default: the built-in head and its eight muscles");
+  app.add_option("scene", scenePath, "scene file (JSON or YAML), or a performance (.csv: OpenFace or Live Link Face; "
+                                    ".jsonl: MediaPipe) played on the built-in head; default: the built-in head and "
+                                    "its eight muscles");
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
   app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");
   app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(CLI::Range(0, 100000));
@@ -48,8 +59,19 @@ int main(int argc, char** argv) {
   try {
     myo::viewer::checkDisplay();  // no display: say so now, not after building the face
     myo::SceneDesc scene;
-    if (!scenePath.empty()) scene = myo::readScene(scenePath);
-    else scene.name = "default";
+    if (isPerformanceFile(scenePath)) {
+      // A recorded performance on the built-in head with the whole face (docs/performance_input.md):
+      // play and scrub it; the sliders follow the muscles it drives.
+      scene.name = std::filesystem::path(scenePath).stem().string();
+      scene.muscleLibrary = "face";
+      scene.performance.file = std::filesystem::absolute(scenePath).string();
+      myo::loadScenePerformance(scene);
+      for (const std::string& w : scene.performanceReport->warnings) fmt::print(stderr, "myoshell-view: warning: {}\n", w);
+    } else if (!scenePath.empty()) {
+      scene = myo::readScene(scenePath);
+    } else {
+      scene.name = "default";
+    }
     const auto cache = myo::cli::openBasisCache(cacheDir, "myoshell-view");
     myo::viewer::ViewerSession session(scene, cache.get());
     const myo::viewer::ViewerStats stats = myo::viewer::runViewer(session, options);

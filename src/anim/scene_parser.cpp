@@ -107,6 +107,50 @@ void checkFramesAgainstStep(const DocReader& root, const SceneDesc& scene) {
                                   "): the face would not move; lengthen duration or lower dt");
 }
 
+// The scene key `performance` (docs/performance_input.md, "In a scene").
+void readPerformanceDesc(DocReader r, PerformanceDesc& p) {
+  p.file = r.requiredString("file");
+  if (p.file.empty()) r.fail("file", "must name a performance file");
+  if (r.has("input")) {
+    try {
+      p.read.input = performanceInputFromString(r.string("input", ""));
+    } catch (const InputError& e) {
+      r.fail("input", e.message());
+    }
+  }
+  if (r.has("au_scale")) {
+    p.read.auScale = r.number("au_scale", 1.0);
+    r.requireAbove("au_scale", *p.read.auScale, 0.0);
+  }
+  p.read.face = r.integer("face", p.read.face);
+  if (r.has("face")) r.requireAtLeast("face", p.read.face, 0);
+  p.read.minConfidence = r.number("min_confidence", p.read.minConfidence);
+  r.requireWithin("min_confidence", p.read.minConfidence, 0.0, 1.0);
+  if (r.has("input_fps")) {
+    p.read.inputFps = r.number("input_fps", 30.0);
+    r.requireAbove("input_fps", *p.read.inputFps, 0.0);
+  }
+  p.map = r.string("map", "");
+  p.start = r.number("start", p.start);
+  r.requireAtLeast("start", p.start, 0.0);
+  if (r.has("end")) {
+    p.end = r.number("end", p.end);
+    r.requireAbove("end", p.end, p.start);
+  }
+  if (r.has("filter")) {
+    DocReader f = r.child("filter");
+    p.filter.enabled = f.boolean("enabled", p.filter.enabled);
+    p.filter.minCutoff = f.number("min_cutoff", p.filter.minCutoff);
+    f.requireAbove("min_cutoff", p.filter.minCutoff, 0.0);
+    p.filter.beta = f.number("beta", p.filter.beta);
+    f.requireAtLeast("beta", p.filter.beta, 0.0);
+    p.filter.derivativeCutoff = f.number("d_cutoff", p.filter.derivativeCutoff);
+    f.requireAbove("d_cutoff", p.filter.derivativeCutoff, 0.0);
+    f.finish();
+  }
+  r.finish();
+}
+
 SourceLocation locationOf(const YAML::Node& n) {
   const YAML::Mark m = n.Mark();
   if (m.line < 0 || m.pos < 0) return {};
@@ -316,6 +360,14 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     else r.fail("precision", "must be \"float\" or \"double\" (got \"" + precision + "\")");
     r.finish();
   }
+  onlyFor(anatomical, scene, root, "performance");
+  if (root.has("performance")) {
+    // The performance sets the scene's length and frame rate: a second one would contradict it.
+    for (const char* key : {"duration", "fps"})
+      if (root.has(key))
+        root.fail(key, "comes from the performance (key 'performance'): its duration and frame rate are the scene's");
+    readPerformanceDesc(root.child("performance"), scene.performance);
+  }
   scene.duration = root.number("duration", scene.duration);
   root.requireAbove("duration", scene.duration, 0.0);
   scene.fps = root.number("fps", scene.fps);
@@ -482,8 +534,23 @@ std::string sceneToJson(const SceneDesc& scene) {
                      {"stepper", s.stepper == ModalStepper::Exact ? "exact" : "semi-implicit"},
                      {"precision", s.precision == ModalPrecision::Float ? "float" : "double"}};
   }
-  j["duration"] = scene.duration;
-  j["fps"] = scene.fps;
+  if (!scene.performance.file.empty()) {
+    const PerformanceDesc& p = scene.performance;
+    json perf = {{"file", p.file}, {"min_confidence", p.read.minConfidence}, {"face", p.read.face},
+                 {"start", p.start},
+                 {"filter", {{"enabled", p.filter.enabled}, {"min_cutoff", p.filter.minCutoff},
+                             {"beta", p.filter.beta}, {"d_cutoff", p.filter.derivativeCutoff}}}};
+    if (p.read.input) perf["input"] = toString(*p.read.input);
+    if (p.read.auScale) perf["au_scale"] = *p.read.auScale;
+    if (p.read.inputFps) perf["input_fps"] = *p.read.inputFps;
+    if (!p.map.empty()) perf["map"] = p.map;
+    if (p.end >= 0.0) perf["end"] = p.end;
+    if (p.read.face < 0) perf.erase("face");
+    j["performance"] = perf;
+  } else {
+    j["duration"] = scene.duration;
+    j["fps"] = scene.fps;
+  }
   json timeline = json::object();
   json activations = json::object();
   for (const auto& [name, track] : scene.activations) activations[name] = trackJson(track);

@@ -18,6 +18,7 @@ struct Table {
   std::vector<std::string> arkit;                         // 52, in order
   std::map<std::string, std::vector<std::string>> ict;    // ARKit name → ICT names
   std::map<std::string, std::string> canonical;           // any spelling → ARKit name
+  std::map<std::string, ArkitFacs> facs;                  // ARKit name → its action units and side
 };
 
 const Table& table() {
@@ -32,6 +33,9 @@ const Table& table() {
         out.ict[a].push_back(i.get<std::string>());
         out.canonical[i.get<std::string>()] = a;
       }
+      ArkitFacs& f = out.facs[a];
+      for (const auto& au : row.at("aus")) f.aus.push_back(au.get<int>());
+      f.side = row.value("side", "");
     }
     MYO_CHECK(out.arkit.size() == 52, "assets/retarget/arkit_names.json must list the 52 ARKit names");
     return out;
@@ -59,6 +63,8 @@ std::string canonicalArkitName(const std::string& spelling) {
   for (const std::string& a : table().arkit) list += (list.empty() ? "" : ", ") + a;
   throw InputError("unknown blendshape name '" + spelling + "' (use one of the 52 ARKit names: " + list + ")");
 }
+
+const ArkitFacs& arkitFacs(const std::string& spelling) { return table().facs.at(canonicalArkitName(spelling)); }
 
 const std::vector<std::string>& ictNamesOf(const std::string& spelling) {
   return table().ict.at(canonicalArkitName(spelling));

@@ -10,10 +10,12 @@
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/arkit_names.h"
+#include "myoshell/face/muscle_def.h"
 
 namespace myo {
 namespace detail {
 extern const char kUnreachableShapesJson[];
+extern const char kArkitIctFaceMapJson[];
 }  // namespace detail
 
 namespace {
@@ -236,6 +238,15 @@ std::optional<std::string> unreachableReason(const std::string& anySpelling) {
   for (const auto& [arkit, reason] : unreachableArkitShapes())
     if (arkit == *name) return reason;
   return std::nullopt;
+}
+
+const RetargetMap& builtinRetargetMap() {
+  static const RetargetMap map = [] {
+    std::vector<std::string> names;
+    for (const MuscleDef& def : faceMuscleDefs()) names.push_back(def.name);
+    return parseRetargetMap(detail::kArkitIctFaceMapJson, "<embedded assets/retarget/arkit_ict_face.json>", names);
+  }();
+  return map;
 }
 
 }  // namespace myo

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "myoshell/anim/performance_map.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
 #include "myoshell/face/anatomical_face.h"
@@ -9,6 +10,8 @@
 #include "myoshell/io/attachment_file.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
+#include "myoshell/io/performance_file.h"
+#include "myoshell/io/retarget_map_file.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/mesh/vertex_set.h"
 
@@ -17,12 +20,53 @@ namespace myo {
 namespace fs = std::filesystem;
 
 SceneDesc readScene(const std::string& path) {
-  return parseScene(readWholeFile(path, "cannot open scene file"), path);
+  SceneDesc scene = parseScene(readWholeFile(path, "cannot open scene file"), path);
+  loadScenePerformance(scene);
+  return scene;
+}
+
+namespace {
+// A path the scene names: absolute, or relative to the scene's folder.
+std::string resolveAgainstScene(const SceneDesc& scene, const std::string& p) {
+  const fs::path base = scene.path.empty() || scene.path.front() == '<' ? fs::path() : fs::path(scene.path).parent_path();
+  return fs::path(p).is_absolute() ? p : (base / p).string();
+}
+}  // namespace
+
+void loadScenePerformance(SceneDesc& scene) {
+  if (scene.performance.file.empty()) return;
+  const PerformanceDesc& desc = scene.performance;
+  const std::string file = resolveAgainstScene(scene, desc.file);
+  Performance performance = readPerformanceFile(file, desc.read);
+  performance = cropPerformance(performance, desc.start, desc.end, file);
+
+  // The muscles the scene will have (its library, its selection, its own extra muscles).
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary);
+  const std::vector<MuscleDef> library =
+      builtin ? *builtin : readMuscleDefs(resolveAgainstScene(scene, scene.muscleLibrary));
+  std::vector<std::string> names;
+  for (const MuscleDef& d : sceneMuscles(scene, library)) names.push_back(d.name);
+  const RetargetMap arkitMap = desc.map.empty() ? builtinRetargetMap() : readRetargetMapFile(resolveAgainstScene(scene, desc.map));
+  const MappedPerformance mapped = mapPerformance(performance, names, builtinFacsMap(), arkitMap, desc.filter);
+  addPerformanceToScene(scene, mapped);
+
+  PerformanceReport report;
+  report.file = file;
+  report.input = performance.input;
+  report.auScale = performance.auScale;
+  report.frames = static_cast<int>(performance.times.size());
+  report.fps = performance.fps;
+  report.duration = performance.duration();
+  report.droppedFrames = performance.droppedFrames;
+  report.warnings = performance.warnings;
+  report.warnings.insert(report.warnings.end(), mapped.warnings.begin(), mapped.warnings.end());
+  report.unmapped = mapped.unmapped;
+  scene.performanceReport = report;
+  scene.performance.file.clear();  // played: the tracks now hold it
 }
 
 SceneInputs readSceneInputs(const SceneDesc& scene) {
-  const fs::path base = scene.path.empty() || scene.path.front() == '<' ? fs::path() : fs::path(scene.path).parent_path();
-  auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).string(); };
+  auto resolve = [&](const std::string& p) { return resolveAgainstScene(scene, p); };
   SceneInputs in;
   in.head = scene.head.obj.empty()
                 ? loadDefaultHead()

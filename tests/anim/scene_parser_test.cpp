@@ -317,3 +317,46 @@ TEST(SceneParser, AnatomicalKeysMapOntoItsSettingsAndRoundTrip) {
 
 }  // namespace
 }  // namespace myo
+
+namespace myo {
+namespace {
+
+TEST(SceneParser, PerformanceKeyReadsItsOptionsAndRoundTrips) {
+  const SceneDesc s = parseScene(R"({"muscles": {"library": "face"},
+    "performance": {"file": "take1.csv", "input": "openface", "au_scale": 5, "min_confidence": 0.8,
+                    "start": 1.5, "end": 9, "map": "m.json",
+                    "filter": {"min_cutoff": 2, "beta": 0.1, "d_cutoff": 1.5}}})",
+                                 "dir/s.json");
+  EXPECT_EQ(s.performance.file, "take1.csv");
+  ASSERT_TRUE(s.performance.read.input.has_value());
+  EXPECT_EQ(*s.performance.read.input, PerformanceInput::OpenFace);
+  EXPECT_EQ(s.performance.read.auScale.value_or(0.0), 5.0);
+  EXPECT_DOUBLE_EQ(s.performance.read.minConfidence, 0.8);
+  EXPECT_DOUBLE_EQ(s.performance.start, 1.5);
+  EXPECT_DOUBLE_EQ(s.performance.end, 9.0);
+  EXPECT_DOUBLE_EQ(s.performance.filter.minCutoff, 2.0);
+  EXPECT_DOUBLE_EQ(s.performance.filter.beta, 0.1);
+  EXPECT_DOUBLE_EQ(s.performance.filter.derivativeCutoff, 1.5);
+  const SceneDesc back = parseScene(sceneToJson(s), "dir/s.json");
+  EXPECT_EQ(sceneToJson(back), sceneToJson(s));
+}
+
+TEST(SceneParser, PerformanceKeyErrors) {
+  EXPECT_EQ(errorOf(R"({"performance": {"input": "openface"}})"),
+            "scene.json:1:17: key 'performance.file': missing required key");
+  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv", "input": "kinect"}})"),
+            "scene.json:1:44: key 'performance.input': unknown performance input 'kinect' (use openface, livelink "
+            "or mediapipe)");
+  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv"}, "duration": 3})"),
+            "scene.json:1:48: key 'duration': comes from the performance (key 'performance'): its duration and frame "
+            "rate are the scene's");
+  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv", "filter": {"beta": -1}}})"),
+            "scene.json:1:54: key 'performance.filter.beta': must be ≥ 0 (got -1)");
+  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv", "start": 4, "end": 2}})"),
+            "scene.json:1:54: key 'performance.end': must be > 4 (got 2)");
+  EXPECT_EQ(thesisErrorOf(R"({"performance": {"file": "a.csv"}})"),
+            "scene.json:1:17: key 'performance': only \"model\": \"anatomical\" uses it (this scene's model is thesis)");
+}
+
+}  // namespace
+}  // namespace myo

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "myoshell/anim/head_pose_track.h"
+#include "myoshell/anim/one_euro_filter.h"
+#include "myoshell/anim/performance.h"
 #include "myoshell/anim/timeline.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/face_model.h"
@@ -33,6 +35,31 @@ struct DragDesc {
   // With the default pins: also pin the landmarks, as the gravity channel does (Fig. 21). Off, a
   // grip on a landmark (a mouth corner) moves it too; the channel then needs its own basis.
   bool pinLandmarks = true;         // thesis only
+};
+
+// A recorded performance the scene plays (key `performance`; docs/performance_input.md). io reads
+// it when it reads the scene (readScene) and turns it into the timeline's tracks
+// (addPerformanceToScene), so a player never sees the file.
+struct PerformanceDesc {
+  std::string file;                 // "" = none (absolute, or resolved against the scene's folder)
+  PerformanceOptions read;          // input, au_scale, face, min_confidence, input_fps
+  std::string map;                  // ARKit input: a retargeting map file; "" = the shipped one
+  OneEuroSettings filter;           // on the input curves
+  double start = 0.0;               // s: the window of the performance played, from its first frame
+  double end = -1.0;                // s; < 0 = to its last frame
+};
+
+// What reading a scene's performance found (drive --json, run's warnings).
+struct PerformanceReport {
+  std::string file;
+  PerformanceInput input = PerformanceInput::OpenFace;
+  double auScale = 1.0;
+  int frames = 0;
+  double fps = 0.0;
+  double duration = 0.0;            // s, last − first timestamp of the window
+  int droppedFrames = 0;
+  std::vector<std::string> warnings;
+  std::vector<std::string> unmapped;  // input curves that drive nothing
 };
 
 // Where a key or value was written in the scene file: 1-based line and column, 0 when unknown.
@@ -65,6 +92,8 @@ struct SceneDesc {
   ScalarTrack gravity;              // gravity scale track (empty = constant 1 when gravity is on)
   std::map<std::string, VectorTrack> dragForces;   // drag name → force track (dyn)
   HeadPoseTrack headPose;           // anatomical only: [pitch, yaw, roll] degrees over time (empty = upright)
+  PerformanceDesc performance;      // anatomical only; its file is cleared once io has turned it into tracks
+  std::optional<PerformanceReport> performanceReport;  // set by io when it read one
   // Where the names checked after parsing were written (key path → location): "muscles.use[i]"
   // and "timeline.activations.NAME" (sceneMuscles). Empty for a scene built in code.
   std::map<std::string, SourceLocation> locations;

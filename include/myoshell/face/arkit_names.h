@@ -22,6 +22,16 @@ std::optional<std::string> findArkitName(const std::string& spelling);
 // a, b?)" with the close matches, or "(use one of the 52 ARKit names: …)" when none is close.
 std::string canonicalArkitName(const std::string& spelling);
 
+// What FACS says of an ARKit shape (the aus and side columns of the table): the action units whose
+// motion it shows (none for mouthClose, mouthLeft, mouthRight) and, for a sided shape, the
+// subject's side ("left", "right"; "" for a shape of both sides or the midline).
+struct ArkitFacs {
+  std::vector<int> aus;
+  std::string side;
+};
+// For any spelling (canonicalArkitName's errors).
+const ArkitFacs& arkitFacs(const std::string& spelling);
+
 // The ICT names that compose an ARKit name (one, or two for browInnerUp and cheekPuff); the ARKit
 // name is checked (canonicalArkitName) first, so any spelling is accepted.
 const std::vector<std::string>& ictNamesOf(const std::string& spelling);

@@ -80,6 +80,11 @@ std::string serialiseRetargetMap(const RetargetMap& map);
 // The ARKit shapes that muscles cannot make, with the reason (assets/retarget/unreachable.json):
 // ARKit name → reason, in ARKit order.
 const std::vector<std::pair<std::string, std::string>>& unreachableArkitShapes();
+// The shipped map (assets/retarget/arkit_ict_face.json, embedded): ICT's ARKit rig fitted with the
+// whole face's muscles (`fit-rig --library face`), checked against faceMuscleDefs()'s names. The
+// default map of performance input (anim/performance_map.h).
+const RetargetMap& builtinRetargetMap();
+
 // The reason for an unreachable name (any spelling), or nothing.
 std::optional<std::string> unreachableReason(const std::string& anySpelling);
 

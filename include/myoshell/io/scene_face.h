@@ -15,8 +15,16 @@
 
 namespace myo {
 
-// Reads and parses a scene file (InputError "cannot open scene file" when it cannot be read).
+// Reads and parses a scene file (InputError "cannot open scene file" when it cannot be read), and
+// plays its performance into its timeline (loadScenePerformance).
 SceneDesc readScene(const std::string& path);
+
+// When the scene names a performance (key `performance`): reads it (io/performance_file.h), crops
+// it to its window, maps it onto the scene's muscles (the FACS map; for ARKit input the scene's map
+// or the shipped one) and adds it to the timeline (anim/performance_map.h), fills
+// `performanceReport` and clears `performance.file`. Nothing when it names none. InputError as the
+// readers.
+void loadScenePerformance(SceneDesc& scene);
 
 // Everything a scene's face is built from, read and checked, nothing built.
 struct SceneInputs {

@@ -1,0 +1,140 @@
+// `myoshell drive PERFORMANCE [--head default|DIR|OBJ --landmarks F --units U] [--library face]
+// [--map MAP] [--input openface|livelink|mediapipe] [--au-scale X] [--face N] [--min-confidence C]
+// [--input-fps F] [--filter on|off] [--min-cutoff HZ] [--beta B] [--start S] [--end S]
+// [--format glb,pc2,obj] [--video] [--head-motion] --out DIR [--cache DIR] [--json]`: plays a
+// recorded performance (OpenFace action units, Live Link Face or MediaPipe ARKit weights) on a head
+// and writes the animation as `run` does (DIR/NAME.glb, NAME the file's stem). It is a scene with a
+// head and a `performance` key (docs/performance_input.md), so `run` on such a scene gives the same
+// frames; the frames come at the performance's rate, over its duration.
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "myoshell/anim/performance_map.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/io/performance_file.h"
+#include "myoshell/io/scene_face.h"
+#include "scene_runner.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DriveArgs {
+  std::string performance;
+  std::string head = "default";
+  std::string landmarks;
+  std::string units = "cm";
+  std::string library = "face";
+  std::string map;
+  std::string input;
+  double auScale = 0.0;       // 0 = from the header
+  int face = -1;
+  double minConfidence = 0.7;
+  double inputFps = 0.0;      // 0 = inferred
+  std::string filter = "on";
+  OneEuroSettings oneEuro;
+  double start = 0.0;
+  double end = -1.0;
+  bool headMotion = false;
+  RunOptions run;
+};
+
+// The scene drive plays: the head, the muscle library, the performance; the anatomical defaults.
+SceneDesc driveScene(const DriveArgs& a) {
+  if (a.filter != "on" && a.filter != "off") throw InputError("--filter: expected on or off (got '" + a.filter + "')");
+  if (!fs::is_regular_file(a.performance)) throw InputError("cannot open performance file", a.performance);
+  SceneDesc scene;
+  scene.name = fs::path(a.performance).stem().string();
+  if (scene.name.empty()) scene.name = "performance";
+  const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, "", a.units);
+  scene.head.obj = files.obj;
+  scene.head.landmarks = files.landmarks;
+  scene.head.units = files.unit;
+  scene.muscleLibrary = a.library == "builtin" || a.library == "face" ? a.library : fs::absolute(a.library).string();
+  PerformanceDesc& p = scene.performance;
+  p.file = fs::absolute(a.performance).string();
+  if (!a.input.empty()) p.read.input = performanceInputFromString(a.input);
+  if (a.auScale > 0.0) p.read.auScale = a.auScale;
+  p.read.face = a.face;
+  p.read.minConfidence = a.minConfidence;
+  if (a.inputFps > 0.0) p.read.inputFps = a.inputFps;
+  p.map = a.map.empty() ? "" : fs::absolute(a.map).string();
+  p.filter = a.oneEuro;
+  p.filter.enabled = a.filter == "on";
+  checkOneEuroSettings(p.filter, "--min-cutoff/--beta");
+  if (a.end >= 0.0 && a.end <= a.start)
+    throw InputError(fmt::format("--end {} must lie after --start {}", a.end, a.start));
+  p.start = a.start;
+  p.end = a.end;
+  loadScenePerformance(scene);
+  return scene;
+}
+
+// The input curves for --video's panel: the performance's own curves, as read (before mapping).
+CurvePanel inputCurves(const SceneDesc& scene, const DriveArgs& a) {
+  const std::string& file = scene.performanceReport->file;
+  const Performance perf = cropPerformance(readPerformanceFile(file, scene.performance.read), a.start, a.end, file);
+  CurvePanel all;
+  all.times = perf.times;
+  for (const PerformanceChannel& c : perf.channels) all.curves.push_back({c.name, c.values});
+  return activeCurves(all);
+}
+
+int runDrive(DriveArgs& a) {
+  const SceneDesc scene = driveScene(a);
+  a.run.headMotion = a.headMotion;
+  if (a.run.video) a.run.videoPanel = inputCurves(scene, a);
+  return runScene(scene, a.run);
+}
+
+static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
+  auto a = std::make_shared<DriveArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "drive", "Play a recorded performance (OpenFace action units, Live Link Face or MediaPipe blendshape weights) on a "
+               "head and write the animation");
+  sub->add_option("performance", a->performance, "the performance file (OpenFace CSV, Live Link Face CSV, MediaPipe "
+                                                 "JSON Lines)")->required();
+  sub->add_option("--out", a->run.outDir, "Output folder")->required();
+  sub->add_option("--head", a->head, "'default', an OBJ file (with --landmarks), or a folder like ../shared/data/ict");
+  sub->add_option("--landmarks", a->landmarks, "landmark file of an OBJ head (docs/heads.md)");
+  sub->add_option("--units", a->units, "the OBJ head's length unit, m, mm or cm (default cm)");
+  sub->add_option("--library", a->library, "muscles: 'face' (the whole face, default), 'builtin' (the thesis's eight) "
+                                           "or a library file");
+  sub->add_option("--map", a->map, "ARKit input: a retargeting map (fit-rig --out); default the shipped ICT map");
+  sub->add_option("--input", a->input, "openface, livelink or mediapipe (default: from the file's header)");
+  sub->add_option("--au-scale", a->auScale, "OpenFace: the intensities' scale, 5 (raw) or 1 (default: from the header)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--face", a->face, "OpenFace: the face_id to play when the file tracks several")->check(CLI::NonNegativeNumber);
+  sub->add_option("--min-confidence", a->minConfidence, "OpenFace: frames below it are bridged (default 0.7)")
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--input-fps", a->inputFps, "Live Link: the timecode's frame rate (default: inferred)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--filter", a->filter, "the One-Euro filter on the input curves: on (default) or off");
+  sub->add_option("--min-cutoff", a->oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")->capture_default_str();
+  sub->add_option("--beta", a->oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
+  sub->add_option("--start", a->start, "play from this time, s after the first frame")->check(CLI::NonNegativeNumber);
+  sub->add_option("--end", a->end, "play up to this time, s after the first frame");
+  sub->add_option("--format", a->run.formats, "Animation exports, comma-separated: glb, pc2, obj")
+      ->delimiter(',')
+      ->capture_default_str();
+  sub->add_flag("--video", a->run.video, "Write DIR/<name>.mp4 and .gif: the face beside the active input curves");
+  sub->add_flag("--head-motion", a->headMotion, "Turn the exported frames with the performance's head rotation");
+  sub->add_option("--size", a->run.size, "Picture size, pixels")->check(CLI::Range(64, 4096));
+  sub->add_flag("--software", a->run.software, "Draw with the software renderer even where OpenGL is available");
+  sub->add_option("--cache", a->run.cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
+                                              "~/.cache/myoshell)");
+  sub->add_flag("--json", a->run.json, "Print a JSON summary (input, au_scale, frames, fps, duration, dropped_frames, "
+                                       "warnings, steps_per_second, …)");
+  a->run.formats = {"glb"};
+  return [a] { return runDrive(*a); };
+});
+
+}  // namespace
+}  // namespace myo::cli

@@ -1,0 +1,220 @@
+#include "myoshell/anim/performance_map.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "myoshell/core/check.h"
+#include "myoshell/core/close_names.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/face/arkit_names.h"
+
+namespace myo {
+namespace {
+
+// One input curve's reach: model muscle index → weight per unit of the curve.
+using MuscleWeights = std::map<int, double>;
+
+bool endsWith(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The weight a muscle of an AU gets from a sided ARKit shape: full on that side, none on the
+// other, half on the midline (one side's shape pulls half of a muscle both sides share).
+double sideFactor(const std::string& muscle, const std::string& side) {
+  if (side.empty()) return 1.0;
+  const bool left = endsWith(muscle, "_left"), right = endsWith(muscle, "_right");
+  if (!left && !right) return 0.5;
+  return (side == "left") == left ? 1.0 : 0.0;
+}
+
+class Mapper {
+ public:
+  Mapper(const std::vector<std::string>& muscles, const FacsMap& facs) : facs_(facs) {
+    for (size_t m = 0; m < muscles.size(); ++m) {
+      MYO_CHECK(index_.emplace(muscles[m], static_cast<int>(m)).second, "mapPerformance: muscle named twice: " << muscles[m]);
+    }
+  }
+
+  // Adds `weight` · muscle to `out` when the model has it; remembers the missing ones.
+  void add(MuscleWeights& out, const std::string& muscle, double weight) {
+    if (weight == 0.0) return;
+    const auto it = index_.find(muscle);
+    if (it == index_.end()) {
+      missing_.insert(muscle);
+      return;
+    }
+    out[it->second] += weight;
+  }
+
+  // An AU's muscles, restricted to `side`. Returns false when the FACS map has no muscles for it.
+  bool addAu(MuscleWeights& out, int au, const std::string& side, double scale = 1.0) {
+    const FacsEntry* entry = facs_.find(au);
+    if (!entry || entry->muscles.empty()) return false;
+    for (const auto& [muscle, w] : entry->muscles) add(out, muscle, scale * w * sideFactor(muscle, side));
+    return true;
+  }
+
+  // Why an AU drives nothing, for the warning.
+  std::string whyNot(int au) const {
+    const FacsEntry* entry = facs_.find(au);
+    if (!entry) return "AU" + std::to_string(au) + " is not in the FACS map";
+    if (!entry->needs.empty()) return "AU" + std::to_string(au) + " needs " + (entry->needs == "jaw" ? "the jaw" : entry->needs);
+    return "AU" + std::to_string(au) + " drives no muscle of this model";
+  }
+
+  const std::set<std::string>& missing() const { return missing_; }
+
+ private:
+  const FacsMap& facs_;
+  std::map<std::string, int> index_;
+  std::set<std::string> missing_;
+};
+
+std::string numberText(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// "AU12" → 12, or 0 for any other name.
+int auNumber(const std::string& name) {
+  if (name.size() < 3 || name.compare(0, 2, "AU") != 0) return 0;
+  int n = 0;
+  for (size_t i = 2; i < name.size(); ++i) {
+    if (name[i] < '0' || name[i] > '9' || n > 999) return 0;
+    n = 10 * n + (name[i] - '0');
+  }
+  return n;
+}
+
+}  // namespace
+
+Performance cropPerformance(const Performance& p, double start, double end, const std::string& what) {
+  if (start == 0.0 && end < 0.0) return p;
+  Performance out = p;
+  out.times.clear();
+  out.headPose.clear();
+  for (auto& c : out.channels) c.values.clear();
+  const double eps = 1e-9;
+  for (size_t f = 0; f < p.times.size(); ++f) {
+    if (p.times[f] < start - eps || (end >= 0.0 && p.times[f] > end + eps)) continue;
+    out.times.push_back(p.times[f]);
+    if (!p.headPose.empty()) out.headPose.push_back(p.headPose[f]);
+    for (size_t c = 0; c < p.channels.size(); ++c) out.channels[c].values.push_back(p.channels[c].values[f]);
+  }
+  if (out.times.size() < 2)
+    throw InputError(what + ": the window " + numberText(start) + "–" + (end < 0.0 ? std::string("end") : numberText(end)) +
+                     " s holds " + std::to_string(out.times.size()) + " frame(s) of the performance (" +
+                     numberText(p.duration()) + " s long); it needs two");
+  const double t0 = out.times.front();
+  for (double& t : out.times) t -= t0;
+  return out;
+}
+
+MappedPerformance mapPerformance(const Performance& p, const std::vector<std::string>& muscleNames, const FacsMap& facs,
+                                 const RetargetMap& arkitMap, const OneEuroSettings& filter) {
+  checkOneEuroSettings(filter);
+  MappedPerformance out;
+  out.times = p.times;
+  out.fps = p.fps;
+  out.muscles = muscleNames;
+  const size_t frames = p.times.size();
+  out.activations.assign(muscleNames.size(), std::vector<double>(frames, 0.0));
+  Mapper mapper(muscleNames, facs);
+
+  for (const PerformanceChannel& channel : p.channels) {
+    MYO_CHECK(channel.values.size() == frames, "mapPerformance: curve " << channel.name << " has the wrong length");
+    MuscleWeights weights;
+    std::string why;
+    if (p.input == PerformanceInput::OpenFace) {
+      const int au = auNumber(channel.name);
+      if (au == 0) why = "not an action unit";
+      else if (!mapper.addAu(weights, au, "") || weights.empty()) why = mapper.whyNot(au);
+    } else {
+      const auto name = findArkitName(channel.name);
+      const RetargetShape* shape = name ? arkitMap.find(*name) : nullptr;
+      if (!name) {
+        why = "not an ARKit name";
+      } else if (shape && shape->reachable) {
+        for (const auto& [muscle, a] : shape->activations) mapper.add(weights, muscle, a);
+        if (weights.empty()) why = "the retargeting map's " + *name + " drives no muscle of this model";
+      } else {
+        for (int au : arkitFacs(*name).aus) {
+          const size_t before = weights.size();
+          if (mapper.addAu(weights, au, arkitFacs(*name).side) && weights.size() > before) continue;
+          why += (why.empty() ? "" : "; ") + mapper.whyNot(au);
+        }
+        if (!weights.empty()) why.clear();
+        else if (arkitFacs(*name).aus.empty()) why = "no FACS unit, and the retargeting map has no " + *name;
+        if (shape && !shape->reachable && weights.empty()) why = shape->reason;
+      }
+    }
+    if (weights.empty()) {
+      out.unmapped.push_back(channel.name);
+      out.warnings.push_back(channel.name + " drives nothing: " + (why.empty() ? "no muscle" : why));
+      continue;
+    }
+    const std::vector<double> x = oneEuroFilter(p.times, channel.values, filter);
+    for (const auto& [muscle, w] : weights)
+      for (size_t f = 0; f < frames; ++f) out.activations[muscle][f] += w * x[f];
+  }
+  for (auto& curve : out.activations)
+    for (double& a : curve) a = std::clamp(a, 0.0, 1.0);
+  if (!mapper.missing().empty())
+    out.warnings.push_back("the maps name muscles this model does not have, left out: " +
+                           joinNames(std::vector<std::string>(mapper.missing().begin(), mapper.missing().end())));
+
+  if (!p.headPose.empty()) {
+    MYO_CHECK(p.headPose.size() == frames, "mapPerformance: head pose has the wrong length");
+    out.headPose.resize(frames);
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<double> angle(frames);
+      for (size_t f = 0; f < frames; ++f) angle[f] = p.headPose[f][axis];
+      angle = oneEuroFilter(p.times, angle, filter);
+      for (size_t f = 0; f < frames; ++f) out.headPose[f][axis] = angle[f];
+    }
+  }
+  return out;
+}
+
+void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
+  MYO_CHECK(mapped.times.size() >= 2, "addPerformanceToScene: a performance has at least two frames");
+  scene.duration = mapped.times.back();
+  scene.fps = mapped.fps;
+  const size_t frames = mapped.times.size();
+  for (size_t m = 0; m < mapped.muscles.size(); ++m) {
+    const std::vector<double>& curve = mapped.activations[m];
+    if (std::all_of(curve.begin(), curve.end(), [](double a) { return a == 0.0; })) continue;
+    const auto own = scene.activations.find(mapped.muscles[m]);
+    const ScalarTrack* ownTrack = own == scene.activations.end() ? nullptr : &own->second;
+    // Key times: every frame, and the scene's own keys (so a step or a peak of its track survives).
+    std::vector<double> times = mapped.times;
+    if (ownTrack)
+      for (const auto& key : ownTrack->keys()) times.push_back(key.time);
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    std::vector<Keyframe<double>> keys;
+    keys.reserve(times.size());
+    size_t f = 0;
+    for (double t : times) {
+      while (f + 1 < frames && mapped.times[f + 1] <= t) ++f;
+      double value = curve[f];  // at or after the last frame: held
+      if (f + 1 < frames && t > mapped.times[f]) {
+        const double s = (t - mapped.times[f]) / (mapped.times[f + 1] - mapped.times[f]);
+        value = (1.0 - s) * curve[f] + s * curve[f + 1];
+      }
+      if (ownTrack) value += ownTrack->at(t);
+      keys.push_back({t, std::clamp(value, 0.0, 1.0), Interpolation::Linear});
+    }
+    scene.activations[mapped.muscles[m]] = ScalarTrack(std::move(keys), "performance of " + mapped.muscles[m]);
+  }
+  if (!mapped.headPose.empty() && scene.headPose.empty()) {
+    std::vector<Keyframe<Vec3>> keys(frames);
+    for (size_t f = 0; f < frames; ++f) keys[f] = {mapped.times[f], mapped.headPose[f], Interpolation::Linear};
+    scene.headPose = HeadPoseTrack(std::move(keys), "performance head pose");
+  }
+}
+
+}  // namespace myo

@@ -1,0 +1,183 @@
+// `myoshell drive` on a real performance (../shared/data/openface/facsvatar_demo.csv, OpenFace
+// action units of a person's face, 490 frames at 25 fps): the output has the performance's frames,
+// and over time the face moves as the action units say — the mouth corners rise with AU12 (lip
+// corner puller) and the inner brows with AU1 (inner brow raiser) less AU4 (brow lowerer).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "myoshell/anim/performance.h"
+#include "myoshell/face/head.h"
+#include "myoshell/io/animation_export.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/face/arkit_names.h"
+#include "myoshell/io/performance_file.h"
+#include "myoshell/io/retarget_map_file.h"
+#include "myoshell/io/rig_file.h"
+#include "support/cli_runner.h"
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const size_t n = a.size();
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < n; ++i) ma += a[i] / n, mb += b[i] / n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+struct DriveCorrelations {
+  double mouthCornersWithAu12 = 0.0;
+  double innerBrowsWithAu1MinusAu4 = 0.0;
+};
+
+// Drives the demo performance on `headArgument` and correlates the landmarks' heights (along the
+// face frame's y) with the action units, frame by frame.
+DriveCorrelations driveDemo(const std::string& headArgument, const Head& head, const fs::path& out) {
+  const fs::path csv = test::sharedDataDir() / "openface" / "facsvatar_demo.csv";
+  const auto r = test::runCli("drive '" + csv.string() + "' --head " + headArgument + " --format pc2 --out '" +
+                              out.string() + "' --json");
+  EXPECT_EQ(r.exitCode, 0) << r.merged;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("input"), "openface");
+  EXPECT_EQ(j.at("au_scale"), 1.0);
+  EXPECT_EQ(j.at("frames"), 490);
+  EXPECT_NEAR(j.at("fps").get<double>(), 25.0, 1e-9);
+  EXPECT_NEAR(j.at("duration").get<double>(), 19.56, 1e-9);
+  EXPECT_EQ(j.at("dropped_frames"), 0);
+  EXPECT_TRUE(j.at("warnings").is_array());
+
+  const PointCache pc = readPc2(out / "facsvatar_demo.pc2");
+  EXPECT_EQ(pc.samples.size(), 490u);
+  const Performance perf = readPerformanceFile(csv.string());
+  const std::vector<double>& au12 = perf.find("AU12")->values;
+  const std::vector<double>& au1 = perf.find("AU1")->values;
+  const std::vector<double>& au4 = perf.find("AU4")->values;
+  const Vec3 up = head.frame().axes.col(1);
+  const int cornerL = head.landmarks.vertex("mouth_corner_left"), cornerR = head.landmarks.vertex("mouth_corner_right");
+  const int browL = head.landmarks.vertex("left_brow_inner"), browR = head.landmarks.vertex("right_brow_inner");
+  std::vector<double> corners, brows, au14;
+  for (size_t f = 0; f < pc.samples.size() && f < au12.size(); ++f) {
+    const MatX3& p = pc.samples[f];
+    corners.push_back(up.dot(p.row(cornerL).transpose() + p.row(cornerR).transpose()));
+    brows.push_back(up.dot(p.row(browL).transpose() + p.row(browR).transpose()));
+    au14.push_back(au1[f] - au4[f]);
+  }
+  DriveCorrelations c;
+  c.mouthCornersWithAu12 = pearson(corners, std::vector<double>(au12.begin(), au12.begin() + corners.size()));
+  c.innerBrowsWithAu1MinusAu4 = pearson(brows, au14);
+  return c;
+}
+
+TEST(DriveCli, DemoPerformanceOnTheBuiltInHead) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path out = fs::temp_directory_path() / ("myo_drive_default_" + std::to_string(::getpid()));
+  const DriveCorrelations c = driveDemo("default", loadDefaultHead(), out);
+  RecordProperty("mouth_corners_au12", std::to_string(c.mouthCornersWithAu12));
+  RecordProperty("inner_brows_au1_au4", std::to_string(c.innerBrowsWithAu1MinusAu4));
+  EXPECT_GE(c.mouthCornersWithAu12, 0.7);
+  EXPECT_GE(c.innerBrowsWithAu1MinusAu4, 0.6);
+  fs::remove_all(out);
+}
+
+TEST(DriveCli, DemoPerformanceOnTheIctHead) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path ict = test::sharedDataDir() / "ict";
+  const fs::path out = fs::temp_directory_path() / ("myo_drive_ict_" + std::to_string(::getpid()));
+  const Head head = loadHead((ict / "head_skin.obj").string(), (ict / "landmarks_multipie68.json").string());
+  const DriveCorrelations c = driveDemo("'" + ict.string() + "'", head, out);
+  RecordProperty("mouth_corners_au12", std::to_string(c.mouthCornersWithAu12));
+  RecordProperty("inner_brows_au1_au4", std::to_string(c.innerBrowsWithAu1MinusAu4));
+  EXPECT_GE(c.mouthCornersWithAu12, 0.7);
+  EXPECT_GE(c.innerBrowsWithAu1MinusAu4, 0.6);
+  fs::remove_all(out);
+}
+
+// Round trip: a MediaPipe track of known weights of ICT's rig shapes drives the ICT head to within
+// Σ wᵢ·rmsᵢ + 0.5 mm (per frame, RMS over the vertices that move) of the blended artist shapes, rmsᵢ
+// being each shape's fit error in the shipped map. The weights ramp for 1 s and hold for 2 s; the
+// frames compared are the held ones after 1 s of settling.
+TEST(DriveCli, KnownRigWeightsReproduceTheBlendedShapes) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path ict = test::sharedDataDir() / "ict";
+  const fs::path dir = fs::temp_directory_path() / ("myo_drive_roundtrip_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::vector<std::pair<std::string, double>> weights = {
+      {"mouthSmileLeft", 0.7}, {"browInnerUp", 0.5}, {"mouthFunnel", 0.4}};
+  {
+    std::ofstream jsonl(dir / "take.jsonl");
+    for (int f = 0; f <= 75; ++f) {  // 3 s at 25 fps
+      const double ramp = std::min(1.0, f / 25.0);
+      jsonl << "{\"timestamp_ms\": " << f * 40 << ", \"blendshapes\": [{\"categoryName\": \"_neutral\", \"score\": 0.1}";
+      for (const auto& [name, w] : weights)
+        jsonl << ", {\"categoryName\": \"" << name << "\", \"score\": " << ramp * w << "}";
+      jsonl << "]}\n";
+    }
+  }
+  const auto r = test::runCli("drive '" + (dir / "take.jsonl").string() + "' --head '" + ict.string() +
+                              "' --filter off --format pc2 --out '" + (dir / "out").string() + "' --json");
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const PointCache pc = readPc2(dir / "out" / "take.pc2");
+  ASSERT_EQ(pc.samples.size(), 76u);
+
+  const RigFile rig = readRig((ict / "ict_arkit_rig.glb").string());
+  const Head head = loadHead((ict / "head_skin.obj").string(), (ict / "landmarks_multipie68.json").string());
+  ASSERT_EQ(rig.vertexCount(), head.mesh.vertexCount());
+  const RetargetMap map = readRetargetMapFile((test::sourceDir() / "assets/retarget/arkit_ict_face.json").string());
+  MatX3 blended = MatX3::Zero(head.mesh.vertexCount(), 3);
+  double bound = 0.5;  // mm
+  for (const auto& [name, w] : weights) {
+    for (const std::string& ictName : ictNamesOf(name)) blended += w * rig.delta(ictName);
+    const RetargetShape* shape = map.find(name);
+    ASSERT_TRUE(shape && shape->fit) << name;
+    bound += w * shape->fit->rmsMm;
+  }
+  for (int f = 50; f <= 75; f += 5) {
+    const MatX3 u = pc.samples[f] - head.mesh.V;
+    double sum = 0.0;
+    int count = 0;
+    for (int i = 0; i < u.rows(); ++i) {
+      if (u.row(i).norm() <= 0.05 && blended.row(i).norm() <= 0.05) continue;
+      sum += (u.row(i) - blended.row(i)).squaredNorm();
+      ++count;
+    }
+    const double rmsMm = 10.0 * std::sqrt(sum / std::max(1, count));
+    RecordProperty("rms_mm_frame_" + std::to_string(f), std::to_string(rmsMm));
+    EXPECT_LE(rmsMm, bound) << "frame " << f;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(DriveCli, BadArgumentsExitTwoBeforeAnyWork) {
+  const fs::path out = fs::temp_directory_path() / ("myo_drive_bad_" + std::to_string(::getpid()));
+  auto r = test::runCli("drive /no/such/file.csv --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("/no/such/file.csv: cannot open performance file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path csv = test::sharedDataDir() / "openface" / "facsvatar_demo.csv";
+  r = test::runCli("drive '" + csv.string() + "' --filter maybe --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--filter: expected on or off (got 'maybe')"), std::string::npos) << r.err;
+  r = test::runCli("drive '" + csv.string() + "' --start 5 --end 2 --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--end 2 must lie after --start 5"), std::string::npos) << r.err;
+  r = test::runCli("drive '" + csv.string() + "' --input livelink --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.merged;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace myo
