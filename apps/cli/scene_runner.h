@@ -30,6 +30,10 @@ struct RunOptions {
   // Video: every frame drawn into DIR/<name>.mp4 (H.264, the scene's frame rate) and DIR/<name>.gif
   // (ffmpeg; render/video.h). Implies drawing every frame; PNGs still every renderEvery-th.
   bool video = false;
+  // Diagnostics that cost start-up time: each thesis channel's load participation (one sparse
+  // factorisation per channel, FaceModelSettings::measureLoadParticipation) in stats.json. Off:
+  // stats.json gives load_participation null.
+  bool diagnostics = false;
 };
 
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.
