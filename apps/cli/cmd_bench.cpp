@@ -17,6 +17,20 @@
 // cache of their own), the cached start (built again from it) and the mean phases of a step
 // (StepTimings: muscles, springs / force assembly, skin channels). Row `whole_face` does the same for
 // the anatomical model with the whole face's 37 muscles (scenes/bench/whole_face.json).
+//
+// Every row also reports, beside steps/s (docs/PERFORMANCE.md, "Ratios"):
+//   floor_ratio     its step time over the time to stream once, in this process, the basis data
+//                   its step reads when it touches every free vertex: each integrator's stored Φ
+//                   (and Ψ when warping) rows in their own precision (ModalWarpingIntegrator::
+//                   streamBasis) — the skin's for whole-step rows, the muscles' for muscle-phase
+//                   rows; median of 9 passes. Below 1: the step skipped work (idle channels).
+//   reference_ratio its step time over one implicit-Euler step of the full-space reference solver
+//                   (verify/reference_solver.h) under the same loads: the world force on the skin
+//                   at the end of the row's window, the same pins, masses, damping and (anatomical)
+//                   attachment and coupling stiffness, from rest; median of --reference-steps.
+//                   null (with reference_note) for muscle-phase rows, rows whose load is zero at
+//                   the window's end, and with --no-reference.
+// --diagnostics: the thesis channels' load participation (a factorisation per channel; else null).
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -24,6 +38,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -60,6 +75,7 @@ struct BenchOptions {
   std::string rows;        // comma-separated row ids; empty = all
   bool reference = true;
   int referenceSteps = 2;
+  bool diagnostics = false;  // measure each thesis channel's load participation
 };
 
 // One row of the thesis's Tables 2–4.
@@ -181,6 +197,7 @@ SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::stri
       }
     }
   }
+  scene.model.measureLoadParticipation = opt.diagnostics;
   if (!row.use.empty()) {
     scene.muscles = row.use;
     for (auto it = scene.activations.begin(); it != scene.activations.end();)
@@ -236,6 +253,108 @@ std::pair<long long, double> playWindow(ScenePlayer& player, const BenchRow& row
   return {steps, counted};
 }
 
+// The integrators whose stored bases a step of this row reads: the muscles' for a muscle-phase row,
+// else the skin's (thesis: every channel, loaded or idle; anatomical: the one skin).
+std::vector<const ModalWarpingIntegrator*> streamedIntegrators(const FaceStepper& sim, bool muscleOnly) {
+  std::vector<const ModalWarpingIntegrator*> out;
+  if (const auto* thesis = dynamic_cast<const Simulator*>(&sim)) {
+    for (const auto& i : muscleOnly ? thesis->muscleIntegrators() : thesis->channelIntegrators()) out.push_back(&i);
+  } else if (const auto* anatomical = dynamic_cast<const AnatomicalSimulator*>(&sim)) {
+    if (!muscleOnly) out.push_back(&anatomical->stepper().integrator());
+  }
+  return out;
+}
+
+// The floor: seconds to stream the integrators' stored bases once (each value read once, summed),
+// median of 9 passes after one warm-up; a pass repeats the stream often enough to last ~1 ms when
+// the bases are small (a muscle's), and is divided by the repeats.
+struct Floor {
+  double seconds = 0.0;
+  size_t bytes = 0;
+};
+Floor measureFloor(const std::vector<const ModalWarpingIntegrator*>& integrators) {
+  Floor f;
+  for (const auto* i : integrators) f.bytes += i->basisBytes();
+  if (integrators.empty()) return f;
+  volatile double sink = 0.0;
+  const auto pass = [&](int repeats) {
+    Stopwatch sw;
+    for (int r = 0; r < repeats; ++r)
+      for (const auto* i : integrators) sink = sink + i->streamBasis();
+    return sw.seconds() / repeats;
+  };
+  const double first = pass(1);
+  const int repeats = static_cast<int>(std::clamp(1e-3 / std::max(first, 1e-9), 1.0, 1e5));
+  std::vector<double> passes;
+  for (int p = 0; p < 9; ++p) passes.push_back(pass(repeats));
+  f.seconds = median(passes);
+  return f;
+}
+
+// One full-space reference step (verify/reference_solver.h) under the loads the row's window ends
+// with, from rest: the median over --reference-steps steps of their wall time, or a note saying why
+// there is none. Leaves the player at the window's end.
+struct ReferenceStep {
+  std::optional<double> seconds;
+  std::string note;
+  int newtonIterations = 0;
+};
+ReferenceStep measureReference(const BenchOptions& opt, const BenchRow& row, ScenePlayer& player) {
+  ReferenceStep r;
+  if (!opt.reference) return r.note = "--no-reference", r;
+  if (row.muscleOnly) return r.note = "muscle-phase row: the skin is not timed, so no skin reference", r;
+  const double dt = player.model().dt();
+  player.restart(row.t0);
+  while (player.time() < row.t1 - 0.5 * dt) player.step();
+  MatX3 F;
+  std::optional<ImplicitReference> ref;
+  if (const auto* thesis = dynamic_cast<const Simulator*>(&player.simulator())) {
+    const FaceModel& m = thesis->model();
+    F = thesis->skinLoad();
+    ref.emplace(m.skin(), m.head().gravityPins, m.settings().skinDampingMass, m.settings().skinDampingStiffness);
+  } else if (const auto* anatomical = dynamic_cast<const AnatomicalSimulator*>(&player.simulator())) {
+    const auto& face = dynamic_cast<const AnatomicalFace&>(anatomical->face());
+    const AnatomicalSkin& skin = face.skin();
+    F = skin.worldLoad(anatomical->loads());
+    ref.emplace(skin.shell(), std::vector<int>{}, skin.settings().dampingMass, skin.settings().dampingStiffness,
+                ImplicitScheme::Euler, ReferenceOptions{}, ReferenceExtras{skin.extraStiffness(), skin.vertexMass()});
+  } else {
+    return r.note = "no full-space reference for this model", r;
+  }
+  if (!(F.squaredNorm() > 0.0)) return r.note = "no load on the skin at the window's end", r;
+  std::vector<double> secs;
+  for (int k = 0; k < opt.referenceSteps; ++k) {
+    Stopwatch sw;
+    ref->step(dt, F);
+    secs.push_back(sw.seconds());
+    r.newtonIterations += ref->lastNewtonIterations();
+  }
+  r.seconds = median(secs);
+  return r;
+}
+
+// floor_* and reference_* of a row whose median step time is `stepUs` (µs).
+void addRatios(nlohmann::json& j, const BenchOptions& opt, const BenchRow& row, ScenePlayer& player, double stepUs) {
+  const Floor floor = measureFloor(streamedIntegrators(player.simulator(), row.muscleOnly));
+  j["floor_bytes"] = floor.bytes;
+  j["floor_us"] = 1e6 * floor.seconds;
+  j["floor_ratio"] = floor.seconds > 0 ? nlohmann::json(stepUs / (1e6 * floor.seconds)) : nlohmann::json();
+  const ReferenceStep ref = measureReference(opt, row, player);
+  if (ref.seconds) {
+    j["reference_step_us"] = 1e6 * *ref.seconds;
+    j["reference_ratio"] = stepUs / (1e6 * *ref.seconds);
+    j["reference_newton_iterations_per_step"] = static_cast<double>(ref.newtonIterations) / opt.referenceSteps;
+  } else {
+    j["reference_step_us"] = nullptr;
+    j["reference_ratio"] = nullptr;
+    j["reference_note"] = ref.note;
+  }
+}
+
+std::string ratioText(const nlohmann::json& v, const char* format) {
+  return v.is_null() ? std::string("null") : fmt::format(fmt::runtime(format), v.get<double>());
+}
+
 nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std::string& head, BasisCache& cache) {
   const SceneDesc scene = rowScene(opt, row, head);
   Stopwatch build;
@@ -278,8 +397,10 @@ nlohmann::json benchRow(const BenchOptions& opt, const BenchRow& row, const std:
     ch.push_back({{"name", c.name},
                   {"free_vertices", c.basis->freeCount()},
                   {"modes", c.basis->modeCount()},
-                  {"load_participation", c.loadParticipation}});
+                  {"load_participation",
+                   c.loadParticipation >= 0 ? nlohmann::json(c.loadParticipation) : nlohmann::json()}});
   j["channels"] = ch;
+  addRatios(j, opt, row, player, j["step_us"].get<double>());
   return j;
 }
 
@@ -353,6 +474,7 @@ nlohmann::json benchFullRow(const BenchOptions& opt, const BenchRow& row, const 
                    {"channels", perStep * phases.channels},
                    {"total", perStep * phases.total}};
   j["realtime_factor"] = median(rates) * model->dt();
+  addRatios(j, opt, row, player, j["step_us"].get<double>());
   return j;
 }
 
@@ -453,20 +575,23 @@ int runBench(BenchOptions opt) {
         nlohmann::json j = benchFullRow(opt, row, head);
         if (!opt.json) {
           const auto& p = j["phase_us"];
-          fmt::print("{:7} {:<51} {:>10.0f} steps/s  cold {:.1f} s, cached start {:.2f} s; step {:.0f} us (muscles {:.0f}, "
-                     "springs/forces {:.0f}, skin {:.0f})\n",
-                     head, row.label, j["steps_per_second"].get<double>(), j["cold_precompute_seconds"].get<double>(),
-                     j["cached_start_seconds"].get<double>(), p["total"].get<double>(), p["muscles"].get<double>(),
-                     p["springs"].get<double>(), p["channels"].get<double>());
+          fmt::print("{:7} {:<51} {:>10.0f} steps/s  {:>2} muscles  floor x{}  reference x{}  cold {:.1f} s, cached start "
+                     "{:.2f} s; step {:.0f} us (muscles {:.0f}, springs/forces {:.0f}, skin {:.0f})\n",
+                     head, row.label, j["steps_per_second"].get<double>(), j["muscles"].get<int>(),
+                     ratioText(j["floor_ratio"], "{:.2f}"), ratioText(j["reference_ratio"], "{:.2e}"),
+                     j["cold_precompute_seconds"].get<double>(), j["cached_start_seconds"].get<double>(),
+                     p["total"].get<double>(), p["muscles"].get<double>(), p["springs"].get<double>(),
+                     p["channels"].get<double>());
         }
         results.push_back(std::move(j));
         continue;
       }
       nlohmann::json j = benchRow(opt, row, head, *cache);
       if (!opt.json)
-        fmt::print("{:7} T{} {:<48} {:>10.0f} steps/s  thesis {:>4.0f}  x{:>6.1f}{}\n", head, row.table, row.label,
-                   j["steps_per_second"].get<double>(), row.thesisFps, j["ratio"].get<double>(),
-                   j["meets_10x"].get<bool>() ? "" : "  (< 10x)");
+        fmt::print("{:7} T{} {:<48} {:>10.0f} steps/s  thesis {:>4.0f}  x{:>6.1f}{}  {} muscles  floor x{}  reference x{}\n",
+                   head, row.table, row.label, j["steps_per_second"].get<double>(), row.thesisFps,
+                   j["ratio"].get<double>(), j["meets_10x"].get<bool>() ? "" : "  (< 10x)", j["muscles"].get<int>(),
+                   ratioText(j["floor_ratio"], "{:.2f}"), ratioText(j["reference_ratio"], "{:.2e}"));
       results.push_back(std::move(j));
     }
     if (opt.reference) {
@@ -522,7 +647,9 @@ const CommandRegistrar benchRegistrar("bench", [](CLI::App& app) {
   sub->add_option("--reference-steps", opt->referenceSteps, "Implicit-Euler steps timed for the reference solver")
       ->capture_default_str();
   auto flag = std::make_shared<bool>(false);
-  sub->add_flag("--no-reference", *flag, "Skip the full-space reference solver");
+  sub->add_flag("--no-reference", *flag, "Skip the full-space reference solver (reference_ratio null)");
+  sub->add_flag("--diagnostics", opt->diagnostics,
+                "Also measure each thesis channel's load participation (a sparse factorisation per channel)");
   return std::function<int()>([opt, flag] {
     opt->reference = !*flag;
     return runBench(*opt);

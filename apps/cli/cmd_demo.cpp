@@ -24,12 +24,14 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   opt->renderEvery = 3;
   opt->showMuscles = true;
   opt->formats = {"glb", "pc2", "obj"};
-  opt->video = ffmpegAvailable();  // demo.mp4 and demo.gif; without ffmpeg the rest still runs
   CLI::App* sub = app.add_subcommand("demo", "Smile, frown and brow lowering on the built-in head (scenes/demo.json)");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
   sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
   sub->add_flag("--json", opt->json, "Print a JSON summary");
   return std::function<int()>([opt] {
+    // demo.mp4 and demo.gif; without ffmpeg the rest still runs. Asked here, when demo runs: at
+    // registration every command would pay for starting ffmpeg.
+    opt->video = ffmpegAvailable();
     const int code = runScene(parseScene(detail::kDemoSceneJson, "<built-in scenes/demo.json>"), *opt);
     if (!opt->json && code == kExitOk) {
       if (!opt->video) fmt::print(stderr, "myoshell: warning: no ffmpeg on PATH, so no demo.mp4 or demo.gif\n");

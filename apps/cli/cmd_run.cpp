@@ -27,6 +27,9 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_flag("--muscles", opt->showMuscles, "Show the muscles through the skin");
   sub->add_flag("--video", opt->video, "Write DIR/<name>.mp4 and DIR/<name>.gif of every frame (ffmpeg)");
   sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");
+  sub->add_flag("--diagnostics", opt->diagnostics,
+                "Also measure each thesis channel's load participation for stats.json (a sparse factorisation per "
+                "channel: slower start)");
   sub->add_option("--color-scale", opt->colorScale, "Colour the skin by displacement on [0, CM]")->check(CLI::NonNegativeNumber);
   return std::function<int()>([opt] { return runScene(readScene(opt->scene), *opt); });
 });

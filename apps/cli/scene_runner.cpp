@@ -63,7 +63,9 @@ std::unique_ptr<FacePainter> makePainter(bool software) {
   return painter;
 }
 
-int runScene(const SceneDesc& scene, const RunOptions& opt) {
+int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
+  SceneDesc scene = sceneIn;
+  scene.model.measureLoadParticipation = opt.diagnostics;
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
   const ExportFormats formats = parseFormats(opt.formats);  // before any work: a typo fails at once
@@ -250,7 +252,8 @@ int runScene(const SceneDesc& scene, const RunOptions& opt) {
       ch.push_back({{"name", chs[c].name},
                     {"free_vertices", chs[c].basis->freeCount()},
                     {"modes", chs[c].basis->modeCount()},
-                    {"load_participation", chs[c].loadParticipation},
+                    {"load_participation", chs[c].loadParticipation >= 0 ? nlohmann::json(chs[c].loadParticipation)
+                                                                           : nlohmann::json()},
                     {"max_displacement_cm", channelMax[c]}});
     for (const MuscleUnit& u : thesis->muscles())
       mus.push_back({{"name", u.muscle.def.name},

@@ -36,6 +36,10 @@ struct RunOptions {
   // drive --head-motion: the exported frames turned by the scene's head pose (about the neck pivot,
   // headMotionPivot), as the performer's head turned; the simulation's gravity follows the pose anyway.
   bool headMotion = false;
+  // Diagnostics that cost start-up time: each thesis channel's load participation (one sparse
+  // factorisation per channel, FaceModelSettings::measureLoadParticipation) in stats.json. Off:
+  // stats.json gives load_participation null.
+  bool diagnostics = false;
 };
 
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.

@@ -8,7 +8,9 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/edge_table.h"
+#include "myoshell/mesh/geometry.h"
 #include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/reduce/rotation_operator.h"
 
@@ -83,10 +85,13 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
     if (!(mass_(i) > 0)) mass_(i) = 1e-12;
 
   std::vector<Triplet> trip;
+  // One closest-point locator over the skin for every muscle's placement and couplings.
+  const std::optional<SurfaceLocator> skinSurface =
+      defs.empty() ? std::nullopt : std::optional<SurfaceLocator>(std::in_place, V, F, vertexNormals(V, F));
   for (const MuscleDef& def : defs) {
     for (const CoupledMuscle& m : muscles_)
       if (m.muscle.def.name == def.name) throw InputError("anatomical model: muscle '" + def.name + "' is defined twice");
-    muscles_.push_back(coupleMuscle(def, head_, settings_.coupling));
+    muscles_.push_back(coupleMuscle(def, head_, settings_.coupling, &*skinSurface));
     addCouplingStiffness(muscles_.back(), trip);
     couplingLoads_.push_back(couplingLoad(muscles_.back(), n));
   }
@@ -209,7 +214,14 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   if (eig.info() != Eigen::Success || !(eig.eigenvalues().minCoeff() > 0))
     throw NumericalError("anatomical model: the skin with its relaxed muscles released is not positive definite");
   const MatX& Z = eig.eigenvectors();
-  ModalBasis b = held;
+  // Every field of `held` but Φ and Ψ (not copied: they are replaced, and are tens of MB).
+  ModalBasis b;
+  b.fullVertexCount = held.fullVertexCount;
+  b.freeVertices = held.freeVertices;
+  b.freeMass = held.freeMass;
+  b.solveSeconds = held.solveSeconds;
+  b.solver = held.solver;
+  b.fromCache = held.fromCache;
   b.Phi = held.Phi * Z;
   b.Psi = held.Psi * Z;
   b.lambda = eig.eigenvalues();

@@ -19,15 +19,26 @@ int Muscle::insertionCentre(int k) const {
 
 namespace {
 
+// Closest points on the head's skin: through the caller's locator when given (the same points,
+// found faster), else by brute force.
+struct SkinQuery {
+  const Head& head;
+  const MatX3& normals;  // the skin's vertex normals
+  const SurfaceLocator* locator;
+  SurfacePoint operator()(const Vec3& p) const {
+    return locator ? locator->closest(p) : closestSurfacePoint(head.mesh.V, head.mesh.F, normals, p);
+  }
+};
+
 // The anchor's point on the skin: the landmark moved by the frame offset, then projected.
 SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const FaceFrame& frame,
-                          const MatX3& normals, const std::string& muscle) {
+                          const SkinQuery& onSkin, const std::string& muscle) {
   if (!head.landmarks.has(anchor.landmark))
     throw InputError("muscle '" + muscle + "': the head has no landmark '" + anchor.landmark + "'",
                      head.landmarks.sourcePath);
   const Vec3 landmark = head.mesh.V.row(head.landmarks.vertex(anchor.landmark));
   const Vec3 moved = landmark + frame.scale * frame.directionFromFrame(anchor.offset);
-  return closestSurfacePoint(head.mesh.V, head.mesh.F, normals, moved);
+  return onSkin(moved);
 }
 
 }  // namespace
@@ -82,12 +93,12 @@ Muscle importMuscle(const MuscleDef& def) {
 // The centre line of a ring muscle: S stations at equal arc length along the polyline through its
 // path's skin points (closed: around the loop, station 0 not repeated), each re-projected onto the
 // skin and pushed under it at the depth interpolated between the path's anchors.
-void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& frame, const MatX3& normals,
+void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& frame, const SkinQuery& onSkin,
                     std::vector<Vec3>& centre, std::vector<Vec3>& normal) {
   std::vector<Vec3> points;
   std::vector<double> depths;
   for (const MuscleAnchor& a : def.ring.path) {
-    points.push_back(anchorOnSkin(a, head, frame, normals, def.name).point);
+    points.push_back(anchorOnSkin(a, head, frame, onSkin, def.name).point);
     depths.push_back(frame.scale * a.depth);
   }
   if (def.ring.closed) {
@@ -105,7 +116,7 @@ void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& fra
     while (seg + 2 < points.size() && arc[seg + 1] < target) ++seg;
     const double len = arc[seg + 1] - arc[seg];
     const double w = len > 0 ? std::clamp((target - arc[seg]) / len, 0.0, 1.0) : 0.0;
-    const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals, (1 - w) * points[seg] + w * points[seg + 1]);
+    const SurfacePoint p = onSkin((1 - w) * points[seg] + w * points[seg + 1]);
     normal[static_cast<size_t>(s)] = p.normal;
     centre[static_cast<size_t>(s)] = p.point - ((1 - w) * depths[seg] + w * depths[seg + 1]) * p.normal;
   }
@@ -113,27 +124,31 @@ void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& fra
 
 }  // namespace
 
-Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation) {
+Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation, const SurfaceLocator* skin) {
   def.validate();
   if (def.imported()) return importMuscle(def);
   Muscle muscle;
   muscle.def = def;
   const FaceFrame frame = head.frame();
-  const MatX3 normals = vertexNormals(head.mesh.V, head.mesh.F);
+  if (skin)
+    MYO_CHECK(skin->vertices().rows() == head.mesh.V.rows() && skin->triangles().rows() == head.mesh.F.rows(),
+              "muscle '" << def.name << "': the skin locator is not over this head's mesh");
+  const MatX3 normals = skin ? skin->vertexNormals() : vertexNormals(head.mesh.V, head.mesh.F);
+  const SkinQuery onSkin{head, normals, skin};
   const int S = def.stations, R = def.ringNodes;
   std::vector<Vec3> centre(S), normal(S);
   const bool loop = def.isRing() && def.ring.closed;
   if (def.isRing()) {
-    ringCentreLine(def, head, frame, normals, centre, normal);
+    ringCentreLine(def, head, frame, onSkin, centre, normal);
     Vec3 c = Vec3::Zero();
     for (const MuscleAnchor& a : def.ring.anchors) {
-      const SurfacePoint p = anchorOnSkin(a, head, frame, normals, def.name);
+      const SurfacePoint p = anchorOnSkin(a, head, frame, onSkin, def.name);
       c += 0.5 * (p.point - frame.scale * a.depth * p.normal);
     }
     muscle.ringCentre = c;
   } else {
-    const SurfacePoint o = anchorOnSkin(def.origin, head, frame, normals, def.name);
-    const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, normals, def.name);
+    const SurfacePoint o = anchorOnSkin(def.origin, head, frame, onSkin, def.name);
+    const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, onSkin, def.name);
     if ((o.point - i.point).norm() < 1e-3 * frame.scale)
       throw InputError("muscle '" + def.name + "': origin and insertion coincide on this head");
 
@@ -149,8 +164,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
     }
     for (int s = 0; s < S; ++s) {
       const double t = static_cast<double>(s) / (S - 1);
-      const SurfacePoint p = closestSurfacePoint(head.mesh.V, head.mesh.F, normals,
-                                                 (1 - t) * o.point + t * i.point);
+      const SurfacePoint p = onSkin((1 - t) * o.point + t * i.point);
       const double depth = (1 - t) * originDepth + t * frame.scale * def.insertion.depth;
       normal[s] = p.normal;
       centre[s] = p.point - depth * p.normal;

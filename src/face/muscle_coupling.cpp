@@ -111,14 +111,15 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
   cm.naturalFrequency = std::sqrt(u.dot(shell.stiffnessAtRest() * u) / mm2);
 }
 
-CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings) {
+CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings,
+                           const SurfaceLocator* skin) {
   const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
   profile.validate(def.coupling ? "muscle '" + def.name + "': coupling" : "muscle coupling");
   settings.muscle.validate();
   if (!(settings.shortening > 0.0 && settings.shortening < 1.0))
     throw InputError("muscle '" + def.name + "': shortening must lie in (0, 1)");
   CoupledMuscle cm;
-  cm.muscle = buildMuscle(def, head, TubeOrientation::MirrorRightSide);
+  cm.muscle = buildMuscle(def, head, TubeOrientation::MirrorRightSide, skin);
   const Muscle& mu = cm.muscle;
   const TriMesh& mm = mu.mesh;
   const int nm = mm.vertexCount();
@@ -130,8 +131,8 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   // Springs from every skin vertex over the muscle to the muscle's surface point below it.
   const MatX3& S = head.mesh.V;
   const MatX3i& F = head.mesh.F;
-  const MatX3 skinNormals = vertexNormals(S, F);
-  const MatX3 muscleNormals = vertexNormals(mm.V, mm.F);
+  const MatX3 skinNormals = skin ? skin->vertexNormals() : vertexNormals(S, F);
+  const SurfaceLocator muscleSurface(mm.V, mm.F, vertexNormals(mm.V, mm.F));
   const VecX skinArea = lumpedVertexAreas(S, F);
   const double L = mu.restLength;
   // Per muscle node: its place along the muscle (t) and its depth below the skin. A ring's fibres
@@ -141,7 +142,7 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   for (int v = 0; v < nm; ++v) {
     const Vec3 p = mm.V.row(v);
     nodeT(v) = def.isRing() ? 1.0 : std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
-    nodeDepth(v) = closestSurfacePoint(S, F, skinNormals, p).distance;
+    nodeDepth(v) = (skin ? skin->closest(p) : closestSurfacePoint(S, F, skinNormals, p)).distance;
     if (!(nodeDepth(v) > 1e-9 * L))
       throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
   }
@@ -157,7 +158,7 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   for (Eigen::Index i = 0; i < S.rows(); ++i) {
     const Vec3 x = S.row(i);
     if ((x - middle).norm() > searchRadius) continue;
-    const SurfacePoint below = closestSurfacePoint(mm.V, mm.F, muscleNormals, x);
+    const SurfacePoint below = muscleSurface.closest(x);
     const Eigen::Vector3i tri = mm.F.row(below.triangle).transpose();
     double t = 0.0, depth = 0.0;
     for (int k = 0; k < 3; ++k) {

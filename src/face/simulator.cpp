@@ -225,6 +225,16 @@ MatX3 Simulator::skinPositions() const { return model_->head().mesh.V + skinU_; 
 
 void Simulator::skinPositions(MatX3& out) const { out.noalias() = model_->head().mesh.V + skinU_; }
 
+MatX3 Simulator::skinLoad() const {
+  MatX3 F = MatX3::Zero(skinU_.rows(), 3);
+  const auto& channels = model_->channels();
+  for (size_t c = 0; c < channels.size(); ++c) {
+    const auto& fv = channels[c].basis->freeVertices;
+    for (size_t i = 0; i < fv.size(); ++i) F.row(fv[i]) += channelForce_[c].row(static_cast<Eigen::Index>(i));
+  }
+  return F;
+}
+
 MatX3 Simulator::channelDisplacement(int channel) const {
   MatX3 u;
   channelDisplacement(channel, u);

@@ -33,10 +33,17 @@ std::string BasisKey::hex() const {
 }
 
 KeyHasher& KeyHasher::bytes(const void* data, size_t size) {
-  a_ = fnv1a64(data, size, a_);
-  // Lane b: FNV-1a with another basis, then a splitmix finalizer per call so that the two lanes
-  // are not the same function of the input.
-  b_ = splitmix64(fnv1a64(data, size, b_) ^ (size * 0x9e3779b97f4a7c15ULL));
+  // Lane a: FNV-1a; lane b: FNV-1a with another basis, then a splitmix finalizer per call so that
+  // the two lanes are not the same function of the input. Both in one pass (two independent
+  // chains): the same values as fnv1a64 twice, in about half the time.
+  const auto* p = static_cast<const unsigned char*>(data);
+  uint64_t a = a_, b = b_;
+  for (size_t i = 0; i < size; ++i) {
+    a = (a ^ p[i]) * kFnvPrime;
+    b = (b ^ p[i]) * kFnvPrime;
+  }
+  a_ = a;
+  b_ = splitmix64(b ^ (size * 0x9e3779b97f4a7c15ULL));
   return *this;
 }
 

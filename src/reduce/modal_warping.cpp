@@ -398,6 +398,17 @@ void ModalWarpingIntegrator::step() {
   updateDisplacement();
 }
 
+size_t ModalWarpingIntegrator::basisBytes() const {
+  const Kernel& k = *kernel_;
+  return k.precision == ModalPrecision::Float ? sizeof(float) * static_cast<size_t>(k.Bf.size())
+                                              : sizeof(double) * static_cast<size_t>(k.Bd.size());
+}
+
+double ModalWarpingIntegrator::streamBasis() const {
+  const Kernel& k = *kernel_;
+  return k.precision == ModalPrecision::Float ? double(k.Bf.sum()) : k.Bd.sum();
+}
+
 void ModalWarpingIntegrator::addDisplacementTo(MatX3& full) const {
   MYO_CHECK_EQ(full.rows(), static_cast<Eigen::Index>(basis_->fullVertexCount));
   const auto& fv = basis_->freeVertices;

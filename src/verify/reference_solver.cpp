@@ -276,20 +276,27 @@ MatX3 solveLinearStatic(const DiscreteShell& shell, const std::vector<int>& pinn
 // a⁺ = (3v⁺ − 4v_n + v_{n−1})/(2h) = (9/(4h²))(x − x̃)).
 
 ImplicitReference::ImplicitReference(const DiscreteShell& shell, std::vector<int> pinned, double xi,
-                                     double zeta, ImplicitScheme scheme, ReferenceOptions options)
+                                     double zeta, ImplicitScheme scheme, ReferenceOptions options,
+                                     ReferenceExtras extras)
     : shell_(shell), pinned_(std::move(pinned)), xi_(xi), zeta_(zeta), scheme_(scheme),
-      options_(options) {
+      options_(options), Kx_(std::move(extras.stiffness)) {
   MYO_CHECK(xi >= 0.0 && zeta >= 0.0, "Rayleigh damping must be ≥ 0 (ξ = " << xi << ", ζ = " << zeta << ")");
   const int n = shell.vertexCount();
   const DofMap dofs(n, pinned_);
   freeDof_ = dofs.freeDof;
   mass3_.resize(3 * n);
-  for (int i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(shell.lumpedMass()[i]);
+  if (extras.vertexMass.size() > 0) MYO_CHECK_EQ(extras.vertexMass.size(), static_cast<Eigen::Index>(n));
+  if (Kx_.size() > 0) {
+    MYO_CHECK_EQ(Kx_.rows(), static_cast<Eigen::Index>(3 * n));
+    MYO_CHECK_EQ(Kx_.cols(), static_cast<Eigen::Index>(3 * n));
+  }
+  const VecX& vertexMass = extras.vertexMass.size() > 0 ? extras.vertexMass : shell.lumpedMass();
+  for (int i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(vertexMass[i]);
   SparseMat M(3 * n, 3 * n);
   std::vector<Triplet> trip;
   for (int i = 0; i < 3 * n; ++i) trip.emplace_back(i, i, mass3_[i]);
   M.setFromTriplets(trip.begin(), trip.end());
-  const SparseMat K = shell.stiffnessAtRest();
+  const SparseMat K = Kx_.size() > 0 ? SparseMat(shell.stiffnessAtRest() + Kx_) : shell.stiffnessAtRest();
   C_ = xi_ * M + zeta_ * K;
   roundoff_ = roundoffForce(shell, K);
   x_ = shell.rest();
@@ -307,7 +314,8 @@ void ImplicitReference::setState(const MatX3& x, const MatX3& v) {
 
 double ImplicitReference::mechanicalEnergy() const {
   const auto vf = flat(v_);
-  return 0.5 * vf.dot(mass3_.cwiseProduct(vf)) + shell_.energy(x_).total;
+  const double extra = Kx_.size() > 0 ? 0.5 * flat(displacement()).dot(Kx_ * flat(displacement())) : 0.0;
+  return 0.5 * vf.dot(mass3_.cwiseProduct(vf)) + shell_.energy(x_).total + extra;
 }
 
 void ImplicitReference::step(double h, const MatX3& F) {
@@ -335,16 +343,23 @@ void ImplicitReference::step(double h, const MatX3& F) {
     std::vector<Triplet> trip;
     for (int i = 0; i < 3 * n; ++i) trip.emplace_back(i, i, mass3_[i] / (a * a));
     Md.setFromTriplets(trip.begin(), trip.end());
-    return SparseMat(Md + C_ / a);
+    return Kx_.size() > 0 ? SparseMat(Md + C_ / a + Kx_) : SparseMat(Md + C_ / a);
   }();
   Objective f = [&](const MatX3& x, VecX* g, SparseMat* H, HessianMode mode) {
     const VecX xf = flat(x);
     const VecX dm = xf - xTilde, dc = xf - xC;
     const VecX Cdc = C_ * dc;
     const ShellEnergy e = shell_.energy(x, g, H, mode);
+    double extra = 0.0;
+    if (Kx_.size() > 0) {  // ½uᵀK_x u, u = x − X̄
+      const VecX u = xf - flat(shell_.rest());
+      const VecX Ku = Kx_ * u;
+      extra = 0.5 * u.dot(Ku);
+      if (g) *g += Ku;
+    }
     if (g) *g += mass3_.cwiseProduct(dm) / (a * a) + Cdc / a - Ff;
     if (H) *H += Hconst;
-    return dm.dot(mass3_.cwiseProduct(dm)) / (2.0 * a * a) + e.total + dc.dot(Cdc) / (2.0 * a) -
+    return dm.dot(mass3_.cwiseProduct(dm)) / (2.0 * a * a) + e.total + extra + dc.dot(Cdc) / (2.0 * a) -
            Ff.dot(xf);
   };
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -28,7 +29,7 @@ test::CliResult bench(const std::string& args, bool mergeStderr = false) {
 
 TEST(BenchCommand, ReportsRowsWithSettingsChannelsAndThesisFps) {
   const test::CliResult r = bench(
-      "--json --seconds 0.02 --runs 3 --heads default --no-reference --threads 4 "
+      "--json --seconds 0.02 --runs 3 --heads default --no-reference --threads 4 --diagnostics "
       "--rows t2_all8,t3_zygomaticus_right,t4_gravity,t4_muscle_and_drag");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
@@ -80,6 +81,34 @@ TEST(BenchCommand, ReportsRowsWithSettingsChannelsAndThesisFps) {
   EXPECT_EQ(j["rows"][3]["channels"].size(), 2u);
 }
 
+// Every row reports its floor (its step time over one stream of the bases it reads) and its
+// reference ratio (over one full-space step under the same loads): present, finite and positive, or
+// null with a note where the reference is not defined. Values are not asserted: speed is measured.
+TEST(BenchCommand, RowsReportFloorAndReferenceRatios) {
+  const test::CliResult r =
+      bench("--json --seconds 0.02 --runs 1 --heads default --reference-steps 1 --rows t2_corrugator,t3_corrugator_right");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 2u);
+  for (const auto& row : j["rows"]) {
+    for (const char* key : {"muscles", "floor_ratio", "floor_us", "floor_bytes", "reference_ratio", "reference_step_us"})
+      EXPECT_TRUE(row.contains(key)) << row["id"] << " has no " << key;
+    const double floor = row["floor_ratio"].get<double>();
+    EXPECT_TRUE(std::isfinite(floor) && floor > 0.0) << row["id"] << ": " << floor;
+    EXPECT_GT(row["floor_bytes"].get<double>(), 0.0);
+    EXPECT_EQ(row["muscles"], 1);
+    // Without --diagnostics the load participation is not measured.
+    for (const auto& c : row["channels"]) EXPECT_TRUE(c["load_participation"].is_null());
+  }
+  const auto& muscleOnly = j["rows"][0];
+  EXPECT_TRUE(muscleOnly["reference_ratio"].is_null());
+  EXPECT_THAT(muscleOnly["reference_note"].get<std::string>(), HasSubstr("muscle-phase"));
+  const auto& whole = j["rows"][1];
+  const double ref = whole["reference_ratio"].get<double>();
+  EXPECT_TRUE(std::isfinite(ref) && ref > 0.0) << ref;
+  EXPECT_GT(whole["reference_step_us"].get<double>(), 0.0);
+}
+
 TEST(BenchCommand, TextTableNamesTheThesisColumns) {
   const test::CliResult r = bench("--seconds 0.01 --runs 1 --heads default --no-reference --rows t3_depressor_anguli_both");
   ASSERT_EQ(r.exitCode, 0) << r.out;
@@ -91,7 +120,7 @@ TEST(BenchCommand, TextTableNamesTheThesisColumns) {
 // each; the cold precompute goes into an empty cache of the row's own, the cached start reads it.
 TEST(BenchCommand, FullRowsRunBothModelsSideBySide) {
   const test::CliResult r =
-      bench("--json --seconds 0.02 --runs 1 --heads default --no-reference --rows thesis_full,anatomical_full");
+      bench("--json --seconds 0.02 --runs 1 --heads default --reference-steps 1 --rows thesis_full,anatomical_full");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["rows"].size(), 2u);
@@ -115,6 +144,11 @@ TEST(BenchCommand, FullRowsRunBothModelsSideBySide) {
     EXPECT_LT(row["cold_cache_hits"].get<int>(), row["cache_hits"].get<int>());
     for (const char* phase : {"muscles", "springs", "channels", "total"})
       EXPECT_GE(row["phase_us"][phase].get<double>(), 0.0) << phase;
+    // All loads active at the window's end: a floor and a full-space reference step for both models
+    // (the anatomical one with its attachment and couplings' stiffness).
+    const double floor = row["floor_ratio"].get<double>(), ref = row["reference_ratio"].get<double>();
+    EXPECT_TRUE(std::isfinite(floor) && floor > 0.0) << row["id"] << ": " << floor;
+    EXPECT_TRUE(std::isfinite(ref) && ref > 0.0) << row["id"] << ": " << ref;
   }
   // Thesis: eight muscle channels, gravity and the drag; anatomical: one skin whose basis holds
   // the d modes and the static responses of the muscles, gravity (x, y, z) and the drag (x, y, z).

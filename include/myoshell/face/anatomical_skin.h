@@ -204,6 +204,8 @@ class AnatomicalStepper {
     double levels = 0.0, force = 0.0, modal = 0.0;
   };
   const Times& lastTimes() const { return times_; }
+  // The skin's integrator (what myoshell bench streams for its floor).
+  const ModalWarpingIntegrator& integrator() const { return integrator_; }
 
  private:
   std::shared_ptr<const AnatomicalSkin> skin_;

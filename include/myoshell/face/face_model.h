@@ -71,9 +71,10 @@ struct FaceModelSettings {
   // backside of the head and feature points of the face were fixed"), every landmark vertex.
   bool gravityPinsLandmarks = true;
   // Report each skin channel's load participation (SkinChannel::loadParticipation): a diagnostic
-  // costing one sparse factorization per channel at build time, cached bases or not (2–3 s on the
-  // default head). The viewer turns it off to start faster; its channels then report −1.
-  bool measureLoadParticipation = true;
+  // costing one sparse factorization per channel at build time, cached bases or not (75 % of a
+  // cached start). Off by default: channels then report −1. `myoshell run --diagnostics` and
+  // `myoshell bench --diagnostics` turn it on (docs/PERFORMANCE.md, "Start-up").
+  bool measureLoadParticipation = false;
   std::vector<DragDef> drags;         // drag channels
   ModalPrecision precision = ModalPrecision::Float;
 

@@ -7,6 +7,7 @@
 
 #include "myoshell/face/head.h"
 #include "myoshell/face/muscle_def.h"
+#include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/tri_mesh.h"
 
 namespace myo {
@@ -40,7 +41,10 @@ struct Muscle {
 // TubeOrientation::MirrorRightSide: a right-side muscle's rings run the other way round, so that its tube is the
 // exact mirror image of its left twin's, node for node and triangle for triangle (the anatomical
 // model: pairs act symmetrically on a symmetric head); false keeps the thesis model's tubes.
+// `skin`, when given, is a SurfaceLocator over head.mesh (with its vertex normals) that answers the
+// closest-point queries: the same muscle, built faster when many muscles share one locator.
 enum class TubeOrientation { Thesis, MirrorRightSide };
-Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation = TubeOrientation::Thesis);
+Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation = TubeOrientation::Thesis,
+                   const SurfaceLocator* skin = nullptr);
 
 }  // namespace myo

@@ -72,7 +72,10 @@ struct CoupledMuscle {
 // Builds the muscle (buildMuscle), its static shape at a = 1 scaled to the shortening rule, and its
 // skin springs, with the muscle's own profile (def.coupling) or else settings.profile. Throws InputError naming the muscle for bad settings, NumericalError if the pinned
 // muscle is singular.
-CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings = {});
+// `skin`, when given, is a SurfaceLocator over head.mesh that answers the skin's closest-point
+// queries (the same muscle, built faster: AnatomicalSkin shares one over all its muscles).
+CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings = {},
+                           const SurfaceLocator* skin = nullptr);
 
 // Σ over springs of K_c = k_i I₃ at the spring's skin vertex, into a 3n×3n triplet list (dyn/cm).
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets);

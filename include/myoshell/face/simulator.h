@@ -71,6 +71,13 @@ class Simulator : public FaceStepper {
   std::vector<std::string> takeWarnings() override { return std::exchange(warnings_, {}); }
   const FaceModel& model() const { return *model_; }
   const FaceSystem& face() const override { return *model_; }
+  // The integrators step() advances: one per skin channel (FaceModel::channels() order), one per
+  // muscle (what myoshell bench streams for its floor).
+  const std::vector<ModalWarpingIntegrator>& channelIntegrators() const { return channelIntegrators_; }
+  const std::vector<ModalWarpingIntegrator>& muscleIntegrators() const { return muscleIntegrators_; }
+  // The last step's force on the whole skin, Σ over channels of its free force scattered to the
+  // skin (n×3, dyn, world frame: springs, gravity, drags): the load of a full-space reference step.
+  MatX3 skinLoad() const;
   // The thesis model has no head pose: InputError naming the model.
   void setHeadPose(const Eigen::Quaterniond& rotation) override;
   // Back to the neutral face at rest (activations, gravity and drags kept).

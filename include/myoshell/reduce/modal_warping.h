@@ -100,6 +100,12 @@ class ModalWarpingIntegrator {
 
   const ModalBasis& basis() const { return *basis_; }
   const ModalWarpingSettings& settings() const { return settings_; }
+  // What a step streams from the basis when it touches every free vertex: the interleaved Φ rows
+  // (and Ψ rows when warping) in the storage precision, 3 (or 6) × f × d values, in bytes.
+  size_t basisBytes() const;
+  // Reads each of those stored values once, in storage order, and returns their sum: the memory
+  // floor of a step over every free vertex (myoshell bench's floor_ratio). Allocates nothing.
+  double streamBasis() const;
   // Largest stable semi-implicit step for this basis and scale: 2/√(sλ_max) (s); +∞ if λ_max ≤ 0.
   double maxSemiImplicitDt() const;
 

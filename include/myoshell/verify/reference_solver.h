@@ -69,6 +69,14 @@ enum class ImplicitScheme {
   BDF2,   // second-order backward differentiation (first step taken with backward Euler)
 };
 
+// What a model adds to the shell's energy and mass in the full space (the anatomical model,
+// anatomical_skin.h): E_x = ½(x − X̄)ᵀK_x(x − X̄), K_x = K_att + ΣK_c (3n×3n, dyn/cm, symmetric
+// positive semi-definite), and its own lumped vertex masses (n, g; empty: the shell's).
+struct ReferenceExtras {
+  SparseMat stiffness;
+  VecX vertexMass;
+};
+
 // Dynamic full-space reference: M ẍ + C ẋ + ∇E(x) = F with lumped M and Rayleigh damping
 // C = ξM + ζK̄ (K̄ = stiffnessAtRest(), thesis eq. 6–7), pinned vertices fixed at rest.
 // Backward Euler solves each step as the minimisation of METHOD.md §5.1's
@@ -80,8 +88,10 @@ enum class ImplicitScheme {
 class ImplicitReference {
  public:
   // xi: mass-proportional damping ξ (1/s); zeta: stiffness-proportional damping ζ (s).
+  // With `extras`, E becomes E_shell + E_x, M the extras' masses and K̄ = stiffnessAtRest() + K_x.
   ImplicitReference(const DiscreteShell& shell, std::vector<int> pinned, double xi, double zeta,
-                    ImplicitScheme scheme = ImplicitScheme::Euler, ReferenceOptions options = {});
+                    ImplicitScheme scheme = ImplicitScheme::Euler, ReferenceOptions options = {},
+                    ReferenceExtras extras = {});
 
   // Sets the state: x, v are n×3 (cm, cm/s); pinned rows are reset to rest position, zero velocity.
   // Also restarts BDF2's history (the next step is a backward-Euler step).
@@ -108,6 +118,7 @@ class ImplicitReference {
   std::vector<int> freeDof_;   // free DOF indices (3n numbering), ascending
   VecX mass3_;                 // 3n lumped mass per DOF, g
   SparseMat C_;                // 3n×3n damping ξM + ζK̄, g/s
+  SparseMat Kx_;               // 3n×3n extra quadratic stiffness (empty: none), dyn/cm
   double roundoff_ = 0.0;      // residual (dyn) below which a step counts as converged
   MatX3 x_, v_, xPrev_, vPrev_;
   bool haveHistory_ = false;
