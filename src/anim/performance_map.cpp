@@ -9,12 +9,18 @@
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/arkit_names.h"
+#include "myoshell/face/jaw.h"
 
 namespace myo {
 namespace {
 
-// One input curve's reach: model muscle index → weight per unit of the curve.
-using MuscleWeights = std::map<int, double>;
+// One input curve's reach: model muscle index → weight per unit of the curve, and the jaw per unit
+// of the curve ([open degrees, forward cm, lateral cm]).
+struct MuscleWeights {
+  std::map<int, double> muscles;
+  Vec3 jaw = Vec3::Zero();
+  bool empty() const { return muscles.empty() && jaw.isZero(); }
+};
 
 bool endsWith(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
@@ -45,14 +51,16 @@ class Mapper {
       missing_.insert(muscle);
       return;
     }
-    out[it->second] += weight;
+    out.muscles[it->second] += weight;
   }
 
   // An AU's muscles, restricted to `side`. Returns false when the FACS map has no muscles for it.
+  // A sided input moves the jaw sideways towards its side (AU30 alone: towards the subject's left).
   bool addAu(MuscleWeights& out, int au, const std::string& side, double scale = 1.0) {
     const FacsEntry* entry = facs_.find(au);
-    if (!entry || entry->muscles.empty()) return false;
+    if (!entry || (entry->muscles.empty() && !entry->movesJaw())) return false;
     for (const auto& [muscle, w] : entry->muscles) add(out, muscle, scale * w * sideFactor(muscle, side));
+    out.jaw += scale * Vec3(entry->jawOpenDeg, entry->jawForwardCm, (side == "right" ? -1.0 : 1.0) * entry->jawLateralCm);
     return true;
   }
 
@@ -76,6 +84,12 @@ std::string numberText(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
+}
+
+// The jaw within its anatomical ranges (face/jaw.h): where inputs add past them, the jaw stops.
+Vec3 clampJaw(const Vec3& j) {
+  return Vec3(std::clamp(j.x(), kJawOpenMinDeg, kJawOpenMaxDeg), std::clamp(j.y(), kJawForwardMinCm, kJawForwardMaxCm),
+              std::clamp(j.z(), -kJawLateralMaxCm, kJawLateralMaxCm));
 }
 
 // "AU12" → 12, or 0 for any other name.
@@ -137,18 +151,34 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
       const RetargetShape* shape = name ? arkitMap.find(*name) : nullptr;
       if (!name) {
         why = "not an ARKit name";
-      } else if (shape && shape->reachable) {
+      }
+      if (name && shape && shape->reachable) {
         for (const auto& [muscle, a] : shape->activations) mapper.add(weights, muscle, a);
-        if (weights.empty()) why = "the retargeting map's " + *name + " drives no muscle of this model";
-      } else {
-        for (int au : arkitFacs(*name).aus) {
-          const size_t before = weights.size();
-          if (mapper.addAu(weights, au, arkitFacs(*name).side) && weights.size() > before) continue;
-          why += (why.empty() ? "" : "; ") + mapper.whyNot(au);
+        for (const auto& [dof, value] : shape->jaw) {
+          if (dof == "open") weights.jaw.x() += value;
+          else if (dof == "forward") weights.jaw.y() += value;
+          else if (dof == "lateral") weights.jaw.z() += value;
+        }
+      }
+      // What the map does not make (no entry, unreachable, or nothing this model has): its FACS units.
+      if (name && weights.empty()) {
+        const ArkitFacs& facs = arkitFacs(*name);
+        std::string reasons;
+        for (int au : facs.aus) {
+          MuscleWeights one;
+          if (mapper.addAu(one, au, facs.side) && !one.empty()) {
+            for (const auto& [muscle, w] : one.muscles) weights.muscles[muscle] += w;
+            weights.jaw += one.jaw;
+          } else {
+            reasons += (reasons.empty() ? "" : "; ") + mapper.whyNot(au);
+          }
         }
         if (!weights.empty()) why.clear();
-        else if (arkitFacs(*name).aus.empty()) why = "no FACS unit, and the retargeting map has no " + *name;
-        if (shape && !shape->reachable && weights.empty()) why = shape->reason;
+        else if (shape && !shape->reachable) why = shape->reason;
+        else if (facs.aus.empty())
+          why = (shape ? "the retargeting map's " + *name + " drives nothing this model has"
+                       : "the retargeting map has no " + *name) + ", and it has no FACS unit";
+        else why = reasons;
       }
     }
     if (weights.empty()) {
@@ -157,11 +187,16 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
       continue;
     }
     const std::vector<double> x = oneEuroFilter(p.times, channel.values, filter);
-    for (const auto& [muscle, w] : weights)
+    for (const auto& [muscle, w] : weights.muscles)
       for (size_t f = 0; f < frames; ++f) out.activations[muscle][f] += w * x[f];
+    if (!weights.jaw.isZero()) {
+      if (out.jaw.empty()) out.jaw.assign(frames, Vec3::Zero());
+      for (size_t f = 0; f < frames; ++f) out.jaw[f] += weights.jaw * x[f];
+    }
   }
   for (auto& curve : out.activations)
     for (double& a : curve) a = std::clamp(a, 0.0, 1.0);
+  for (Vec3& j : out.jaw) j = clampJaw(j);
   if (!mapper.missing().empty())
     out.warnings.push_back("the maps name muscles this model does not have, left out: " +
                            joinNames(std::vector<std::string>(mapper.missing().begin(), mapper.missing().end())));
@@ -209,6 +244,31 @@ void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
       keys.push_back({t, std::clamp(value, 0.0, 1.0), Interpolation::Linear});
     }
     scene.activations[mapped.muscles[m]] = ScalarTrack(std::move(keys), "performance of " + mapped.muscles[m]);
+  }
+  // The jaw: the performance's plus the scene's own jaw keys, within the jaw's ranges.
+  if (!mapped.jaw.empty()) {
+    ScalarTrack* tracks[3] = {&scene.jawOpen, &scene.jawForward, &scene.jawLateral};
+    const char* names[3] = {"performance jaw open", "performance jaw forward", "performance jaw lateral"};
+    for (int dof = 0; dof < 3; ++dof) {
+      std::vector<double> times = mapped.times;
+      for (const auto& key : tracks[dof]->keys()) times.push_back(key.time);
+      std::sort(times.begin(), times.end());
+      times.erase(std::unique(times.begin(), times.end()), times.end());
+      std::vector<Keyframe<double>> keys;
+      size_t f = 0;
+      for (double t : times) {
+        while (f + 1 < frames && mapped.times[f + 1] <= t) ++f;
+        Vec3 value = mapped.jaw[f];
+        if (f + 1 < frames && t > mapped.times[f]) {
+          const double s = (t - mapped.times[f]) / (mapped.times[f + 1] - mapped.times[f]);
+          value = (1.0 - s) * mapped.jaw[f] + s * mapped.jaw[f + 1];
+        }
+        Vec3 own = Vec3::Zero();
+        own[dof] = tracks[dof]->empty() ? 0.0 : tracks[dof]->at(t);
+        keys.push_back({t, clampJaw(value + own)[dof], Interpolation::Linear});
+      }
+      *tracks[dof] = ScalarTrack(std::move(keys), names[dof]);
+    }
   }
   if (!mapped.headPose.empty() && scene.headPose.empty()) {
     std::vector<Keyframe<Vec3>> keys(frames);

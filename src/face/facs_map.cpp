@@ -11,6 +11,7 @@
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/face/jaw.h"
 #include "myoshell/face/muscle_def.h"
 
 namespace myo {
@@ -76,12 +77,24 @@ FacsEntry readEntry(DocReader& r, const std::set<std::string>& known, const std:
     if (w < 0.0 || w > 1.0) r.failAt(kv.second, at, "weight " + kv.second.Scalar() + " is outside [0, 1]");
     e.muscles.emplace_back(muscle, w);
   }
+  if (r.has("jaw")) {
+    // The jaw at intensity 1, within the jaw's anatomical ranges (face/jaw.h).
+    DocReader j = r.child("jaw");
+    e.jawOpenDeg = j.number("open", 0.0);
+    j.requireWithin("open", e.jawOpenDeg, kJawOpenMinDeg, kJawOpenMaxDeg);
+    e.jawForwardCm = j.number("forward", 0.0);
+    j.requireWithin("forward", e.jawForwardCm, kJawForwardMinCm, kJawForwardMaxCm);
+    e.jawLateralCm = j.number("lateral", 0.0);
+    j.requireWithin("lateral", e.jawLateralCm, -kJawLateralMaxCm, kJawLateralMaxCm);
+    j.finish();
+    if (!e.movesJaw()) r.fail("jaw", "moves nothing: give open, forward or lateral, or leave the key out");
+  }
   e.needs = r.string("needs", "");
-  if (r.has("needs") && e.needs.empty()) r.fail("needs", "must say what the model lacks (e.g. \"jaw\", \"lids\")");
-  if (!e.needs.empty() && !e.muscles.empty())
-    r.fail("needs", "an AU with muscles needs nothing more: give muscles or needs, not both");
-  if (e.needs.empty() && e.muscles.empty())
-    r.failAt(muscles, mpath, "drives no muscle: list its muscles, or say in 'needs' what the model lacks");
+  if (r.has("needs") && e.needs.empty()) r.fail("needs", "must say what the model lacks (e.g. \"lids\")");
+  if (!e.needs.empty() && (!e.muscles.empty() || e.movesJaw()))
+    r.fail("needs", "an AU with muscles or a jaw needs nothing more: give muscles and jaw, or needs, not both");
+  if (e.needs.empty() && e.muscles.empty() && !e.movesJaw())
+    r.failAt(muscles, mpath, "drives no muscle: list its muscles, give its jaw, or say in 'needs' what the model lacks");
   e.note = r.string("note", "");
   r.finish();
   return e;
@@ -136,6 +149,12 @@ std::string serialiseFacsMap(const FacsMap& map) {
     a["openface"] = e.openface;
     a["muscles"] = nlohmann::ordered_json::object();
     for (const auto& [muscle, w] : e.muscles) a["muscles"][muscle] = w;
+    if (e.movesJaw()) {
+      a["jaw"] = nlohmann::ordered_json::object();
+      if (e.jawOpenDeg != 0.0) a["jaw"]["open"] = e.jawOpenDeg;
+      if (e.jawForwardCm != 0.0) a["jaw"]["forward"] = e.jawForwardCm;
+      if (e.jawLateralCm != 0.0) a["jaw"]["lateral"] = e.jawLateralCm;
+    }
     if (!e.needs.empty()) a["needs"] = e.needs;
     if (!e.note.empty()) a["note"] = e.note;
     aus.push_back(a);

@@ -44,18 +44,25 @@ OneEuroSettings off() {
 }
 
 TEST(PerformanceMap, ActionUnitsGoThroughTheFacsMap) {
-  const Performance p = makePerformance(PerformanceInput::OpenFace,
-                                        {{"AU12", {0.5}}, {"AU14", {0.25}}, {"AU9", {0.4}}, {"AU26", {0.7}}});
+  const Performance p = makePerformance(PerformanceInput::OpenFace, {{"AU12", {0.5}},
+                                                                     {"AU14", {0.25}},
+                                                                     {"AU9", {0.4}},
+                                                                     {"AU26", {0.7}},
+                                                                     {"AU45", {0.3}}});
   const MappedPerformance m = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off());
   EXPECT_DOUBLE_EQ(activationOf(m, "zygomaticus_major_left", 2), 0.5);
   EXPECT_DOUBLE_EQ(activationOf(m, "zygomaticus_major_right", 2), 0.5);
   EXPECT_DOUBLE_EQ(activationOf(m, "buccinator_left", 2), 0.25);
   EXPECT_DOUBLE_EQ(activationOf(m, "procerus", 2), 0.4 * 0.5);  // AU9's weight on the procerus
   EXPECT_DOUBLE_EQ(activationOf(m, "corrugator_supercilii_left", 2), 0.0);
-  // AU26 (jaw drop) has no muscles until the jaw: warned about once, never an error.
-  ASSERT_EQ(m.unmapped, std::vector<std::string>{"AU26"});
+  // AU26 (jaw drop) opens the jaw: 20° at full intensity (assets/facs/au_map.json).
+  ASSERT_EQ(m.jaw.size(), 5u);
+  EXPECT_DOUBLE_EQ(m.jaw[2].x(), 0.7 * 20.0);
+  EXPECT_DOUBLE_EQ(m.jaw[2].y(), 0.0);
+  // AU45 (blink) has nothing to drive until the lids: warned about once, never an error.
+  ASSERT_EQ(m.unmapped, std::vector<std::string>{"AU45"});
   ASSERT_EQ(m.warnings.size(), 1u);
-  EXPECT_EQ(m.warnings[0], "AU26 drives nothing: AU26 needs the jaw");
+  EXPECT_EQ(m.warnings[0], "AU45 drives nothing: AU45 needs lids");
 }
 
 TEST(PerformanceMap, ContributionsAddAndClampToOne) {
@@ -109,7 +116,24 @@ TEST(PerformanceMap, ArkitWeightsGoThroughTheRetargetingMap) {
   EXPECT_EQ(m.unmapped, (std::vector<std::string>{"eyeLookUpLeft", "mouthClose"}));
   ASSERT_EQ(m.warnings.size(), 2u);
   EXPECT_EQ(m.warnings[0], "eyeLookUpLeft drives nothing: eye rotation");
-  EXPECT_EQ(m.warnings[1], "mouthClose drives nothing: no FACS unit, and the retargeting map has no mouthClose");
+  EXPECT_EQ(m.warnings[1], "mouthClose drives nothing: the retargeting map has no mouthClose, and it has no FACS unit");
+}
+
+TEST(PerformanceMap, ArkitJawShapesMoveTheJawTowardsTheirSide) {
+  const Performance p = makePerformance(PerformanceInput::LiveLink,
+                                        {{"jawOpen", {0.5}}, {"jawLeft", {0.4}}, {"jawRight", {0.1}}, {"jawForward", {1.0}}});
+  const MappedPerformance m = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off());
+  ASSERT_EQ(m.jaw.size(), 5u);
+  EXPECT_DOUBLE_EQ(m.jaw[0].x(), 0.5 * 20.0);          // AU26
+  EXPECT_DOUBLE_EQ(m.jaw[0].y(), 0.8);                 // AU29
+  EXPECT_NEAR(m.jaw[0].z(), (0.4 - 0.1) * 1.0, 1e-15);  // AU30 left minus right
+  EXPECT_TRUE(m.unmapped.empty());
+  SceneDesc scene;
+  scene.jawOpen = ScalarTrack({{0.0, 35.0, Interpolation::Linear}});
+  addPerformanceToScene(scene, m);
+  EXPECT_DOUBLE_EQ(scene.jawOpen.at(0.1), 40.0);  // 10 + 35, held at the jaw's 40° limit
+  EXPECT_DOUBLE_EQ(scene.jawForward.at(0.1), 0.8);
+  EXPECT_NEAR(scene.jawLateral.at(0.1), 0.3, 1e-15);
 }
 
 TEST(PerformanceMap, EveryArkitNameMapsOrIsWarnedAbout) {

@@ -28,6 +28,9 @@ struct MappedPerformance {
   std::vector<std::string> muscles;              // the model's muscle names, in the given order
   std::vector<std::vector<double>> activations;  // [muscle][frame], in [0, 1]
   std::vector<Vec3> headPose;                    // [pitch, yaw, roll] degrees per frame (filtered); empty if none
+  // The jaw per frame, [open degrees, forward cm, lateral cm] within face/jaw.h's ranges; empty when
+  // no input moves it (AU25–27, AU29, AU30 through the FACS map; ARKit's jaw shapes).
+  std::vector<Vec3> jaw;
   std::vector<std::string> unmapped;             // input curves that drive nothing, in input order
   std::vector<std::string> warnings;             // one line each
 };
@@ -46,7 +49,8 @@ MappedPerformance mapPerformance(const Performance& performance, const std::vect
 // the performance drives gets a track with a key at every frame and at every key of the scene's
 // own track for it, valued (performance + scene's own track), clamped to [0, 1] (linear between
 // keys: the timeline resamples the frames to the simulation step). The performance's head pose
-// becomes timeline.head_pose unless the scene has its own (which then wins).
+// becomes timeline.head_pose unless the scene has its own (which then wins); its jaw adds to the
+// scene's timeline.jaw tracks (clamped to the jaw's ranges).
 void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped);
 
 }  // namespace myo

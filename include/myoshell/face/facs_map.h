@@ -5,11 +5,13 @@
 //   {"note": "…",
 //    "aus": [{"au": 12, "name": "lip corner puller", "openface": true,
 //             "muscles": {"zygomaticus_major_left": 1.0, "zygomaticus_major_right": 1.0}, "note": "…"},
-//            {"au": 26, "name": "jaw drop", "openface": true, "muscles": {}, "needs": "jaw"}, …]}
+//            {"au": 26, "name": "jaw drop", "openface": true, "muscles": {}, "jaw": {"open": 20}},
+//            {"au": 45, "name": "blink", "openface": true, "muscles": {}, "needs": "lids"}, …]}
 //
 // An AU at intensity x drives each of its muscles at x · weight (weights in [0, 1]); where several
 // AUs drive one muscle their contributions add and the sum is clamped to 1. An AU the model cannot
-// make yet has no muscles and says in `needs` what is missing ("jaw", "lids").
+// make yet has no muscles and says in `needs` what is missing ("lids"). An AU may move the jaw
+// (`jaw`: {"open": degrees, "forward": cm, "lateral": cm} at intensity 1), with or without muscles.
 #pragma once
 
 #include <string>
@@ -29,7 +31,11 @@ struct FacsEntry {
   std::string name;           // FACS's name, e.g. "lip corner puller"
   bool openface = false;      // one of OpenFace 2.0's intensity AUs (openFaceIntensityAus())
   std::vector<std::pair<std::string, double>> muscles;  // muscle → weight in [0, 1], file order
-  std::string needs;          // what the model lacks to make it (only when muscles is empty)
+  // The jaw at intensity 1 (face/jaw.h, JawPose; docs/facs.md): opening in degrees, protrusion
+  // and lateral shift in cm (+ towards the subject's left). Scaled by the intensity like the weights.
+  double jawOpenDeg = 0.0, jawForwardCm = 0.0, jawLateralCm = 0.0;
+  bool movesJaw() const { return jawOpenDeg != 0.0 || jawForwardCm != 0.0 || jawLateralCm != 0.0; }
+  std::string needs;          // what the model lacks to make it (only when it drives nothing)
   std::string note;
 };
 
