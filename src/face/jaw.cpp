@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -50,6 +53,36 @@ Vec3 point(const MatX3& V, const Landmarks& l, int multipie) {
 // (+z), negative below.
 double angleAbout(const Vec3& pf, const Vec3& q) { return std::atan2(q.y() - pf.y(), q.z() - pf.z()) / kDeg; }
 
+// Shortest distances along the mesh's edges (cm) from vertex `source` to every vertex (Dijkstra);
+// +∞ where unreachable.
+std::vector<double> surfaceDistance(const TriMesh& mesh, int source) {
+  const int n = mesh.vertexCount();
+  std::vector<std::vector<std::pair<int, double>>> adj(static_cast<size_t>(n));
+  for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(t, k), b = mesh.F(t, (k + 1) % 3);
+      const double l = (mesh.V.row(a) - mesh.V.row(b)).norm();
+      adj[static_cast<size_t>(a)].emplace_back(b, l);
+      adj[static_cast<size_t>(b)].emplace_back(a, l);
+    }
+  std::vector<double> d(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  d[static_cast<size_t>(source)] = 0.0;
+  queue.emplace(0.0, source);
+  while (!queue.empty()) {
+    const auto [dist, v] = queue.top();
+    queue.pop();
+    if (dist > d[static_cast<size_t>(v)]) continue;
+    for (const auto& [w, l] : adj[static_cast<size_t>(v)])
+      if (dist + l < d[static_cast<size_t>(w)]) {
+        d[static_cast<size_t>(w)] = dist + l;
+        queue.emplace(dist + l, w);
+      }
+  }
+  return d;
+}
+
 }  // namespace
 
 void validateJawPose(const JawPose& p, const std::string& what) {
@@ -74,9 +107,10 @@ Vec3 jawPivot(const MatX3& V, const Landmarks& landmarks) {
   return frame.fromFrame(pf);
 }
 
-VecX jawWeights(const MatX3& P, const MatX3& V, const Landmarks& landmarks, const Vec3& pivot,
-                const JawWeightSettings& s) {
+VecX jawWeights(const TriMesh& skin, const Landmarks& landmarks, const Vec3& pivot, const JawWeightSettings& s) {
   requireJawLine(landmarks);
+  const MatX3& V = skin.V;
+  const MatX3& P = skin.V;
   const FaceFrame frame = faceFrame(V, landmarks);
   auto fp = [&](int k) { return frame.toFrame(point(V, landmarks, k)); };
   const Vec3 pf = frame.toFrame(pivot);
@@ -91,43 +125,33 @@ VecX jawWeights(const MatX3& P, const MatX3& V, const Landmarks& landmarks, cons
   }
   split.emplace_back(fp(54).x(), angleAbout(pf, fp(54)));
   std::sort(split.begin(), split.end());
-  const double cornerX = 0.5 * (std::abs(fp(48).x()) + std::abs(fp(54).x()));
-  const double cornerY = 0.5 * (fp(48).y() + fp(54).y());
-
-  // The cheek's outline at the corners' height: |x| of the jaw line (0→8 and 16→8) where it passes
-  // that height, averaged over both sides.
-  auto outlineX = [&](int from, int step) {
-    for (int k = from; k != 8; k += step) {
-      const Vec3 a = fp(k), b = fp(k + step);
-      if ((a.y() - cornerY) * (b.y() - cornerY) <= 0.0 && a.y() != b.y()) {
-        const double t = (cornerY - a.y()) / (b.y() - a.y());
-        return std::abs((1.0 - t) * a.x() + t * b.x());
-      }
-    }
-    return std::abs(fp(from).x());
-  };
-  const double cheekX = std::max(0.5 * (outlineX(0, 1) + outlineX(16, -1)), cornerX * 1.01);
-  const double sharpX = s.sharpLips * cornerX;
+  // The lips part up to the inner corners (60, 64): there the commissure has fully blended.
+  const double innerCornerX = 0.5 * (std::abs(fp(60).x()) + std::abs(fp(64).x()));
+  const double blendFrom = std::max(0.0, innerCornerX - s.commissureBlend);
 
   // The mandible's lower border from gonion (4) to gonion (12): y over x, level beyond.
   std::vector<std::pair<double, double>> border;
   for (int k = 4; k <= 12; ++k) border.emplace_back(fp(k).x(), fp(k).y());
   std::sort(border.begin(), border.end());
 
+  const Vec3 stomion = 0.5 * (fp(62) + fp(66));
+  const std::vector<double> toUpper = surfaceDistance(skin, landmarks.multipie68[51]);
+  const std::vector<double> toLower = surfaceDistance(skin, landmarks.multipie68[57]);
+
+  const double h = s.cheekHalfWidthDeg;
+  MYO_CHECK(h > 0 && s.posteriorFullDeg > s.posteriorZeroDeg && s.neckFalloff > 0, "jaw weight settings");
   VecX w(P.rows());
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const Vec3 q = frame.toFrame(Vec3(P.row(i).transpose()));
-    const double back = smoothStep((q.z() - pf.z()) / s.backRamp);
-    if (back == 0.0) {
-      w(i) = 0.0;
-      continue;
-    }
+    const double phi = angleAbout(pf, q);
+    const double posterior = smoothStep((phi - s.posteriorZeroDeg) / (s.posteriorFullDeg - s.posteriorZeroDeg));
     const double neck = smoothStep((q.y() - (interpolate(border, q.x()) - s.neckFalloff)) / s.neckFalloff);
-    const double ax = std::abs(q.x());
-    const double halfWidth = s.cheekHalfWidthDeg * std::clamp((ax - sharpX) / (cheekX - sharpX), 0.0, 1.0);
-    const double below = interpolate(split, q.x()) - angleAbout(pf, q);  // degrees below the mouth line
-    const double sag = halfWidth > 0.0 ? smoothStep(0.5 * (below / halfWidth + 1.0)) : (below > 0.0 ? 1.0 : 0.0);
-    w(i) = sag * neck * back;
+    const double below = interpolate(split, q.x()) - phi;  // degrees below the mouth line
+    const double lambda = smoothStep((std::abs(q.x()) - blendFrom) / (innerCornerX - blendFrom));
+    const bool lower = (q - stomion).norm() < s.lipRegion ? toLower[static_cast<size_t>(i)] < toUpper[static_cast<size_t>(i)]
+                                                          : below > 0.0;
+    const double wSplit = (1.0 - lambda) * (lower ? 1.0 : 0.0) + lambda * smoothStep(0.5 * (below / h + 1.0));
+    w(i) = wSplit * neck * posterior;
   }
   return w;
 }
@@ -138,7 +162,7 @@ JawRig jawRig(const TriMesh& skin, const Landmarks& landmarks, const JawWeightSe
   const FaceFrame frame = faceFrame(skin.V, landmarks);
   rig.axis = frame.axes.col(0);
   rig.forward = frame.axes.col(2);
-  rig.weights = jawWeights(skin.V, skin.V, landmarks, rig.pivot, settings);
+  rig.weights = jawWeights(skin, landmarks, rig.pivot, settings);
   rig.pivotRule = "mid-ramus: halfway between the jaw-line points 0/16 and 4/12 in height, " +
                   std::to_string(kPivotDepthBehindEarContour) + " face-frame units behind 0/16";
   return rig;

@@ -43,19 +43,32 @@ void validateJawPose(const JawPose& pose, const std::string& what = "jaw");
 // degrees; the defaults are the model (docs/jaw.md, "The weight map"): anatomical estimates, not fitted.
 struct JawWeightSettings {
   // The split between maxilla and mandible is the half-plane through the axis and the mouth line
-  // (the inner lip line between the corners, the ray from each mouth corner back to the axis beyond
-  // them, i.e. the occlusal line). Across it, the weight goes 1 → 0 over ±halfWidth degrees (about
-  // the pivot): 0 over the inner `sharpLips` fraction of the mouth (the lips part), ramping to
-  // `cheekHalfWidthDeg` at the cheek's outline (the jaw line at the corners' height).
-  double sharpLips = 0.5;
+  // (the inner lip line between the corners; beyond them the ray from each mouth corner back to the
+  // axis, i.e. the occlusal line). With b the angle (degrees, about the axis) below that line:
+  //   w_split = (1 − λ) step(b) + λ S(½(b/h + 1)),   λ = S((|x| − (x_c − c)) / c),
+  // S the C¹ smoothstep, h = cheekHalfWidthDeg, x_c the inner mouth corners' |x| (landmarks 60, 64:
+  // where the lips stop being parted), c = commissureBlend: the lips part cleanly (step) but for their
+  // last c before the corners, where the commissure blends (the lower lip's edge follows 1 − λ/2, the
+  // upper's λ/2; continuous, as λ = 1 where the lips join), and over the cheeks the weight falls from
+  // 1 to 0 across ±h about the occlusal line.
   double cheekHalfWidthDeg = 20.0;
-  // Below the mandible's lower border (the jaw-line landmarks 0–16, interpolated across x): 1 at the
-  // border, 0 this far below it (the submental and neck skin stretches).
-  double neckFalloff = 0.25;
-  // Behind the ramus: 0 at the pivot's depth and behind it, 1 from this far in front of it (the
-  // skin over the posterior ramus and the ear stays; the angle about the axis is continuous where
-  // the weight is not 0).
-  double backRamp = 0.10;
+  double commissureBlend = 0.10;  // face-frame units (≈ 9 mm: the modiolus's reach into the lips)
+  // Within `lipRegion` of the stomion (face-frame units), step(b) is replaced by the lip a vertex
+  // belongs to: the lower lip (1) when it is nearer, along the skin, to the lower lip's landmark (57)
+  // than to the upper lip's (51), else 0. The lips' inner surfaces curl into the mouth and meet
+  // behind the landmarks' line, where no plane through the axis separates them; along the skin they
+  // are joined only at the corners. Outside the region the two rules agree (nose, chin).
+  double lipRegion = 0.35;
+  // Towards the ramus: the weight fades from 1 at `posteriorFullDeg` to 0 at `posteriorZeroDeg`
+  // (angles about the axis from straight ahead, −90° = straight down). About a mid-ramus axis the
+  // ramus would swing back into the neck, but in a real opening the condyle glides forward and the
+  // ramus's skin (over masseter and parotid) stays nearly still: the skin follows the mandible's body
+  // (chin to the angle's front) and lets go over the angle and the ramus, and behind them.
+  double posteriorFullDeg = -40.0, posteriorZeroDeg = -130.0;
+  // Below the mandible's lower border (the jaw-line landmarks 4–12, gonion to gonion, interpolated
+  // across x, level beyond): 1 at the border, 0 this far below it (face-frame units; 0.4 ≈ 3.6 cm on
+  // an adult, about the hyoid's level: the submental and neck skin between stretches).
+  double neckFalloff = 0.40;
 };
 
 // The jaw of a head: pivot, axes and the per-vertex weights (all in head space, cm).
@@ -77,8 +90,8 @@ struct JawRig {
 inline constexpr double kPivotDepthBehindEarContour = 0.25;
 Vec3 jawPivot(const MatX3& V, const Landmarks& landmarks);
 
-// The weight map at points P (k×3, head space, cm) of a head whose rest skin is V with `landmarks`.
-VecX jawWeights(const MatX3& P, const MatX3& V, const Landmarks& landmarks, const Vec3& pivot,
+// The weight map of a head's skin vertices (n, in [0, 1]).
+VecX jawWeights(const TriMesh& skin, const Landmarks& landmarks, const Vec3& pivot,
                 const JawWeightSettings& settings = {});
 
 // The jaw of a head (pivot, axes, weights of every skin vertex). InputError when the landmarks have
