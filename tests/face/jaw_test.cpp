@@ -10,6 +10,8 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/face_model.h"
+#include "myoshell/face/simulator.h"
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/jaw.h"
@@ -215,6 +217,22 @@ TEST(Jaw, InvariantUnderMovingAndTurningTheHead) {
   const MatX3 Xa = (jawedRest(a, pose, head.mesh.V) * G.transpose()).rowwise() + shift.transpose();
   const MatX3 Xb = jawedRest(b, pose, moved.mesh.V);
   EXPECT_LT((Xa - Xb).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// The thesis model has no jaw: a zero pose is accepted (a scene may write 0), anything else is an
+// InputError naming the model.
+TEST(Jaw, TheThesisSimulatorRefusesANonzeroJaw) {
+  FaceModelSettings s;
+  s.skinModes = 4;
+  const auto model = std::make_shared<const FaceModel>(smallHead(), std::vector<MuscleDef>{thesisMuscleDefs()[1]}, s);
+  Simulator sim(model);
+  EXPECT_NO_THROW(sim.setJaw({}));
+  try {
+    sim.setJaw({10.0, 0.0, 0.0});
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the thesis model has no jaw"), std::string::npos) << e.what();
+  }
 }
 
 class JawFace : public ::testing::Test {
