@@ -1,5 +1,6 @@
 // `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--scene S]
-// [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--out SHAPE.obj] [--cache DIR] [--json]`:
+// [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--jaw OPEN[,FORWARD[,LATERAL]]]
+// [--out SHAPE.obj] [--cache DIR] [--json]`:
 // the settled shape of the anatomical face under fixed activations and gravity — the static
 // equilibrium of its reduced system (AnatomicalSkin::settle; docs/anatomical_model.md), linear or
 // warped as the model's settings say — written in the head's own vertex order and units: a head read
@@ -9,6 +10,8 @@
 // head). With --scene it is that scene's face (head, muscles, settings, drags registered but not
 // pulled); its timeline is not played. The head options and --scene exclude each other: a scene names
 // its own head (key `head`), and a second head would leave its drag vertices meaningless.
+// --jaw opens the jaw (degrees), protrudes and shifts it (cm; face/jaw.h, docs/jaw.md): the settled
+// displacement is the residual, relative to the jawed rest, and turns with the blended jaw rotation.
 // A thesis scene is refused: its face is a sum of channels stepped in time, with no static solve here.
 // Every argument is checked before the model is built (~10 s): bad input costs no wait.
 #include <fmt/core.h>
@@ -45,6 +48,7 @@ struct PoseArgs {
   std::vector<std::string> sets;  // NAME=VALUE, in the order given
   std::string gravity;            // "on", "off", or "" (on; a scene's own switch with --scene)
   std::string headPose = "0,0,0";
+  std::string jaw;                // OPEN[,FORWARD[,LATERAL]], "" = closed
   std::string out;
   std::string cacheDir;           // --cache; "" = the default (resources.h)
   bool json = false;
@@ -75,6 +79,24 @@ Vec3 parseHeadPose(const std::string& text) {
   for (int i = 0; i < 3; ++i)
     if (!parseNumber(parts[static_cast<size_t>(i)], pose(i)))
       throw InputError(expected + ": '" + parts[static_cast<size_t>(i)] + "' is not a number");
+  return pose;
+}
+
+// OPEN_DEG[,FORWARD_CM[,LATERAL_CM]]: one to three finite numbers within the jaw's ranges.
+JawPose parseJaw(const std::string& text) {
+  JawPose pose;
+  if (text.empty()) return pose;
+  std::vector<std::string> parts(1);
+  for (char c : text) {
+    if (c == ',') parts.emplace_back();
+    else parts.back() += c;
+  }
+  const std::string expected = "--jaw '" + text + "': expected OPEN_DEG[,FORWARD_CM[,LATERAL_CM]]";
+  if (parts.size() > 3) throw InputError(expected + ", got " + std::to_string(parts.size()) + " values");
+  double* fields[3] = {&pose.openDeg, &pose.forwardCm, &pose.lateralCm};
+  for (size_t i = 0; i < parts.size(); ++i)
+    if (!parseNumber(parts[i], *fields[i])) throw InputError(expected + ": '" + parts[i] + "' is not a number");
+  validateJawPose(pose, "--jaw");
   return pose;
 }
 
@@ -160,11 +182,15 @@ int runPose(const PoseArgs& a) {
   if (!a.gravity.empty() && a.gravity != "on" && a.gravity != "off")
     throw InputError("--gravity: '" + a.gravity + "' is neither on nor off");
   const Vec3 headPose = parseHeadPose(a.headPose);
+  const JawPose jaw = parseJaw(a.jaw);
   const std::vector<Setting> sets = parseSets(a.sets);
   checkOutputPath(a.out);
   const SceneDesc scene = poseScene(a);
   const SceneInputs inputs = readSceneInputs(scene);
   const VecX act = activations(sets, inputs.muscles);
+  if (!jaw.isZero() && inputs.head.landmarks.multipie68.size() != 68)
+    throw InputError("--jaw: this head has no jaw: its landmarks have no 68-point jaw line (docs/jaw.md)",
+                     inputs.head.landmarks.sourcePath);
   const bool gravity = a.gravity.empty() ? inputs.settings.gravity : a.gravity == "on";
 
   const Stopwatch buildClock;
@@ -192,13 +218,18 @@ int runPose(const PoseArgs& a) {
                                      "iterations)",
                                      settled.residual, settled.iterations));
 
+  // The shape: rest + u, or with the jaw the jawed rest + u turned with it (face/jaw.h).
+  MatX3 positions;
+  if (jaw.isZero()) positions = head.mesh.V + settled.u;
+  else jawedPositions(*face->jawRig(), jaw, head.mesh.V, settled.u, positions);
   Eigen::Index peakVertex = 0;
-  const double peak = settled.u.rowwise().norm().maxCoeff(&peakVertex);
+  const double peak = jaw.isZero() ? settled.u.rowwise().norm().maxCoeff(&peakVertex)
+                                   : (positions - head.mesh.V).rowwise().norm().maxCoeff(&peakVertex);
   if (!a.out.empty()) {
-    // Back in the head file's unit: (rest + u) / (cm per unit); in cm the division is exact.
+    // Back in the head file's unit: positions / (cm per unit); in cm the division is exact.
     // A head read from a file is written as a copy of that file with new positions (its seam UVs,
     // quads, groups kept); the built-in head as its mesh.
-    const MatX3 shape = (head.mesh.V + settled.u) / centimetresPer(scene.head.units);
+    const MatX3 shape = positions / centimetresPer(scene.head.units);
     if (scene.head.obj.empty() || !writeObjLikeFile(a.out, head.mesh.sourcePath, shape))
       writeObj(a.out, head.mesh, &shape);
   }
@@ -215,6 +246,20 @@ int runPose(const PoseArgs& a) {
     j["gravity"] = gravity ? "on" : "off";
     j["head_pose_deg"] = {headPose.x(), headPose.y(), headPose.z()};
     j["gravity_cm_s2"] = {loads.gravity.x(), loads.gravity.y(), loads.gravity.z()};
+    if (jaw.isZero()) {
+      j["jaw"] = nullptr;
+    } else {
+      const JawRig& rig = *face->jawRig();
+      nlohmann::ordered_json jj;
+      jj["open_deg"] = jaw.openDeg;
+      jj["forward_cm"] = jaw.forwardCm;
+      jj["lateral_cm"] = jaw.lateralCm;
+      jj["pivot_cm"] = {rig.pivot.x(), rig.pivot.y(), rig.pivot.z()};
+      jj["axis"] = {rig.axis.x(), rig.axis.y(), rig.axis.z()};
+      jj["jaw_weighted_vertices"] = (rig.weights.array() > 0.0).count();
+      jj["max_residual_cm"] = settled.u.rowwise().norm().maxCoeff();
+      j["jaw"] = jj;
+    }
     j["warped"] = warped;
     j["iterations"] = settled.iterations;
     j["max_displacement_cm"] = peak;
@@ -228,11 +273,14 @@ int runPose(const PoseArgs& a) {
   }
   std::string set;
   for (const Setting& s : sets) set += fmt::format("{}{}={}", set.empty() ? "" : ", ", s.name, s.value);
-  fmt::print("pose of {} ({} muscles{}, gravity {}{}): max displacement {:.4f} cm at vertex {} ({:.1f} s)\n",
+  fmt::print("pose of {} ({} muscles{}, gravity {}{}{}): max displacement {:.4f} cm at vertex {} ({:.1f} s)\n",
              head.name, face->muscleCount(), set.empty() ? std::string(", none active") : ": " + set, gravity ? "on" : "off",
              gravity && !headPose.isZero()
                  ? fmt::format(", head pose {:g},{:g},{:g}°", headPose.x(), headPose.y(), headPose.z())
                  : std::string(),
+             jaw.isZero() ? std::string()
+                          : fmt::format(", jaw {:g}° {:g} cm forward {:g} cm lateral", jaw.openDeg, jaw.forwardCm,
+                                        jaw.lateralCm),
              peak, peakVertex, seconds);
   if (!a.out.empty()) fmt::print("wrote {}\n", a.out);
   return kExitOk;
@@ -254,6 +302,8 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--gravity", args->gravity, "on or off (default on; with --scene, the scene's)");
   sub->add_option("--head-pose", args->headPose, "P,Y,R: pitch, yaw, roll in degrees about the face frame's x, y, "
                                                   "z (face-down: 90,0,0; default upright)");
+  sub->add_option("--jaw", args->jaw, "OPEN_DEG[,FORWARD_CM[,LATERAL_CM]]: the jaw's opening (degrees, [0, 40]), "
+                                      "protrusion ([-0.5, 1.5] cm) and lateral shift ([-1.5, 1.5] cm, + subject's left)");
   sub->add_option("--out", args->out, "write the settled shape as OBJ (its folder must exist)");
   sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
                                              "~/.cache/myoshell)");

@@ -8,6 +8,7 @@
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/face/head_checks.h"
+#include "myoshell/face/jaw.h"
 
 namespace myo {
 
@@ -398,6 +399,21 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
                    "[pitch, yaw, roll] must be finite degrees");
       scene.headPose = HeadPoseTrack(degrees.keys(), t.keyPath("head_pose"));
     }
+    onlyFor(anatomical, scene, t, "jaw");
+    if (t.has("jaw")) {
+      DocReader j = t.child("jaw");
+      const std::string note = "(the jaw's range, docs/jaw.md)";
+      if (j.has("open"))
+        scene.jawOpen = readTrack<double>(j, j.node("open"), j.keyPath("open"), kJawOpenMinDeg, kJawOpenMaxDeg,
+                                          "degrees " + note);
+      if (j.has("forward"))
+        scene.jawForward = readTrack<double>(j, j.node("forward"), j.keyPath("forward"), kJawForwardMinCm,
+                                             kJawForwardMaxCm, "cm " + note);
+      if (j.has("lateral"))
+        scene.jawLateral = readTrack<double>(j, j.node("lateral"), j.keyPath("lateral"), -kJawLateralMaxCm,
+                                             kJawLateralMaxCm, "cm " + note);
+      j.finish();
+    }
     if (t.has("drags")) {
       DocReader d = t.child("drags");
       for (auto it = d.self().begin(); it != d.self().end(); ++it) {
@@ -560,6 +576,13 @@ std::string sceneToJson(const SceneDesc& scene) {
   for (const auto& [name, track] : scene.dragForces) dragTracks[name] = trackJson(track);
   timeline["drags"] = dragTracks;
   if (!scene.headPose.empty()) timeline["head_pose"] = trackJson(VectorTrack(scene.headPose.keys()));
+  if (scene.hasJaw()) {
+    json jaw = json::object();
+    if (!scene.jawOpen.empty()) jaw["open"] = trackJson(scene.jawOpen);
+    if (!scene.jawForward.empty()) jaw["forward"] = trackJson(scene.jawForward);
+    if (!scene.jawLateral.empty()) jaw["lateral"] = trackJson(scene.jawLateral);
+    timeline["jaw"] = jaw;
+  }
   j["timeline"] = timeline;
   return j.dump(2) + "\n";
 }

@@ -66,6 +66,13 @@ void ScenePlayer::applyTimeline(double t) {
   for (const MuscleTrack& m : muscleTracks_) sim_->setActivation(m.muscle, m.track->at(t));
   if (applyGravity_) sim_->setGravity(scene_.gravity.at(t));
   if (!scene_.headPose.empty()) sim_->setHeadPose(scene_.headPose.at(t));
+  if (scene_.hasJaw()) {
+    JawPose jaw;
+    if (!scene_.jawOpen.empty()) jaw.openDeg = scene_.jawOpen.at(t);
+    if (!scene_.jawForward.empty()) jaw.forwardCm = scene_.jawForward.at(t);
+    if (!scene_.jawLateral.empty()) jaw.lateralCm = scene_.jawLateral.at(t);
+    sim_->setJaw(jaw);
+  }
   for (const DragTrack& d : dragTracks_) sim_->setDragForce(d.drag, d.track->at(t));
 }
 

@@ -27,6 +27,8 @@ AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& m
   std::vector<DragSite> sites;
   for (const DragDef& d : drags_) sites.push_back({d.vertex, d.radius});
   skin_ = std::make_shared<const AnatomicalSkin>(head, muscles, settings, sites, cache);
+  const Head& h = skin_->head();
+  if (h.landmarks.multipie68.size() == 68) jaw_ = std::make_shared<const JawRig>(myo::jawRig(h.mesh, h.landmarks));
   buildSeconds_ = clock.seconds();
 }
 
@@ -78,6 +80,14 @@ void AnatomicalSimulator::setHeadPose(const Eigen::Quaterniond& rotation) {
   // Upright to round-off: keep gravity exactly g_rest (no spurious load from a rounded identity).
   posed_ = pose_.angularDistance(Eigen::Quaterniond::Identity()) > 1e-12;
   updateGravity();
+}
+
+void AnatomicalSimulator::setJaw(const JawPose& pose) {
+  validateJawPose(pose);
+  if (!pose.isZero() && !face_->jawRig())
+    throw InputError("this head has no jaw: its landmarks have no 68-point jaw line (docs/jaw.md)",
+                     face_->head().landmarks.sourcePath);
+  jaw_ = pose;
 }
 
 void AnatomicalSimulator::updateGravity() {
@@ -134,7 +144,8 @@ void AnatomicalSimulator::reset() {
 }
 
 void AnatomicalSimulator::skinPositions(MatX3& out) const {
-  out = face_->head().mesh.V + stepper_->displacement();
+  if (jaw_.isZero()) out = face_->head().mesh.V + stepper_->displacement();
+  else jawedPositions(*face_->jawRig(), jaw_, face_->head().mesh.V, stepper_->displacement(), out);
 }
 
 void AnatomicalSimulator::channelDisplacement(int channel, MatX3& out) const {
@@ -145,6 +156,9 @@ void AnatomicalSimulator::channelDisplacement(int channel, MatX3& out) const {
 void AnatomicalSimulator::musclePositions(int muscle, MatX3& out) const {
   const CoupledMuscle& m = face_->skin().muscles()[static_cast<size_t>(muscle)];
   out = m.muscle.mesh.V + stepper_->muscleLevels()(muscle) * m.fullShape;
+  if (jaw_.isZero() || !isMandibleMuscle(m.muscle.def.name)) return;
+  const RigidMotion j = jawMotion(*face_->jawRig(), jaw_, 1.0);
+  for (Eigen::Index i = 0; i < out.rows(); ++i) out.row(i) = j.apply(out.row(i).transpose()).transpose();
 }
 
 }  // namespace myo

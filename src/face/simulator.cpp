@@ -277,4 +277,9 @@ void Simulator::setHeadPose(const Eigen::Quaterniond&) {
   throw InputError("the head pose (timeline.head_pose) needs \"model\": \"anatomical\"; the thesis model has no head pose");
 }
 
+void Simulator::setJaw(const JawPose& pose) {
+  if (pose.isZero()) return;
+  throw InputError("the jaw (timeline.jaw, pose --jaw) needs \"model\": \"anatomical\"; the thesis model has no jaw");
+}
+
 }  // namespace myo

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "myoshell/face/head.h"
+#include "myoshell/face/shape_metric.h"
+#include "myoshell/io/rig_file.h"
 #include "myoshell/io/obj_writer.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
@@ -175,6 +177,30 @@ TEST(Pose, IctFolderKeepsTheFilesFacesAndUvs) {
   EXPECT_GT(rest.V(vertex, 0), 0.0);  // the subject's left (+x)
 }
 
+// `pose --jaw 25.3` on ICT against ICT's jawOpen (docs/jaw.md): the goal is cosine ≥ 0.9 and a
+// magnitude ratio within 0.8–1.25 (the shape metric, face/shape_metric.h). The jaw is kinematic and
+// no muscle is active: the shape is the jawed rest, turned about the pivot the landmarks give.
+TEST(Pose, IctJawOpenMatchesIctsJawOpen) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path dir = scratch("jaw");
+  const fs::path ict = test::sharedDataDir() / "ict";
+  const test::CliResult r =
+      test::runCli("pose --head " + quoted(ict) + " --jaw 25.3 --json --out " + quoted(dir / "open.obj"));
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["jaw"]["open_deg"].get<double>(), 25.3);
+  EXPECT_EQ(j["jaw"]["max_residual_cm"].get<double>(), 0.0);
+  const TriMesh rest = readObj((ict / "head_skin.obj").string());
+  const MatX3 u = readObj((dir / "open.obj").string()).V - rest.V;
+  const RigFile rig = readRig((ict / "ict_arkit_rig.glb").string());
+  const ShapeComparison c = compareShapes(u, rig.delta("jawOpen"), rest.V);
+  RecordProperty("jawOpen_cosine", std::to_string(c.cosine));
+  RecordProperty("jawOpen_ratio", std::to_string(c.magnitudeRatio));
+  EXPECT_GE(c.cosine, 0.9);
+  EXPECT_GE(c.magnitudeRatio, 0.8);
+  EXPECT_LE(c.magnitudeRatio, 1.25);
+}
+
 // Bad input: exit 2 with the message, before the model is built, and no file written.
 TEST(Pose, BadInputIsRefusedBeforeAnyWork) {
   const fs::path dir = scratch("bad");
@@ -203,6 +229,12 @@ TEST(Pose, BadInputIsRefusedBeforeAnyWork) {
        "myoshell: error: --head-pose '1,x,2': expected three angles P,Y,R in degrees (pitch, yaw, roll): 'x' is not "
        "a number\n"},
       {"--gravity maybe" + out, "myoshell: error: --gravity: 'maybe' is neither on nor off\n"},
+      {"--jaw 45" + out, "myoshell: error: --jaw: open 45 degrees is outside [0, 40] degrees\n"},
+      {"--jaw 10,2" + out, "myoshell: error: --jaw: forward 2 cm is outside [-0.5, 1.5] cm\n"},
+      {"--jaw 10,0,-3" + out, "myoshell: error: --jaw: lateral -3 cm is outside [-1.5, 1.5] cm\n"},
+      {"--jaw 10,x" + out,
+       "myoshell: error: --jaw '10,x': expected OPEN_DEG[,FORWARD_CM[,LATERAL_CM]]: 'x' is not a number\n"},
+      {"--jaw 1,2,3,4" + out, "myoshell: error: --jaw '1,2,3,4': expected OPEN_DEG[,FORWARD_CM[,LATERAL_CM]], got 4 values\n"},
       {"--out " + quoted(dir / "missing" / "shape.obj"),
        "myoshell: error: --out: no such folder '" + (dir / "missing").string() + "'\n"},
       {"--units m" + out, "myoshell: error: --landmarks, --pins and --units apply to an OBJ head, not the default head\n"},

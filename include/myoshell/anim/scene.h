@@ -94,6 +94,10 @@ struct SceneDesc {
   HeadPoseTrack headPose;           // anatomical only: [pitch, yaw, roll] degrees over time (empty = upright)
   PerformanceDesc performance;      // anatomical only; its file is cleared once io has turned it into tracks
   std::optional<PerformanceReport> performanceReport;  // set by io when it read one
+  // anatomical only (timeline.jaw.open / forward / lateral; docs/jaw.md): the jaw's opening (degrees),
+  // protrusion and lateral shift (cm, + towards the subject's left) over time; an empty track is 0.
+  ScalarTrack jawOpen, jawForward, jawLateral;
+  bool hasJaw() const { return !jawOpen.empty() || !jawForward.empty() || !jawLateral.empty(); }
   // Where the names checked after parsing were written (key path → location): "muscles.use[i]"
   // and "timeline.activations.NAME" (sceneMuscles). Empty for a scene built in code.
   std::map<std::string, SourceLocation> locations;

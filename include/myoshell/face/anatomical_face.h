@@ -39,6 +39,9 @@ class AnatomicalFace : public FaceSystem {
   const AnatomicalSkin& skin() const { return *skin_; }
   std::shared_ptr<const AnatomicalSkin> skinPtr() const { return skin_; }
   bool gravityEnabled() const { return gravity_; }
+  // The jaw (face/jaw.h) of the head: its pivot, axes and weight map; null when the head's landmarks
+  // have no 68 points (no jaw line), and then every nonzero jaw pose is refused.
+  const JawRig* jawRig() const { return jaw_ ? jaw_.get() : nullptr; }
 
   FaceModelKind kind() const override { return FaceModelKind::Anatomical; }
   const Head& head() const override { return skin_->head(); }
@@ -59,6 +62,7 @@ class AnatomicalFace : public FaceSystem {
  private:
   std::shared_ptr<const AnatomicalSkin> skin_;
   std::vector<DragDef> drags_;
+  std::shared_ptr<const JawRig> jaw_;
   bool gravity_ = true;
   double buildSeconds_ = 0.0;
 };
@@ -75,6 +79,9 @@ class AnatomicalSimulator : public FaceStepper {
   double activation(int muscle) const override { return loads_.activations(muscle); }
   void setGravity(double scale) override;
   void setHeadPose(const Eigen::Quaterniond& rotation) override;
+  // validateJawPose's ranges; InputError for a nonzero pose on a head without a jaw line.
+  void setJaw(const JawPose& pose) override;
+  JawPose jaw() const override { return jaw_; }
   void setDragForce(int drag, const Vec3& force) override;
   // Only the drag's own vertex (its Ritz vectors were built there): InputError otherwise.
   void setDragVertex(int drag, int vertex, double radius = 0.0) override;
@@ -88,9 +95,12 @@ class AnatomicalSimulator : public FaceStepper {
   long long stepCount() const override { return steps_; }
 
   const MatX3& skinDisplacement() const override { return stepper_->displacement(); }
+  // jawedPositions(rig, jaw, rest, u): rest + u exactly when the jaw is at 0.
   void skinPositions(MatX3& out) const override;
   void channelDisplacement(int channel, MatX3& out) const override;  // channel 0: the skin
-  void musclePositions(int muscle, MatX3& out) const override;       // rest + level·U_m
+  // rest + level·U_m; a muscle with a mandible origin (isMandibleMuscle) then moves with the jaw
+  // (weight 1). Display only: the couplings act on the residual in the rest frame.
+  void musclePositions(int muscle, MatX3& out) const override;
   const StepTimings& lastTimings() const override { return timings_; }
   std::vector<std::string> takeWarnings() override { return {}; }
 
@@ -104,6 +114,7 @@ class AnatomicalSimulator : public FaceStepper {
   double gravityScale_ = 1.0;
   Eigen::Quaterniond pose_ = Eigen::Quaterniond::Identity();
   bool posed_ = false;          // a head pose other than upright was set
+  JawPose jaw_;
   double runawayLimit_ = 0.0;   // cm: the head's bounding-box diagonal
   StepTimings timings_;
   long long steps_ = 0;

@@ -13,6 +13,7 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/head.h"
+#include "myoshell/face/jaw.h"
 
 namespace myo {
 
@@ -80,6 +81,12 @@ class FaceStepper {
   // degrees, anatomical_face.h); it turns gravity (gravityForRotation). The thesis model has no
   // head pose: InputError naming the model.
   virtual void setHeadPose(const Eigen::Quaterniond& rotation) = 0;
+  // The jaw's pose (face/jaw.h; docs/jaw.md), from the next positions on: opening (degrees),
+  // protrusion and lateral shift (cm); validateJawPose's ranges, else InputError. The anatomical
+  // model turns the rest state with the mandible and the skin's displacement with it (the physics acts
+  // on the residual); the thesis model has no jaw: a nonzero pose is an InputError naming the model.
+  virtual void setJaw(const JawPose& pose) = 0;
+  virtual JawPose jaw() const = 0;
   // Drag force (dyn, total, shared by the drag's vertices) of drag `drag`.
   virtual void setDragForce(int drag, const Vec3& force) = 0;
   // Moves drag `drag`'s grip to skin vertex `vertex` (radius ≤ 0: the drag's own). Allocates.
@@ -95,8 +102,10 @@ class FaceStepper {
   virtual void reset() = 0;
   virtual long long stepCount() const = 0;  // steps taken
 
-  virtual const MatX3& skinDisplacement() const = 0;            // n×3, cm
-  virtual void skinPositions(MatX3& out) const = 0;            // rest + u, n×3, cm
+  // n×3, cm: the physics' displacement u, relative to the (jawed) rest, in the rest frame.
+  virtual const MatX3& skinDisplacement() const = 0;
+  // n×3, cm: rest + u; with a jaw, the jawed rest + u turned with the blended jaw rotation (jaw.h).
+  virtual void skinPositions(MatX3& out) const = 0;
   virtual void channelDisplacement(int channel, MatX3& out) const = 0;  // channelNames() order, n×3
   virtual void musclePositions(int muscle, MatX3& out) const = 0;      // its mesh's n×3, cm
   virtual const StepTimings& lastTimings() const = 0;

@@ -80,6 +80,9 @@ class Simulator : public FaceStepper {
   MatX3 skinLoad() const;
   // The thesis model has no head pose: InputError naming the model.
   void setHeadPose(const Eigen::Quaterniond& rotation) override;
+  // The thesis model has no jaw: a nonzero pose is an InputError naming the model (zero is accepted).
+  void setJaw(const JawPose& pose) override;
+  JawPose jaw() const override { return {}; }
   // Back to the neutral face at rest (activations, gravity and drags kept).
   void reset() override;
 
