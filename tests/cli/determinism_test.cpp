@@ -23,7 +23,7 @@ std::string bytes(const fs::path& p) {
 
 // stats.json without the fields that measure time.
 nlohmann::json withoutTimings(nlohmann::json j) {
-  for (const char* key : {"precompute_seconds", "steps_per_second", "step_ms_mean", "cache_hits"}) j.erase(key);
+  for (const char* key : {"precompute_seconds", "steps_per_second", "step_ms_mean", "cache_hits", "simulate_seconds", "output_seconds", "realtime_factor"}) j.erase(key);
   for (auto& frame : j["per_frame"]) frame.erase("step_ms");
   return j;
 }

@@ -44,7 +44,7 @@ std::set<int> ausOfFacsField(const std::string& facs) {
 
 TEST(FacsMap, TheShippedMapReadsAgainstTheFaceLibraryAndIsTheFileOnDisk) {
   const FacsMap& map = builtinFacsMap();
-  ASSERT_EQ(map.entries.size(), 26u);  // OpenFace's 17, the eight more the muscles make, and AU27
+  ASSERT_EQ(map.entries.size(), 28u);  // OpenFace's 17, the eight more the muscles make, and the jaw's AU27, 29, 30
   const FacsMap fromFile = readFacsMapFile((test::sourceDir() / "assets/facs/au_map.json").string(), faceMuscleNames());
   EXPECT_EQ(serialiseFacsMap(fromFile), serialiseFacsMap(map));
   std::vector<int> order;
@@ -79,10 +79,15 @@ TEST(FacsMap, EveryFaceMuscleIsDrivenByExactlyTheAusItsDefinitionNames) {
 TEST(FacsMap, OnlyTheJawsAndTheLidsAusAreLeftUnplayedAndSaySo) {
   std::map<int, std::string> needs;
   for (const FacsEntry& e : builtinFacsMap().entries) {
-    EXPECT_EQ(e.muscles.empty(), !e.needs.empty()) << "AU" << e.au;
+    EXPECT_EQ(e.muscles.empty() && !e.movesJaw(), !e.needs.empty()) << "AU" << e.au;
     if (!e.needs.empty()) needs[e.au] = e.needs;
   }
-  EXPECT_EQ(needs, (std::map<int, std::string>{{5, "lids"}, {25, "jaw"}, {26, "jaw"}, {27, "jaw"}, {45, "lids"}}));
+  EXPECT_EQ(needs, (std::map<int, std::string>{{5, "lids"}, {45, "lids"}}));
+  // The jaw's AUs open, thrust and shift it (docs/facs.md).
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(26)->jawOpenDeg, 20.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(27)->jawOpenDeg, 35.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(29)->jawForwardCm, 0.8);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(30)->jawLateralCm, 1.0);
 }
 
 TEST(FacsMap, ReadsBackToItselfWithEveryNumberExact) {
@@ -158,12 +163,19 @@ TEST(FacsMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
             "map.json:1:46: key 'aus[0].muscles.frontalis': unknown muscle 'frontalis' (the muscles: procerus, "
             "mentalis_left)");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {"a": 1}, "needs": "jaw"}]})"),
-            "map.json:1:64: key 'aus[0].needs': an AU with muscles needs nothing more: give muscles or needs, not both");
+            "map.json:1:64: key 'aus[0].needs': an AU with muscles or a jaw needs nothing more: give muscles and jaw, or needs, not both");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}}]})"),
-            "map.json:1:45: key 'aus[0].muscles': drives no muscle: list its muscles, or say in 'needs' what the model "
-            "lacks");
+            "map.json:1:45: key 'aus[0].muscles': drives no muscle: list its muscles, give its jaw, or say in 'needs' what "
+            "the model lacks");
+  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 50}}]})"),
+            "map.json:1:65: key 'aus[0].jaw.open': must lie in [0, 40] (got 50)");
+  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {}}]})"),
+            "map.json:1:56: key 'aus[0].jaw': moves nothing: give open, forward or lateral, or leave the key out");
+  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 5}, "needs": "lids"}]})"),
+            "map.json:1:78: key 'aus[0].needs': an AU with muscles or a jaw needs nothing more: give muscles and jaw, or "
+            "needs, not both");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "needs": ""}]})"),
-            "map.json:1:58: key 'aus[0].needs': must say what the model lacks (e.g. \"jaw\", \"lids\")");
+            "map.json:1:58: key 'aus[0].needs': must say what the model lacks (e.g. \"lids\")");
   EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": [1]}]})"),
             "map.json:1:45: key 'aus[0].muscles': must be an object of muscle: weight ({} when the AU drives none yet)");
   EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1}, "weight": 1}]})"),

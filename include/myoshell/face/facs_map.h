@@ -31,12 +31,12 @@ struct FacsEntry {
   std::string name;           // FACS's name, e.g. "lip corner puller"
   bool openface = false;      // one of OpenFace 2.0's intensity AUs (openFaceIntensityAus())
   std::vector<std::pair<std::string, double>> muscles;  // muscle → weight in [0, 1], file order
+  std::string needs;          // what the model lacks to make it (only when it drives nothing)
+  std::string note;
   // The jaw at intensity 1 (face/jaw.h, JawPose; docs/facs.md): opening in degrees, protrusion
   // and lateral shift in cm (+ towards the subject's left). Scaled by the intensity like the weights.
   double jawOpenDeg = 0.0, jawForwardCm = 0.0, jawLateralCm = 0.0;
   bool movesJaw() const { return jawOpenDeg != 0.0 || jawForwardCm != 0.0 || jawLateralCm != 0.0; }
-  std::string needs;          // what the model lacks to make it (only when it drives nothing)
-  std::string note;
 };
 
 struct FacsMap {
