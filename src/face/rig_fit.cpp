@@ -1,11 +1,15 @@
 #include "myoshell/face/rig_fit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <optional>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/arkit_names.h"
+#include "myoshell/face/jaw.h"
+#include "myoshell/face/shape_metric.h"
 
 namespace myo {
 
@@ -26,6 +30,72 @@ NamedValues namedActivations(const AnatomicalSkin& skin, const VecX& a) {
   for (Eigen::Index m = 0; m < a.size(); ++m)
     if (std::abs(a(m)) > kSmallestActivation) out.emplace_back(skin.muscles()[static_cast<size_t>(m)].muscle.def.name, a(m));
   return out;
+}
+
+// The jaw's degree of freedom an ARKit jaw shape moves, with the range searched: jawOpen the
+// opening (degrees), jawForward the protrusion (cm), jawLeft / jawRight the lateral shift towards
+// the subject's left / right (cm). Index 0, 1, 2 of [open, forward, lateral]; −1 for other shapes.
+struct JawDof {
+  int index = -1;
+  double lo = 0.0, hi = 0.0;
+};
+JawDof jawDofOf(const std::string& arkitName) {
+  if (arkitName == "jawOpen") return {0, kJawOpenMinDeg, kJawOpenMaxDeg};
+  if (arkitName == "jawForward") return {1, 0.0, kJawForwardMaxCm};
+  if (arkitName == "jawLeft") return {2, 0.0, kJawLateralMaxCm};
+  if (arkitName == "jawRight") return {2, -kJawLateralMaxCm, 0.0};
+  return {};
+}
+
+JawPose poseOf(int dof, double value) {
+  JawPose pose;
+  if (dof == 0) pose.openDeg = value;
+  else if (dof == 1) pose.forwardCm = value;
+  else pose.lateralCm = value;
+  return pose;
+}
+
+// The value in [lo, hi] that minimises `misfit`, by golden-section search (the misfit of one jaw
+// degree of freedom is smooth and, over the jaw's range, unimodal); the ends are candidates too, so
+// a shape that does not move the jaw gets exactly 0 where 0 is an end.
+template <class Misfit>
+double goldenSection(Misfit misfit, double lo, double hi) {
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi;
+  double c = b - phi * (b - a), d = a + phi * (b - a);
+  double fc = misfit(c), fd = misfit(d);
+  for (int k = 0; k < 40 && b - a > 1e-4 * (hi - lo); ++k) {
+    if (fc < fd) {
+      b = d, d = c, fd = fc;
+      c = b - phi * (b - a), fc = misfit(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + phi * (b - a), fd = misfit(d);
+    }
+  }
+  double value = 0.5 * (a + b), best = misfit(value);
+  for (double end : {lo, hi}) {
+    const double f = misfit(end);
+    if (f <= best) value = end, best = f;
+  }
+  return value;
+}
+
+// Re-measures a fit whose shape is the jaw's rigid motion plus the muscles' settled displacement
+// (the residual is taken in the rest frame: the muscles' part is not turned with the jaw here).
+void remeasure(ActivationFit& fit, const MatX3& jawMotion, const MatX3& target, const MatX3& rest, double threshold) {
+  fit.displacement += jawMotion;
+  fit.target = target;
+  fit.metric = compareShapes(fit.displacement, target, rest, ShapeMetricSettings{threshold, 20});
+  double sum = 0.0, worst = 0.0;
+  int count = 0;
+  for (Eigen::Index i = 0; i < target.rows(); ++i)
+    if (fit.displacement.row(i).norm() > threshold || target.row(i).norm() > threshold) {
+      const double d = (fit.displacement.row(i) - target.row(i)).norm();
+      sum += d * d, worst = std::max(worst, d), ++count;
+    }
+  fit.rmsMm = count ? 10.0 * std::sqrt(sum / count) : 0.0;
+  fit.maxMm = 10.0 * worst;
 }
 
 }  // namespace
@@ -70,6 +140,13 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
     throw InputError("fit-rig: mouthClose is a corrective on jawOpen (it closes the lips of an open jaw), and the rig "
                      "has no jawOpen");
 
+  // The jaw, when the head has the 68-point jaw line (face/jaw.h): jaw shapes fit its degree of
+  // freedom first, then the muscles on what the jaw leaves.
+  const MatX3& rest = skin.head().mesh.V;
+  std::optional<JawRig> jaw;
+  if (skin.head().landmarks.multipie68.size() == 68) jaw = jawRig(skin.head().mesh, skin.head().landmarks);
+  JawPose jawOpenPose;  // jawOpen's fitted pose: mouthClose rides on it
+
   std::vector<double> cosines, rms;
   out.map.model = "anatomical";
   for (const std::string& name : arkitNames()) {
@@ -93,7 +170,34 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
       }
       FitTarget target;
       target.displacement = s.target;
-      s.fit = fitActivations(skin, target, settings);
+      // A jaw shape: its jaw degree of freedom and the muscles together — for each value the muscles
+      // are fitted to what the jaw's rigid motion leaves, and the value with the smallest total misfit
+      // wins. A corrective rides on its base's jaw.
+      JawPose pose;
+      const JawDof dof = jawDofOf(name);
+      auto fitWithJaw = [&](const JawPose& p) {
+        const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
+        FitTarget t;
+        t.displacement = s.target - jawMotion;
+        ActivationFit f = fitActivations(skin, t, settings);
+        if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
+        return f;
+      };
+      if (jaw && dof.index >= 0)
+        pose = poseOf(dof.index, goldenSection(
+                                     [&](double v) {
+                                       const ActivationFit f = fitWithJaw(poseOf(dof.index, v));
+                                       return (f.displacement - s.target).squaredNorm();
+                                     },
+                                     dof.lo, dof.hi));
+      if (jaw && base) pose = jawOpenPose;
+      if (name == "jawOpen") jawOpenPose = pose;
+      s.fit = jaw ? fitWithJaw(pose) : fitActivations(skin, target, settings);
+      if (!base) {  // a corrective's jaw is its base's: it adds none
+        if (pose.openDeg != 0.0) entry.jaw.emplace_back("open", pose.openDeg);
+        if (pose.forwardCm != 0.0) entry.jaw.emplace_back("forward", pose.forwardCm);
+        if (pose.lateralCm != 0.0) entry.jaw.emplace_back("lateral", pose.lateralCm);
+      }
       entry.correctiveOf = s.correctiveOf;
       VecX a = s.fit->activations;
       if (base) a -= base->fit->activations;

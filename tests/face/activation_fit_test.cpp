@@ -15,6 +15,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/activation_fit.h"
+#include "myoshell/face/jaw.h"
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/face/retarget_map.h"
 #include "myoshell/face/rig_fit.h"
@@ -207,6 +208,43 @@ TEST_F(ActivationFitDefaultHead, RecoversFromSixtyEightMovedAndTurnedMarkers) {
   // The alignment undoes the move.
   EXPECT_LT((fit.alignment.rotation - move.rotation.transpose()).norm(), 1e-3);
   EXPECT_EQ(fit.alignment.scale, 1.0);
+}
+
+// fit-rig's jaw shapes fit the jaw's degree of freedom with the muscles: a rig whose jawOpen is the
+// jaw itself opened 12° plus a smile, and whose jawLeft is a 0.6 cm shift, gives those values back,
+// the muscles' part too, and mouthClose rides on jawOpen's jaw (its map entry adds no jaw).
+TEST_F(ActivationFitDefaultHead, FitRigFitsTheJawOfJawShapes) {
+  const Head& head = skin_->head();
+  const JawRig rig = jawRig(head.mesh, head.landmarks);
+  JawPose open;
+  open.openDeg = 12.0;
+  JawPose left;
+  left.lateralCm = 0.6;
+  const MatX3 opened = jawedRest(rig, open, head.mesh.V) - head.mesh.V;
+  const MatX3 shifted = jawedRest(rig, left, head.mesh.V) - head.mesh.V;
+  const MatX3 smile = shape(acts({{"zygomaticus_major_left", 0.5}}));
+  const std::vector<RigTarget> targets = {{"jawOpen", opened + smile}, {"jawLeft", shifted}, {"mouthClose", smile}};
+  FitSettings plain;
+  const RigFit fit = fitRig(*skin_, targets, plain);
+  auto jawValue = [&](const std::string& name, const std::string& dof) {
+    for (const auto& [d, v] : fit.map.find(name)->jaw)
+      if (d == dof) return v;
+    return 0.0;
+  };
+  EXPECT_NEAR(jawValue("jawOpen", "open"), 12.0, 0.01);
+  EXPECT_NEAR(jawValue("jawLeft", "lateral"), 0.6, 1e-3);
+  EXPECT_TRUE(fit.map.find("mouthClose")->jaw.empty());
+  // The smile on the open jaw is the muscles' (the rest-frame approximation of the residual costs a
+  // little: the smile is not turned with the jaw here).
+  double zygomaticus = 0.0;
+  for (const auto& [muscle, a] : fit.map.find("jawOpen")->activations)
+    if (muscle == "zygomaticus_major_left") zygomaticus = a;
+  EXPECT_NEAR(zygomaticus, 0.5, 0.02);
+  for (const RigShapeFit& s : fit.shapes) {
+    ASSERT_TRUE(s.fit.has_value()) << s.name;
+    RecordProperty(s.name + "_cosine", std::to_string(s.fit->metric.cosine));
+    EXPECT_GT(s.fit->metric.cosine, 0.999) << s.name;
+  }
 }
 
 TEST_F(ActivationFitDefaultHead, ATargetBeyondFullActivationGivesExactlyOne) {
