@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/text_lines.h"
 #include "performance_frames.h"
 
 namespace myo {
@@ -62,9 +63,7 @@ bool isAuColumn(std::string_view f) {
 
 PerformanceInput detectPerformanceInput(const std::string& text, const std::string& name) {
   const std::vector<std::string_view> lines = splitLines(text, name);
-  size_t first = 0;
-  while (first < lines.size() && isBlank(lines[first])) ++first;
-  if (first == lines.size()) throw InputError("the performance file is empty", name);
+  const size_t first = firstNonBlankLine(lines, name);
   const std::string_view head = trim(lines[first]);
   const int line = static_cast<int>(first + 1);
   if (!head.empty() && head.front() == '{') return PerformanceInput::MediaPipe;
@@ -100,25 +99,19 @@ Performance parsePerformance(const std::string& text, const std::string& name, c
 namespace performance_detail {
 
 namespace {
-constexpr size_t kMaxLineBytes = size_t{16} << 20;
 }
 
 std::vector<std::string_view> splitLines(const std::string& text, const std::string& name) {
-  std::vector<std::string_view> lines;
   std::string_view all(text);
   if (all.substr(0, 3) == "\xEF\xBB\xBF") all.remove_prefix(3);
-  size_t start = 0;
-  while (start < all.size()) {
-    size_t end = all.find_first_of("\r\n", start);
-    if (end == std::string_view::npos) end = all.size();
-    if (end - start > kMaxLineBytes)
-      throw InputError("line " + std::to_string(lines.size() + 1) + " is longer than 16 MiB", name,
-                       static_cast<int>(lines.size() + 1));
-    lines.push_back(all.substr(start, end - start));
-    if (end == all.size()) break;
-    start = end + (all[end] == '\r' && end + 1 < all.size() && all[end + 1] == '\n' ? 2 : 1);
-  }
-  return lines;
+  return myo::splitLines(all, name);
+}
+
+size_t firstNonBlankLine(const std::vector<std::string_view>& lines, const std::string& name) {
+  size_t first = 0;
+  while (first < lines.size() && isBlank(lines[first])) ++first;
+  if (first == lines.size()) throw InputError("the performance file is empty", name);
+  return first;
 }
 
 std::string_view trim(std::string_view s) {

@@ -14,9 +14,11 @@ namespace myo::performance_detail {
 // A value may leave its range by this much (round-off in the writer) and is clamped back.
 constexpr double kRangeSlack = 1e-6;
 
-// The text's lines, ending at "\n", "\r\n" or a lone "\r", after a UTF-8 byte-order mark (Excel
-// writes one). A line longer than 16 MiB is an InputError at its line, as in the OBJ reader.
+// The text's lines (core/text_lines.h) after a UTF-8 byte-order mark (Excel writes one).
 std::vector<std::string_view> splitLines(const std::string& text, const std::string& name);
+// The index of the first line that is not blank (the header). InputError "the performance file is
+// empty" when there is none.
+size_t firstNonBlankLine(const std::vector<std::string_view>& lines, const std::string& name);
 
 // The comma-separated fields of a line, each trimmed of spaces and tabs: OpenFace's Windows builds
 // write the header's names separated by ", ".

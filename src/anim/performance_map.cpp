@@ -214,6 +214,35 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
   return out;
 }
 
+namespace {
+
+// A performance curve (a value per frame) plus a scene's own track, as one linear track clamped to
+// [lo, hi]: a key at every frame and at every key of the own track (so a step or a peak of it
+// survives); between frames the curve is linear, after the last frame held.
+ScalarTrack playedTrack(const std::vector<double>& times, const std::vector<double>& curve, const ScalarTrack& own,
+                        double lo, double hi, const std::string& what) {
+  std::vector<double> keyTimes = times;
+  for (const auto& key : own.keys()) keyTimes.push_back(key.time);
+  std::sort(keyTimes.begin(), keyTimes.end());
+  keyTimes.erase(std::unique(keyTimes.begin(), keyTimes.end()), keyTimes.end());
+  std::vector<Keyframe<double>> keys;
+  keys.reserve(keyTimes.size());
+  const size_t frames = times.size();
+  size_t f = 0;
+  for (double t : keyTimes) {
+    while (f + 1 < frames && times[f + 1] <= t) ++f;
+    double value = curve[f];
+    if (f + 1 < frames && t > times[f]) {
+      const double s = (t - times[f]) / (times[f + 1] - times[f]);
+      value = (1.0 - s) * curve[f] + s * curve[f + 1];
+    }
+    keys.push_back({t, std::clamp(value + own.at(t), lo, hi), Interpolation::Linear});  // an empty track is 0
+  }
+  return ScalarTrack(std::move(keys), what);
+}
+
+}  // namespace
+
 void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
   MYO_CHECK(mapped.times.size() >= 2, "addPerformanceToScene: a performance has at least two frames");
   scene.duration = mapped.times.back();
@@ -222,52 +251,18 @@ void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
   for (size_t m = 0; m < mapped.muscles.size(); ++m) {
     const std::vector<double>& curve = mapped.activations[m];
     if (std::all_of(curve.begin(), curve.end(), [](double a) { return a == 0.0; })) continue;
-    const auto own = scene.activations.find(mapped.muscles[m]);
-    const ScalarTrack* ownTrack = own == scene.activations.end() ? nullptr : &own->second;
-    // Key times: every frame, and the scene's own keys (so a step or a peak of its track survives).
-    std::vector<double> times = mapped.times;
-    if (ownTrack)
-      for (const auto& key : ownTrack->keys()) times.push_back(key.time);
-    std::sort(times.begin(), times.end());
-    times.erase(std::unique(times.begin(), times.end()), times.end());
-    std::vector<Keyframe<double>> keys;
-    keys.reserve(times.size());
-    size_t f = 0;
-    for (double t : times) {
-      while (f + 1 < frames && mapped.times[f + 1] <= t) ++f;
-      double value = curve[f];  // at or after the last frame: held
-      if (f + 1 < frames && t > mapped.times[f]) {
-        const double s = (t - mapped.times[f]) / (mapped.times[f + 1] - mapped.times[f]);
-        value = (1.0 - s) * curve[f] + s * curve[f + 1];
-      }
-      if (ownTrack) value += ownTrack->at(t);
-      keys.push_back({t, std::clamp(value, 0.0, 1.0), Interpolation::Linear});
-    }
-    scene.activations[mapped.muscles[m]] = ScalarTrack(std::move(keys), "performance of " + mapped.muscles[m]);
+    ScalarTrack& track = scene.activations[mapped.muscles[m]];  // the scene's own, or a new empty one
+    track = playedTrack(mapped.times, curve, track, 0.0, 1.0, "performance of " + mapped.muscles[m]);
   }
   // The jaw: the performance's plus the scene's own jaw keys, within the jaw's ranges.
   if (!mapped.jaw.empty()) {
     ScalarTrack* tracks[3] = {&scene.jawOpen, &scene.jawForward, &scene.jawLateral};
     const char* names[3] = {"performance jaw open", "performance jaw forward", "performance jaw lateral"};
+    const Vec3 lo(kJawOpenMinDeg, kJawForwardMinCm, -kJawLateralMaxCm), hi(kJawOpenMaxDeg, kJawForwardMaxCm, kJawLateralMaxCm);
     for (int dof = 0; dof < 3; ++dof) {
-      std::vector<double> times = mapped.times;
-      for (const auto& key : tracks[dof]->keys()) times.push_back(key.time);
-      std::sort(times.begin(), times.end());
-      times.erase(std::unique(times.begin(), times.end()), times.end());
-      std::vector<Keyframe<double>> keys;
-      size_t f = 0;
-      for (double t : times) {
-        while (f + 1 < frames && mapped.times[f + 1] <= t) ++f;
-        Vec3 value = mapped.jaw[f];
-        if (f + 1 < frames && t > mapped.times[f]) {
-          const double s = (t - mapped.times[f]) / (mapped.times[f + 1] - mapped.times[f]);
-          value = (1.0 - s) * mapped.jaw[f] + s * mapped.jaw[f + 1];
-        }
-        Vec3 own = Vec3::Zero();
-        own[dof] = tracks[dof]->empty() ? 0.0 : tracks[dof]->at(t);
-        keys.push_back({t, clampJaw(value + own)[dof], Interpolation::Linear});
-      }
-      *tracks[dof] = ScalarTrack(std::move(keys), names[dof]);
+      std::vector<double> curve(frames);
+      for (size_t f = 0; f < frames; ++f) curve[f] = mapped.jaw[f][dof];
+      *tracks[dof] = playedTrack(mapped.times, curve, *tracks[dof], lo[dof], hi[dof], names[dof]);
     }
   }
   if (!mapped.headPose.empty() && scene.headPose.empty()) {

@@ -80,9 +80,7 @@ struct AuColumn {
 
 Performance parseOpenFace(const std::string& text, const std::string& name, const PerformanceOptions& options) {
   const std::vector<std::string_view> lines = splitLines(text, name);
-  size_t headerIndex = 0;
-  while (headerIndex < lines.size() && isBlank(lines[headerIndex])) ++headerIndex;
-  if (headerIndex == lines.size()) throw InputError("the performance file is empty", name);
+  const size_t headerIndex = firstNonBlankLine(lines, name);
   const int headerLine = static_cast<int>(headerIndex + 1);
   const std::vector<std::string_view> header = splitFields(lines[headerIndex]);
 

@@ -22,6 +22,7 @@
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/text_lines.h"
 #include "myoshell/core/whole_file.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/geometry.h"
@@ -36,7 +37,6 @@ int MeshReport::count(const std::string& kind) const {
 
 namespace {
 
-constexpr size_t kMaxLineBytes = size_t{16} << 20;
 
 struct Corner {
   int v = -1, vt = -1, vn = -1;  // 0-based; -1 when absent
@@ -118,25 +118,6 @@ std::string quoted(std::string_view s) {
   return "'" + std::string(s.substr(0, kMax)) + (s.size() > kMax ? "…'" : "'");
 }
 
-// Lines end at "\n", "\r\n" or a lone "\r" (classic Mac files), as tinyobjloader splits them: the
-// two must agree on every line, since tinyobjloader reads our sanitised text and we cross-check it.
-std::vector<std::string_view> splitLines(const std::string& text, const std::string& name) {
-  std::vector<std::string_view> lines;
-  std::string_view all(text);
-  size_t start = 0;
-  while (start <= all.size()) {
-    size_t end = all.find_first_of("\r\n", start);
-    if (end == std::string_view::npos) end = all.size();
-    if (end - start > kMaxLineBytes)
-      throw InputError("line " + std::to_string(lines.size() + 1) + " is longer than 16 MiB", name,
-                       static_cast<int>(lines.size() + 1));
-    lines.push_back(all.substr(start, end - start));
-    if (end == all.size()) break;
-    start = end + (all[end] == '\r' && end + 1 < all.size() && all[end + 1] == '\n' ? 2 : 1);
-  }
-  return lines;
-}
-
 // Resolves one OBJ index (1-based, or negative = relative to the elements read so far).
 // Positive indices may point forward (some exporters write faces first); they are range-checked
 // once the whole file is scanned.
@@ -154,6 +135,8 @@ bool resolveIndex(int raw, int countSoFar, int& out) {
 
 ObjScan scanObj(const std::string& text, const std::string& name) {
   ObjScan scan;
+  // Split as tinyobjloader splits (core/text_lines.h): the two must agree on every line, since
+  // tinyobjloader reads our sanitised text and we cross-check it.
   scan.lines = splitLines(text, name);
   const size_t nLines = scan.lines.size();
   scan.kinds.assign(nLines, LineKind::kOther);
