@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -108,20 +109,11 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   for (const DragSite& site : dragSites) drags_.push_back({dragVertices(site.vertex, site.radius)});
 
   ritz_.modes.modeCount = std::min(settings_.skinModes, 3 * n);
-  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, diagonalise; then
-  // per drag its x, y, z patterns and diagonalise (as addDrag). Bump when the sequence changes.
-  constexpr int kSequenceVersion = 1;
-  const auto gravityPattern = [&](int a) {
-    MatX3 g = MatX3::Zero(n, 3);
-    g.col(a) = mass_;
-    return g;
-  };
-  const auto dragPattern = [&](const Drag& d, int a) {
-    MatX3 f = MatX3::Zero(n, 3);
-    for (int v : d.vertices) f(v, a) = 1.0 / static_cast<double>(d.vertices.size());
-    return f;
-  };
-
+  buildReleaseColumns();
+  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, the across columns
+  // of the release, diagonalise; then per drag its x, y, z patterns and diagonalise (as addDrag).
+  // Bump when the sequence changes.
+  constexpr int kSequenceVersion = 2;
   KeyHasher h;
   h.str("myoshell.anatomical_skin_basis").pod(kModalBasisFormatVersion).pod(kSequenceVersion);
   const int64_t nv = n, nt = F.rows();
@@ -140,6 +132,11 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   h.pod(static_cast<int64_t>(drags_.size()));  // gravity's patterns are M·ê_a (the masses are in)
   for (const Drag& d : drags_)
     h.pod(static_cast<int64_t>(d.vertices.size())).bytes(d.vertices.data(), sizeof(int) * d.vertices.size());
+  h.pod(static_cast<int64_t>(acrossColumns_));
+  for (int j = 0; j < acrossColumns_; ++j) {
+    const VecX col = releaseColumns_.col(releaseColumns_.cols() - acrossColumns_ + j);
+    h.bytes(col.data(), sizeof(double) * static_cast<size_t>(col.size()));
+  }
   key_ = h.key();
 
   if (cache)
@@ -161,9 +158,14 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, V, F, ritz_);
   for (const MatX3& f : muscleLoads_) builder_->addLoad(f);
   for (int a = 0; a < 3; ++a) builder_->addLoad(gravityPattern(a));  // gravity along x, y, z: M·ê_a
+  // The across columns' responses, so that the release stays exact in the basis (Woodbury).
+  for (int j = 0; j < acrossColumns_; ++j) {
+    const VecX col = releaseColumns_.col(releaseColumns_.cols() - acrossColumns_ + j);
+    builder_->addLoad(rows3(col));
+  }
   builder_->diagonalize();
   for (const Drag& d : drags_) {
-    for (int a = 0; a < 3; ++a) builder_->addLoad(dragPattern(d, a));
+    for (int a = 0; a < 3; ++a) builder_->addLoad(dragPattern(d.vertices, a));
     builder_->diagonalize();
   }
   ModalBasis b = builder_->basis();
@@ -173,47 +175,184 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   releaseRelaxedMuscles();
 }
 
-// Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin").
-// Muscle m moves in its one shape, q_m U_m, with the energy ½κ_m q_m² − a_m F_m q_m (passive belly,
-// active force) + its couplings ½Σ k_i |q_m w_i − u_i|² (w = U at the springs). Eliminating q_m,
-// the skin sees K̂ − γ_m c_m c_mᵀ and the load a_m F_m γ_m c_m, with c_m = K_c,m w and
-// γ_m = 1/(κ_m + s_m), s_m = wᵀK_c,m w: a rank-1 release (κ_m → ∞ gives the held muscle back).
-// F_m is set so that at a_m = 1, alone, the muscle shortens by σ_m (q_m = 1): α_m = F_m γ_m =
-// 1/(1 + γ_m c_mᵀ K⁻¹ c_m), K the released stiffness. The loads are the c_m and the Ritz basis
-// spans K̂⁻¹c_m, so by the Woodbury identity every static response of K lies in the basis: the
-// reduced model stays exact. In it, K_r = Λ − P Γ Pᵀ (P = Φᵀ[c_m]) is re-diagonalised, K_r = Z Λ' Zᵀ,
-// and the basis turned, Φ' = ΦZ (still M-orthonormal: M_r = I), Ψ' = ΨZ.
-void AnatomicalSkin::releaseRelaxedMuscles() {
-  const ModalBasis& held = *heldBasis_;
+MatX3 AnatomicalSkin::gravityPattern(int axis) const {
+  MatX3 g = MatX3::Zero(head_.mesh.vertexCount(), 3);
+  g.col(axis) = mass_;
+  return g;
+}
+
+MatX3 AnatomicalSkin::dragPattern(const std::vector<int>& vertices, int axis) const {
+  MatX3 f = MatX3::Zero(head_.mesh.vertexCount(), 3);
+  for (int v : vertices) f(v, axis) = 1.0 / static_cast<double>(vertices.size());
+  return f;
+}
+
+// Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin" and
+// "Released across"). Muscle m moves with coordinates p in the shapes Q̃_m (at its springs), the
+// first its own shape U_m/√s_m (s_m = Σ k_i |w_i|², w = U at the springs), the others its motion
+// across: |w_i| ê_a (a = x, y, z: weighted as the shape, so nothing moves at the origin), made
+// S-orthogonal to the shape and S-orthonormal (S the coupling metric Σ k_i v_i·v'_i; a direction
+// already spanned is dropped). Its energy: the passive belly ½ (κ_m/s_m) |p|² (κ_m = E_p A σ² L along
+// the shape, the same per unit of coupling energy across), the active force along the shape, and the
+// couplings ½ Σ k_i |Q̃_i p − u_i|². Eliminating p, the skin sees K̂ − ρ_m C̃_m C̃_mᵀ with
+// C̃_m = K_c,m Q̃_m and ρ_m = s_m/(s_m + κ_m), and the load a_m α_m c_m (c_m = K_c,m w).
+void AnatomicalSkin::buildReleaseColumns() {
+  const int n = head_.mesh.vertexCount();
   const auto M = static_cast<Eigen::Index>(muscles_.size());
-  if (!(settings_.relaxedMuscleModulus > 0) || M == 0 || held.modeCount() == 0) {
-    basis_ = heldBasis_;
-    release_.resize(0);
-    muscleLoads_ = couplingLoads_;
+  release_.resize(0);
+  axialColumn_.clear();
+  acrossColumns_ = 0;
+  shapeEnergy_ = VecX::Zero(M);
+  for (Eigen::Index m = 0; m < M; ++m) {
+    const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
+    for (const auto& spring : cm.springs)
+      shapeEnergy_(m) += spring.stiffness * spring.muscleDisplacement(cm.fullShape).squaredNorm();
+  }
+  if (!(settings_.relaxedMuscleModulus > 0) || M == 0) {
+    releaseColumns_.resize(0, 0);
+    releaseRho_.resize(0);
     return;
   }
   const double scale = head_.frame().scale;
   release_.resize(M);
-  MatX P(held.modeCount(), M);
+  std::vector<Triplet> axial, across;  // columns: the shapes (0..M−1), then the across ones
+  std::vector<double> rho(static_cast<size_t>(M)), rhoAcross;
   for (Eigen::Index m = 0; m < M; ++m) {
     const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
     const MuscleDef& def = cm.muscle.def;
-    double s = 0.0;  // s_m = Σ k_i |w_i|²
-    for (const auto& spring : cm.springs) s += spring.stiffness * spring.muscleDisplacement(cm.fullShape).squaredNorm();
+    const size_t ns = cm.springs.size();
+    std::vector<Vec3> w(ns);
+    double s = 0.0;
+    for (size_t i = 0; i < ns; ++i) {
+      w[i] = cm.springs[i].muscleDisplacement(cm.fullShape);
+      s += cm.springs[i].stiffness * w[i].squaredNorm();
+    }
     // κ_m = E_p A σ² L: the belly's axial stiffness E_p A / L times the squared shortening σL at q = 1.
     const double area = 0.25 * std::numbers::pi * (def.width * scale) * (def.thickness * scale);
     const double sigma = def.isRing() ? def.ring.shortening : settings_.coupling.shortening;
-    const double L = cm.muscle.restLength;
-    const double kappa = settings_.relaxedMuscleModulus * area * sigma * sigma * L;
+    const double kappa = settings_.relaxedMuscleModulus * area * sigma * sigma * cm.muscle.restLength;
     release_(m) = 1.0 / (kappa + s);
-    P.col(m) = held.Phi.transpose() * flat(couplingLoads_[static_cast<size_t>(m)]);
+    rho[static_cast<size_t>(m)] = s / (s + kappa);
+    axialColumn_.push_back(m);
+    const double root = std::sqrt(s);
+    for (size_t i = 0; i < ns; ++i)
+      for (int c = 0; c < 3; ++c)
+        axial.emplace_back(3 * cm.springs[i].skin + c, m, cm.springs[i].stiffness * w[i](c) / root);
+    if (!settings_.releaseAcross || !(s > 0)) continue;
+    // Across: v_a = |w| ê_a − (S(v_a, w)/s) w, then S-orthonormal through the eigenvectors of their Gram.
+    std::vector<std::array<Vec3, 3>> v(ns);
+    for (size_t i = 0; i < ns; ++i)
+      for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] = w[i].norm() * Vec3::Unit(a);
+    Vec3 vw = Vec3::Zero();
+    for (size_t i = 0; i < ns; ++i)
+      for (int a = 0; a < 3; ++a) vw(a) += cm.springs[i].stiffness * v[i][static_cast<size_t>(a)].dot(w[i]);
+    for (size_t i = 0; i < ns; ++i)
+      for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] -= (vw(a) / s) * w[i];
+    Mat3 G = Mat3::Zero();
+    for (size_t i = 0; i < ns; ++i)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          G(a, b) += cm.springs[i].stiffness * v[i][static_cast<size_t>(a)].dot(v[i][static_cast<size_t>(b)]);
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(G);
+    for (int j = 0; j < 3; ++j) {
+      const double g = eig.eigenvalues()(j);
+      if (!(g > 1e-6 * s)) continue;  // already spanned by the shape (a straight muscle's axis)
+      const Vec3 e = eig.eigenvectors().col(j) / std::sqrt(g);
+      const Eigen::Index col = acrossColumns_++;
+      for (size_t i = 0; i < ns; ++i) {
+        const Vec3 vi = v[i][0] * e(0) + v[i][1] * e(1) + v[i][2] * e(2);
+        for (int c = 0; c < 3; ++c) across.emplace_back(3 * cm.springs[i].skin + c, col, cm.springs[i].stiffness * vi(c));
+      }
+      rhoAcross.push_back(s / (s + kappa));
+    }
   }
+  for (Triplet& t : across) t = Triplet(t.row(), t.col() + static_cast<int>(M), t.value());
+  axial.insert(axial.end(), across.begin(), across.end());
+  releaseColumns_.resize(3 * n, M + acrossColumns_);
+  releaseColumns_.setFromTriplets(axial.begin(), axial.end());
+  releaseRho_.resize(M + acrossColumns_);
+  for (Eigen::Index j = 0; j < M; ++j) releaseRho_(j) = rho[static_cast<size_t>(j)];
+  for (int j = 0; j < acrossColumns_; ++j) releaseRho_(M + j) = rhoAcross[static_cast<size_t>(j)];
+}
+
+// The release in the basis (the held basis spans K̂⁻¹C̃, so by the Woodbury identity every static
+// response of K = K̂ − C̃ Ρ C̃ᵀ lies in it: the reduced model stays exact). K_r = Λ − P Ρ Pᵀ
+// (P = ΦᵀC̃); F_m is set so that at a_m = 1, alone among the relaxed others, the muscle shortens by
+// σ_m: α_m = 1/(1 + γ_m c_mᵀ K⁻¹ c_m). Then K_r is diagonalised, K_r = Z Λ' Zᵀ, and the basis turned,
+// Φ' = ΦZ (still M-orthonormal: M_r = I), Ψ' = ΨZ. Released across, the held basis carries one vector
+// per across column; it is cut back to the d lowest modes of K_r and K_r⁻¹Φᵀf for every load pattern
+// f (the muscles' c_m, gravity along x, y, z, each drag's x, y, z), so the step costs what it did.
+void AnatomicalSkin::releaseRelaxedMuscles() {
+  const ModalBasis& held = *heldBasis_;
+  const auto M = static_cast<Eigen::Index>(muscles_.size());
+  if (releaseColumns_.cols() == 0 || M == 0 || held.modeCount() == 0) {
+    basis_ = heldBasis_;
+    muscleLoads_ = couplingLoads_;
+    if (settings_.strength == StrengthRule::SkinFollows && held.modeCount() > 0)
+      for (Eigen::Index m = 0; m < M; ++m) {  // α_m = s_m / c_mᵀK̂⁻¹c_m
+        const VecX p = held.Phi.transpose() * flat(couplingLoads_[static_cast<size_t>(m)]);
+        const double cKc = (p.array().square() / held.lambda.array()).sum();
+        if (cKc > 0) muscleLoads_[static_cast<size_t>(m)] *= shapeEnergy_(m) / cKc;
+      }
+    return;
+  }
+  const MatX P = (releaseColumns_.transpose() * held.Phi).transpose();  // D × R
   MatX Kr = held.lambda.asDiagonal();
-  Kr.noalias() -= P * release_.asDiagonal() * P.transpose();
+  Kr.noalias() -= P * releaseRho_.asDiagonal() * P.transpose();
   const Eigen::SelfAdjointEigenSolver<MatX> eig(Kr);
   if (eig.info() != Eigen::Success || !(eig.eigenvalues().minCoeff() > 0))
     throw NumericalError("anatomical model: the skin with its relaxed muscles released is not positive definite");
   const MatX& Z = eig.eigenvectors();
+  const VecX& lam = eig.eigenvalues();
+  auto solveKr = [&](const MatX& rhs) -> MatX { return Z * ((Z.transpose() * rhs).array().colwise() / lam.array()).matrix(); };
+  // α_m = 1/(1 + γ_m p_mᵀ K_r⁻¹ p_m), p_m = Φᵀc_m = √s_m P e_m.
+  MatX Pc(P.rows(), M);
+  for (Eigen::Index m = 0; m < M; ++m) {
+    const Eigen::Index col = axialColumn_[static_cast<size_t>(m)];
+    const double s = releaseRho_(col) / release_(m);  // s_m = ρ_m/γ_m
+    Pc.col(m) = std::sqrt(s) * P.col(col);
+  }
+  const MatX KrPc = solveKr(Pc);
+  for (Eigen::Index m = 0; m < M; ++m) {
+    const double pKp = Pc.col(m).dot(KrPc.col(m));  // c_mᵀK⁻¹c_m
+    const double alpha = settings_.strength == StrengthRule::SkinFollows ? shapeEnergy_(m) / pKp
+                                                                         : 1.0 / (1.0 + release_(m) * pKp);
+    muscleLoads_[static_cast<size_t>(m)] = alpha * couplingLoads_[static_cast<size_t>(m)];
+  }
+  MatX T;  // the final basis in the held one's coordinates
+  VecX lambda;
+  if (acrossColumns_ == 0) {
+    T = Z;
+    lambda = lam;
+  } else {
+    const Eigen::Index dModes = std::min<Eigen::Index>(ritz_.modes.modeCount, Kr.rows());
+    const Eigen::Index nPatterns = M + 3 + 3 * static_cast<Eigen::Index>(drags_.size());
+    MatX patterns(P.rows(), nPatterns);
+    patterns.leftCols(M) = Pc;
+    for (int a = 0; a < 3; ++a) patterns.col(M + a) = held.Phi.transpose() * flat(gravityPattern(a));
+    for (size_t k = 0; k < drags_.size(); ++k)
+      for (int a = 0; a < 3; ++a)
+        patterns.col(M + 3 + 3 * static_cast<Eigen::Index>(k) + a) = held.Phi.transpose() * flat(dragPattern(drags_[k].vertices, a));
+    MatX Y(P.rows(), dModes + nPatterns);
+    Y.leftCols(dModes) = Z.leftCols(dModes);
+    Y.rightCols(nPatterns) = solveKr(patterns);
+    // Orthonormalise (M_r = I), twice, dropping what is already spanned (the Ritz deflation).
+    Eigen::Index kept = 0;
+    for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+      VecX y = Y.col(j);
+      const double before = y.norm();
+      if (!(before > 0)) continue;
+      for (int pass = 0; pass < 2; ++pass) y -= Y.leftCols(kept) * (Y.leftCols(kept).transpose() * y);
+      if (y.norm() < ritz_.deflationTolerance * before) continue;
+      Y.col(kept++) = y / y.norm();
+    }
+    Y.conservativeResize(Eigen::NoChange, kept);
+    const Eigen::SelfAdjointEigenSolver<MatX> cut(Y.transpose() * Kr * Y);
+    if (cut.info() != Eigen::Success || !(cut.eigenvalues().minCoeff() > 0))
+      throw NumericalError("anatomical model: the released skin's cut-back basis is not positive definite");
+    T = Y * cut.eigenvectors();
+    lambda = cut.eigenvalues();
+  }
   // Every field of `held` but Φ and Ψ (not copied: they are replaced, and are tens of MB).
   ModalBasis b;
   b.fullVertexCount = held.fullVertexCount;
@@ -222,15 +361,9 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   b.solveSeconds = held.solveSeconds;
   b.solver = held.solver;
   b.fromCache = held.fromCache;
-  b.Phi = held.Phi * Z;
-  b.Psi = held.Psi * Z;
-  b.lambda = eig.eigenvalues();
-  // α_m = 1/(1 + γ_m p_mᵀ K_r⁻¹ p_m).
-  const MatX ZtP = Z.transpose() * P;
-  for (Eigen::Index m = 0; m < M; ++m) {
-    const double pKp = (ZtP.col(m).array().square() / b.lambda.array()).sum();
-    muscleLoads_[static_cast<size_t>(m)] = couplingLoads_[static_cast<size_t>(m)] / (1.0 + release_(m) * pKp);
-  }
+  b.Phi = held.Phi * T;
+  b.Psi = held.Psi * T;
+  b.lambda = lambda;
   basis_ = std::make_shared<const ModalBasis>(std::move(b));
 }
 
@@ -260,18 +393,13 @@ int AnatomicalSkin::muscleIndex(const std::string& name) const {
 
 int AnatomicalSkin::addDrag(int vertex, double radius, double* seconds) {
   Stopwatch clock;
-  const int n = head_.mesh.vertexCount();
   Drag d{dragVertices(vertex, radius)};
   RitzBasisBuilder& b = builder();
-  for (int a = 0; a < 3; ++a) {
-    MatX3 f = MatX3::Zero(n, 3);
-    for (int v : d.vertices) f(v, a) = 1.0 / static_cast<double>(d.vertices.size());
-    b.addLoad(f);
-  }
+  for (int a = 0; a < 3; ++a) b.addLoad(dragPattern(d.vertices, a));
   b.diagonalize();
   heldBasis_ = std::make_shared<const ModalBasis>(b.basis());
+  drags_.push_back(std::move(d));  // before the release: its cut-back basis keeps the drag's responses
   releaseRelaxedMuscles();
-  drags_.push_back(std::move(d));
   if (seconds) *seconds = clock.seconds();
   return static_cast<int>(drags_.size()) - 1;
 }
@@ -310,22 +438,20 @@ MatX3 AnatomicalSkin::worldLoad(const SkinLoads& loads) const {
 MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const {
   RitzBasisBuilder& b = builder();
   const MatX3 y = b.staticResponse(worldLoad(loads));
-  const auto M = release_.size();
-  if (M == 0) return y;
+  const Eigen::Index R = releaseColumns_.cols();
+  if (R == 0) return y;
+  const int n = head_.mesh.vertexCount();
   if (heldCouplingResponses_.empty())
-    for (const MatX3& c : couplingLoads_) heldCouplingResponses_.push_back(b.staticResponse(c));
-  // Woodbury: K⁻¹F = y + K̂⁻¹C (Γ⁻¹ − CᵀK̂⁻¹C)⁻¹ Cᵀy.
-  MatX D(M, M);
-  VecX Cy(M);
-  for (Eigen::Index i = 0; i < M; ++i) {
-    Cy(i) = flat(couplingLoads_[static_cast<size_t>(i)]).dot(flat(y));
-    for (Eigen::Index j = 0; j < M; ++j)
-      D(i, j) = (i == j ? 1.0 / release_(i) : 0.0) -
-                flat(couplingLoads_[static_cast<size_t>(i)]).dot(flat(heldCouplingResponses_[static_cast<size_t>(j)]));
-  }
+    for (Eigen::Index j = 0; j < R; ++j) heldCouplingResponses_.push_back(b.staticResponse(rows3(VecX(releaseColumns_.col(j)))));
+  // Woodbury: K⁻¹F = y + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ Cᵀy.
+  MatX KhC(3 * n, R);
+  for (Eigen::Index j = 0; j < R; ++j) KhC.col(j) = flat(heldCouplingResponses_[static_cast<size_t>(j)]);
+  MatX D = -(releaseColumns_.transpose() * KhC);
+  D.diagonal() += releaseRho_.cwiseInverse();
+  const VecX Cy = releaseColumns_.transpose() * flat(y);
   const VecX z = D.ldlt().solve(Cy);
   MatX3 out = y;
-  for (Eigen::Index j = 0; j < M; ++j) out += z(j) * heldCouplingResponses_[static_cast<size_t>(j)];
+  flat(out) += KhC * z;
   return out;
 }
 

@@ -38,6 +38,13 @@ enum class GravityReading {
   ChangeOnly,        // (b): Φᵀ Rᵀ M (g(t) − g_rest) (only the change of gravity is a load)
 };
 
+// What a muscle's strength rule holds to its shortening σ at a = 1, alone among the relaxed others
+// (docs/anatomical_model.md, "Strength").
+enum class StrengthRule {
+  MuscleShortens,  // the muscle's own coordinate: q_m = 1 (the skin over it lags behind)
+  SkinFollows,     // the skin it is tied to: its coupling-weighted motion along the shape, cᵀu/s = 1
+};
+
 struct AnatomicalSettings {
   // Skin (dermis) as a membrane + bending shell from a Young's modulus and thickness (ν = 0.5):
   // k_A = E h/6, k_L = 0.385 E h ℓ̄ (ℓ̄ the mean edge length), k_B = E h³/(12(1 − ν²))
@@ -63,6 +70,13 @@ struct AnatomicalSettings {
   // a = 1), E_p this modulus along the fibres of a muscle at rest. 0: every muscle holds the skin
   // over it at its rest place whatever its activation (the couplings fed forward only).
   double relaxedMuscleModulus = 1.0e5;  // dyn/cm² (10 kPa, passive skeletal muscle at rest length)
+  // Release each relaxed muscle across its fibres too: besides its shape, the muscle moves with the
+  // skin in the three directions (its motion weighted as its shape's, S-orthogonal to the shape), with
+  // the same passive stiffness per unit of coupling energy (docs/anatomical_model.md, "Released
+  // across"). false: only along the shape, the model of the first release.
+  bool releaseAcross = true;
+  // The fibres insert into the dermis: at a = 1 the skin over the insertion moves with the muscle end.
+  StrengthRule strength = StrengthRule::SkinFollows;
   void validate() const;            // InputError naming the field
 };
 
@@ -116,15 +130,17 @@ class AnatomicalSkin {
   const SparseMat& stiffness() const { return Khat_; }  // K̂
   const VecX& vertexMass() const { return mass_; }                     // n, g
   // The basis the skin is stepped and settled in: the Ritz basis of K̂, turned so that it is
-  // diagonal for the stiffness with the relaxed muscles released (K̂ − Σ_m γ_m c_m c_mᵀ), or K̂'s own
-  // with relaxedMuscleModulus = 0.
+  // diagonal for the stiffness with the relaxed muscles released (K̂ − Σ_m ρ_m C̃_m C̃_mᵀ), or K̂'s own
+  // with relaxedMuscleModulus = 0. Released across, it is cut back to the d lowest modes of the
+  // released stiffness and the static responses of the load patterns (exact for every load).
   std::shared_ptr<const ModalBasis> basis() const { return basis_; }
   const Vec3& restGravity() const { return gRest_; }
   // The skin load of muscle m at a = 1 (dyn): α_m c_m, c_m = K_c,m U_m its couplings' pull, α_m the
   // strength that makes it shorten by σ_m against the skin with the other muscles relaxed (1 when
   // muscles are held).
   const MatX3& muscleLoad(int m) const { return muscleLoads_[static_cast<size_t>(m)]; }
-  // γ_m = 1/(κ_m + s_m), s_m = U_mᵀ K_c,m U_m: how far muscle m lets go of the skin (0 when held).
+  // γ_m = 1/(κ_m + s_m), s_m = U_mᵀ K_c,m U_m: how far muscle m lets go of the skin along its shape
+  // (0 when held).
   double muscleRelease(int m) const { return release_.size() ? release_(m) : 0.0; }
   // True when the basis came from the BasisCache given to the constructor.
   bool basisFromCache() const { return fromCache_; }
@@ -150,7 +166,7 @@ class AnatomicalSkin {
   // Λq = Φᵀ R(Ψq)ᵀ F + c, from the linear solution), c the rest-gravity term of reading (a).
   SettledSkin settle(const SkinLoads& loads, bool warped) const;
   // The full-space linear response (n×3, cm) of the world load (reading (b)): K⁻¹F with K = K̂ and
-  // the relaxed muscles released (Woodbury: K̂⁻¹F + K̂⁻¹C (Γ⁻¹ − CᵀK̂⁻¹C)⁻¹ CᵀK̂⁻¹F, C = [c_m]).
+  // the relaxed muscles released (Woodbury: K̂⁻¹F + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ CᵀK̂⁻¹F, C = [C̃_m]).
   MatX3 linearFullResponse(const SkinLoads& loads) const;
 
  private:
@@ -160,6 +176,11 @@ class AnatomicalSkin {
   RitzBasisBuilder& builder() const;  // made on first use after a cache hit
   // basis_ from heldBasis_: the relaxed muscles released and the muscle loads rescaled (α_m).
   void releaseRelaxedMuscles();
+  // C̃ (3n × R) and ρ (R): the columns the relaxed muscles let go of, muscle by muscle (its shape
+  // c_m/√s_m first, then the across columns); empty when muscles are held.
+  void buildReleaseColumns();
+  MatX3 gravityPattern(int axis) const;                 // M·ê_axis
+  MatX3 dragPattern(const std::vector<int>& vertices, int axis) const;  // ê_axis spread evenly
   Head head_;
   AnatomicalSettings settings_;
   std::unique_ptr<DiscreteShell> shell_;
@@ -168,7 +189,12 @@ class AnatomicalSkin {
   std::vector<MatX3> muscleLoads_;     // α_m c_m
   std::vector<MatX3> couplingLoads_;   // c_m = K_c,m U_m
   VecX release_;                       // γ_m (empty when muscles are held)
-  mutable std::vector<MatX3> heldCouplingResponses_;  // K̂⁻¹c_m, for linearFullResponse
+  VecX shapeEnergy_;                   // s_m = Σ k_i |w_i|², the couplings' stiffness along the shape
+  SparseMat releaseColumns_;           // C̃ = [C̃_m], 3n × R
+  VecX releaseRho_;                    // ρ per column: s_m/(s_m + κ_m)
+  std::vector<Eigen::Index> axialColumn_;  // per muscle: its shape's column in C̃
+  int acrossColumns_ = 0;              // columns beyond the muscles' shapes (0: nothing to cut back)
+  mutable std::vector<MatX3> heldCouplingResponses_;  // K̂⁻¹C̃_j, for linearFullResponse
   struct Drag {
     std::vector<int> vertices;
   };
