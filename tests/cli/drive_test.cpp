@@ -102,11 +102,11 @@ DriveCorrelations drive(const fs::path& csv, const std::string& headArgument, co
   return c;
 }
 
-// The whole performance: the inner brows follow AU1 − AU4. The mouth corners' height against AU12
-// is recorded, not asserted: with the jaw driven by AU25/AU26 (which rise with AU12 in this take:
-// the person smiles with parted lips) the jaw lowers the corners by millimetres while the whole
-// face's zygomaticus raises them by a fraction of one (its strength is not calibrated yet:
-// docs/performance_input.md, "Measured"). Without the jaw's units the corners follow AU12.
+// The whole performance: the inner brows follow AU1 − AU4, and the mouth corners' height follows
+// AU12 at ≥ 0.5 (the figure for takes kept aside; 0.65–0.70 measured): the jaw, driven by
+// AU25/AU26 (which rise with AU12 in this take: the person smiles with parted lips), lowers the
+// corners while the zygomatici raise them (docs/performance_input.md, "Measured"). Without the jaw's
+// units the corners follow AU12 at ≥ 0.7.
 void checkDemo(const std::string& headArgument, const Head& head, const std::string& tag) {
   const fs::path dir = fs::temp_directory_path() / ("myo_drive_" + tag + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -114,6 +114,7 @@ void checkDemo(const std::string& headArgument, const Head& head, const std::str
   ::testing::Test::RecordProperty("full_mouth_corners_au12", std::to_string(full.mouthCornersWithAu12));
   ::testing::Test::RecordProperty("full_inner_brows_au1_au4", std::to_string(full.innerBrowsWithAu1MinusAu4));
   EXPECT_GE(full.innerBrowsWithAu1MinusAu4, 0.6);
+  EXPECT_GE(full.mouthCornersWithAu12, 0.5);
   const DriveCorrelations muscles = drive(demoWithoutJaw(dir), headArgument, head, dir / "no_jaw");
   ::testing::Test::RecordProperty("no_jaw_mouth_corners_au12", std::to_string(muscles.mouthCornersWithAu12));
   ::testing::Test::RecordProperty("no_jaw_inner_brows_au1_au4", std::to_string(muscles.innerBrowsWithAu1MinusAu4));
