@@ -53,6 +53,7 @@ class WarningBasisCache : public BasisCache {
  public:
   WarningBasisCache(fs::path dir, std::string program) : files_(std::move(dir)), program_(std::move(program)) {}
   std::optional<ModalBasis> load(const BasisKey& key) override { return files_.load(key); }
+  Reader reader() const override { return files_.reader(); }
   void store(const BasisKey& key, const ModalBasis& basis) override {
     files_.store(key, basis);
     if (!warned_ && !files_.lastStoreError().empty()) {

@@ -139,24 +139,56 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   }
   key_ = h.key();
 
-  if (cache)
-    if (std::optional<ModalBasis> hit = cache->load(key_)) {
-      const Eigen::Index d = hit->lambda.size();
-      // A stored copy that does not fit this skin is a miss (the key makes that ~impossible).
-      if (hit->fullVertexCount == n && hit->freeCount() == n && hit->Phi.rows() == 3 * n && hit->Phi.cols() == d &&
-          hit->Psi.rows() == 3 * n && hit->Psi.cols() == d && hit->freeMass.size() == n && hit->freeMass == mass_) {
-        hit->fromCache = true;
-        hit->solveSeconds = 0.0;
-        heldBasis_ = std::make_shared<const ModalBasis>(std::move(*hit));
-        fromCache_ = true;
-        releaseRelaxedMuscles();
-        return;
-      }
+  // The cache keeps two bases: the held one (key_: what a drag grabbed later and the full-space
+  // response build on) and the released one the model steps in (releasedKey_), so that a warm start
+  // reads only the smaller one; the held one is read (or rebuilt) when something needs it.
+  const bool released = releaseColumns_.cols() > 0;
+  if (released) {
+    constexpr int kReleaseVersion = 1;  // bump when releaseRelaxedMuscles changes what it computes
+    KeyHasher r;
+    r.str("myoshell.anatomical_skin_released").pod(kReleaseVersion).pod(key_.words[0]).pod(key_.words[1]);
+    r.pod(settings_.relaxedMuscleModulus).pod(static_cast<int>(settings_.releaseAcross));
+    releasedKey_ = r.key();
+  }
+  if (cache && released)
+    if (std::optional<ModalBasis> hit = cache->load(releasedKey_); hit && fitsSkin(*hit)) {
+      hit->fromCache = true;
+      hit->solveSeconds = 0.0;
+      basis_ = std::make_shared<const ModalBasis>(std::move(*hit));
+      fromCache_ = true;
+      heldReader_ = cache->reader();
+      setMuscleStrengths();
+      return;
     }
+  if (cache)
+    if (std::optional<ModalBasis> hit = cache->load(key_); hit && fitsSkin(*hit)) {
+      hit->fromCache = true;
+      hit->solveSeconds = 0.0;
+      heldBasis_ = std::make_shared<const ModalBasis>(std::move(*hit));
+      fromCache_ = true;
+    }
+  if (!heldBasis_) {
+    heldBasis_ = std::make_shared<const ModalBasis>(buildHeldBasis());
+    if (cache && heldBasis_->modeCount() > 0) cache->store(key_, *heldBasis_);
+  }
+  releaseRelaxedMuscles();
+  if (cache && released && basis_->modeCount() > 0) cache->store(releasedKey_, *basis_);
+}
 
+bool AnatomicalSkin::fitsSkin(const ModalBasis& b) const {
+  // A stored copy that does not fit this skin is a miss (the key makes that ~impossible).
+  const int n = head_.mesh.vertexCount();
+  const Eigen::Index d = b.lambda.size();
+  return b.fullVertexCount == n && b.freeCount() == n && b.Phi.rows() == 3 * n && b.Phi.cols() == d &&
+         b.Psi.rows() == 3 * n && b.Psi.cols() == d && b.freeMass.size() == n && b.freeMass == mass_;
+}
+
+// The held basis from scratch, in the build sequence the key names: muscle loads, gravity x, y, z,
+// the across columns, diagonalise; then per build-time drag its x, y, z and diagonalise.
+ModalBasis AnatomicalSkin::buildHeldBasis() const {
   Stopwatch clock;
-  builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, V, F, ritz_);
-  for (const MatX3& f : muscleLoads_) builder_->addLoad(f);
+  builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_);
+  for (const MatX3& f : couplingLoads_) builder_->addLoad(f);
   for (int a = 0; a < 3; ++a) builder_->addLoad(gravityPattern(a));  // gravity along x, y, z: M·ê_a
   // The across columns' responses, so that the release stays exact in the basis (Woodbury).
   for (int j = 0; j < acrossColumns_; ++j) {
@@ -170,9 +202,39 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   }
   ModalBasis b = builder_->basis();
   b.solveSeconds = clock.seconds();
-  if (cache && b.modeCount() > 0) cache->store(key_, b);
-  heldBasis_ = std::make_shared<const ModalBasis>(std::move(b));
-  releaseRelaxedMuscles();
+  return b;
+}
+
+void AnatomicalSkin::ensureHeldBasis() const {
+  if (heldBasis_) return;
+  if (heldReader_)
+    if (std::optional<ModalBasis> b = heldReader_(key_); b && fitsSkin(*b)) {
+      b->fromCache = true;
+      b->solveSeconds = 0.0;
+      heldBasis_ = std::make_shared<const ModalBasis>(std::move(*b));
+      return;
+    }
+  heldBasis_ = std::make_shared<const ModalBasis>(buildHeldBasis());
+}
+
+// F_m, from the basis the skin is stepped in (so a cached basis gives the same bits): c_mᵀK⁻¹c_m =
+// Σ (Φᵀc_m)²/λ exactly, K⁻¹c_m lying in the basis. SkinFollows: α_m = s_m/c_mᵀK⁻¹c_m (the skin tied
+// to the muscle moves c_mᵀu/s_m = 1 at a_m = 1); MuscleShortens: α_m = 1/(1 + γ_m c_mᵀK⁻¹c_m) (the
+// muscle's coordinate q_m = 1), 1 when muscles are held.
+void AnatomicalSkin::setMuscleStrengths() {
+  muscleLoads_ = couplingLoads_;
+  const ModalBasis& B = *basis_;
+  const bool released = releaseColumns_.cols() > 0;
+  if (B.modeCount() == 0 || muscles_.empty() || (!released && settings_.strength == StrengthRule::MuscleShortens)) return;
+  const MatX P = (couplingColumns_.transpose() * B.Phi).transpose();  // d × M
+  for (size_t m = 0; m < muscles_.size(); ++m) {
+    const auto mi = static_cast<Eigen::Index>(m);
+    const double cKc = (P.col(mi).array().square() / B.lambda.array()).sum();
+    if (!(cKc > 0)) continue;
+    const double alpha = settings_.strength == StrengthRule::SkinFollows ? shapeEnergy_(mi) / cKc
+                                                                         : 1.0 / (1.0 + release_(mi) * cKc);
+    muscleLoads_[m] = alpha * couplingLoads_[m];
+  }
 }
 
 MatX3 AnatomicalSkin::gravityPattern(int axis) const {
@@ -203,11 +265,17 @@ void AnatomicalSkin::buildReleaseColumns() {
   axialColumn_.clear();
   acrossColumns_ = 0;
   shapeEnergy_ = VecX::Zero(M);
+  std::vector<Triplet> pulls;  // c_m = K_c,m w, column m
   for (Eigen::Index m = 0; m < M; ++m) {
     const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
-    for (const auto& spring : cm.springs)
-      shapeEnergy_(m) += spring.stiffness * spring.muscleDisplacement(cm.fullShape).squaredNorm();
+    for (const auto& spring : cm.springs) {
+      const Vec3 w = spring.muscleDisplacement(cm.fullShape);
+      shapeEnergy_(m) += spring.stiffness * w.squaredNorm();
+      for (int c = 0; c < 3; ++c) pulls.emplace_back(3 * spring.skin + c, m, spring.stiffness * w(c));
+    }
   }
+  couplingColumns_.resize(3 * n, M);
+  couplingColumns_.setFromTriplets(pulls.begin(), pulls.end());
   if (!(settings_.relaxedMuscleModulus > 0) || M == 0) {
     releaseColumns_.resize(0, 0);
     releaseRho_.resize(0);
@@ -283,17 +351,12 @@ void AnatomicalSkin::buildReleaseColumns() {
 // per across column; it is cut back to the d lowest modes of K_r and K_r⁻¹Φᵀf for every load pattern
 // f (the muscles' c_m, gravity along x, y, z, each drag's x, y, z), so the step costs what it did.
 void AnatomicalSkin::releaseRelaxedMuscles() {
+  ensureHeldBasis();
   const ModalBasis& held = *heldBasis_;
   const auto M = static_cast<Eigen::Index>(muscles_.size());
   if (releaseColumns_.cols() == 0 || M == 0 || held.modeCount() == 0) {
     basis_ = heldBasis_;
-    muscleLoads_ = couplingLoads_;
-    if (settings_.strength == StrengthRule::SkinFollows && held.modeCount() > 0)
-      for (Eigen::Index m = 0; m < M; ++m) {  // α_m = s_m / c_mᵀK̂⁻¹c_m
-        const VecX p = held.Phi.transpose() * flat(couplingLoads_[static_cast<size_t>(m)]);
-        const double cKc = (p.array().square() / held.lambda.array()).sum();
-        if (cKc > 0) muscleLoads_[static_cast<size_t>(m)] *= shapeEnergy_(m) / cKc;
-      }
+    setMuscleStrengths();
     return;
   }
   const MatX P = (releaseColumns_.transpose() * held.Phi).transpose();  // D × R
@@ -305,20 +368,9 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   const MatX& Z = eig.eigenvectors();
   const VecX& lam = eig.eigenvalues();
   auto solveKr = [&](const MatX& rhs) -> MatX { return Z * ((Z.transpose() * rhs).array().colwise() / lam.array()).matrix(); };
-  // α_m = 1/(1 + γ_m p_mᵀ K_r⁻¹ p_m), p_m = Φᵀc_m = √s_m P e_m.
+  // p_m = Φᵀc_m = √s_m P e_m: the muscles' load patterns in the held basis.
   MatX Pc(P.rows(), M);
-  for (Eigen::Index m = 0; m < M; ++m) {
-    const Eigen::Index col = axialColumn_[static_cast<size_t>(m)];
-    const double s = releaseRho_(col) / release_(m);  // s_m = ρ_m/γ_m
-    Pc.col(m) = std::sqrt(s) * P.col(col);
-  }
-  const MatX KrPc = solveKr(Pc);
-  for (Eigen::Index m = 0; m < M; ++m) {
-    const double pKp = Pc.col(m).dot(KrPc.col(m));  // c_mᵀK⁻¹c_m
-    const double alpha = settings_.strength == StrengthRule::SkinFollows ? shapeEnergy_(m) / pKp
-                                                                         : 1.0 / (1.0 + release_(m) * pKp);
-    muscleLoads_[static_cast<size_t>(m)] = alpha * couplingLoads_[static_cast<size_t>(m)];
-  }
+  for (Eigen::Index m = 0; m < M; ++m) Pc.col(m) = std::sqrt(shapeEnergy_(m)) * P.col(axialColumn_[static_cast<size_t>(m)]);
   MatX T;  // the final basis in the held one's coordinates
   VecX lambda;
   if (acrossColumns_ == 0) {
@@ -365,10 +417,12 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   b.Psi = held.Psi * T;
   b.lambda = lambda;
   basis_ = std::make_shared<const ModalBasis>(std::move(b));
+  setMuscleStrengths();
 }
 
 RitzBasisBuilder& AnatomicalSkin::builder() const {
   std::lock_guard<std::mutex> lock(builderMutex_);
+  ensureHeldBasis();
   if (!builder_)
     builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_, *heldBasis_);
   return *builder_;

@@ -190,6 +190,10 @@ std::optional<ModalBasis> FileBasisCache::load(const BasisKey& key) {
   return b;
 }
 
+BasisCache::Reader FileBasisCache::reader() const {
+  return [dir = dir_](const BasisKey& key) { return readBasisFile(dir / (key.hex() + ".myobasis"), key); };
+}
+
 void FileBasisCache::store(const BasisKey& key, const ModalBasis& basis) {
   try {
     writeBasisFile(pathFor(key), key, basis);

@@ -1,4 +1,5 @@
-// The anatomical skin's basis through the file cache (AnatomicalSkin with a BasisCache): a hit is
+// The anatomical skin's basis through the file cache (AnatomicalSkin with a BasisCache; two files:
+// the held basis and the released one, a warm start reading only the released one): a hit is
 // the fresh build bit for bit (basis, settled shapes, time steps, later drags, the full-space
 // response); every input the basis depends on changes the key; a corrupt or truncated file is a
 // miss that rebuilds and rewrites it. The built-in head with two muscles and few modes keeps the
@@ -91,9 +92,11 @@ TEST(AnatomicalBasisCache, AHitIsTheFreshBuildBitForBit) {
   const Head head = loadDefaultHead();
   auto fresh = std::make_shared<AnatomicalSkin>(head, twoMuscles(), smallSettings(), kDrag, &cache);
   EXPECT_FALSE(fresh->basisFromCache());
-  EXPECT_EQ(cache.stats().misses, 1);
-  EXPECT_EQ(cache.stats().stores, 1);
+  EXPECT_EQ(cache.stats().misses, 2);  // the released basis, then the held one
+  EXPECT_EQ(cache.stats().stores, 2);
   EXPECT_TRUE(fs::exists(cache.pathFor(fresh->basisKey())));
+  EXPECT_TRUE(fs::exists(cache.pathFor(fresh->releasedBasisKey())));
+  EXPECT_NE(fresh->releasedBasisKey(), fresh->basisKey());
 
   // The same build without a cache, drag added afterwards (the sequence AnatomicalFace used):
   // the cache changes nothing in a fresh build.
@@ -103,7 +106,7 @@ TEST(AnatomicalBasisCache, AHitIsTheFreshBuildBitForBit) {
 
   auto hit = std::make_shared<AnatomicalSkin>(head, twoMuscles(), smallSettings(), kDrag, &cache);
   EXPECT_TRUE(hit->basisFromCache());
-  EXPECT_EQ(cache.stats().hits, 1);
+  EXPECT_EQ(cache.stats().hits, 1);  // the released basis only: the held one is read when needed
   EXPECT_EQ(hit->basisKey(), fresh->basisKey());
   expectSameBasis(*fresh->basis(), *hit->basis());
 
@@ -122,6 +125,15 @@ TEST(AnatomicalBasisCache, AHitIsTheFreshBuildBitForBit) {
   hit->addDrag(100, 0.8);
   expectSameBasis(*fresh->basis(), *hit->basis());
   expectSameSteps(fresh, hit);
+
+  // The held basis's file gone after a warm start (another process cleaned the cache): a drag
+  // grabbed later rebuilds it, and gives the same bits.
+  auto warm = std::make_shared<AnatomicalSkin>(head, twoMuscles(), smallSettings(), kDrag, &cache);
+  EXPECT_TRUE(warm->basisFromCache());
+  fs::remove(cache.pathFor(warm->basisKey()));
+  warm->addDrag(100, 0.8);
+  expectSameBasis(*fresh->basis(), *warm->basis());
+  expectSameSteps(fresh, warm);
 }
 
 // A cache that records the key asked for and stops the build there (the key is computed before
@@ -201,31 +213,35 @@ TEST(AnatomicalBasisCache, ACorruptOrTruncatedFileIsAMissThatRebuilds) {
   FileBasisCache cache(dir.path);
   const Head head = loadDefaultHead();
   const AnatomicalSkin first(head, twoMuscles(), smallSettings(), kDrag, &cache);
-  const fs::path file = cache.pathFor(first.basisKey());
-  const std::vector<char> good = readAll(file);
+  const fs::path releasedFile = cache.pathFor(first.releasedBasisKey()), heldFile = cache.pathFor(first.basisKey());
+  const std::vector<char> good = readAll(releasedFile), goodHeld = readAll(heldFile);
   ASSERT_GT(good.size(), 1000u);
   {  // truncated: as a run killed while another wrote it (the atomic writer prevents it; a copy may not)
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    std::ofstream out(releasedFile, std::ios::binary | std::ios::trunc);
     out.write(good.data(), static_cast<std::streamsize>(good.size() / 2));
   }
-  const AnatomicalSkin rebuilt(head, twoMuscles(), smallSettings(), kDrag, &cache);
-  EXPECT_FALSE(rebuilt.basisFromCache());
+  // The released basis is rejected; it is remade from the held one in the cache and written back.
+  const AnatomicalSkin remade(head, twoMuscles(), smallSettings(), kDrag, &cache);
+  EXPECT_TRUE(remade.basisFromCache());
   EXPECT_EQ(cache.stats().rejected, 1);
   EXPECT_NE(cache.lastRejection().find("payload is"), std::string::npos) << cache.lastRejection();
-  expectSameBasis(*first.basis(), *rebuilt.basis());
-  EXPECT_EQ(readAll(file), good);  // written back whole
+  expectSameBasis(*first.basis(), *remade.basis());
+  EXPECT_EQ(readAll(releasedFile), good);  // written back whole
 
-  std::vector<char> flipped = good;  // one byte inside Φ
-  flipped[good.size() / 2] ^= 0x04;
+  std::vector<char> flipped = goodHeld;  // one byte inside the held basis's Φ, and no released file
+  flipped[goodHeld.size() / 2] ^= 0x04;
   {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    std::ofstream out(heldFile, std::ios::binary | std::ios::trunc);
     out.write(flipped.data(), static_cast<std::streamsize>(flipped.size()));
   }
+  fs::remove(releasedFile);
   const AnatomicalSkin again(head, twoMuscles(), smallSettings(), kDrag, &cache);
   EXPECT_FALSE(again.basisFromCache());
   EXPECT_EQ(cache.stats().rejected, 2);
   EXPECT_NE(cache.lastRejection().find("checksum mismatch"), std::string::npos) << cache.lastRejection();
   expectSameBasis(*first.basis(), *again.basis());
+  EXPECT_EQ(readAll(heldFile), goodHeld);
+  EXPECT_EQ(readAll(releasedFile), good);
 }
 
 }  // namespace

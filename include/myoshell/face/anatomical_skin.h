@@ -152,6 +152,10 @@ class AnatomicalSkin {
   // build sequence's version and kModalBasisFormatVersion. The magnitude of gravity is not in it:
   // the gravity patterns are M·ê_a whatever |g| is.
   const BasisKey& basisKey() const { return key_; }
+  // The cache key of the released basis the skin steps in (a hash of basisKey() and the release's
+  // settings: E_p, releaseAcross), stored beside the held one; a warm start reads only this one.
+  // Zero when muscles are held.
+  const BasisKey& releasedBasisKey() const { return releasedKey_; }
 
   // Registers a drag: a force spread equally over the vertices within radius (cm) of `vertex`; adds
   // its unit patterns' static responses (x, y, z) to the basis from the kept factorisation and
@@ -179,6 +183,11 @@ class AnatomicalSkin {
   // C̃ (3n × R) and ρ (R): the columns the relaxed muscles let go of, muscle by muscle (its shape
   // c_m/√s_m first, then the across columns); empty when muscles are held.
   void buildReleaseColumns();
+  // The muscle loads α_m c_m from basis_ (AnatomicalSettings::strength).
+  void setMuscleStrengths();
+  bool fitsSkin(const ModalBasis& b) const;  // a cached basis's sizes and masses fit this skin
+  ModalBasis buildHeldBasis() const;          // from scratch (sets builder_)
+  void ensureHeldBasis() const;               // read through heldReader_, else rebuilt
   MatX3 gravityPattern(int axis) const;                 // M·ê_axis
   MatX3 dragPattern(const std::vector<int>& vertices, int axis) const;  // ê_axis spread evenly
   Head head_;
@@ -190,6 +199,7 @@ class AnatomicalSkin {
   std::vector<MatX3> couplingLoads_;   // c_m = K_c,m U_m
   VecX release_;                       // γ_m (empty when muscles are held)
   VecX shapeEnergy_;                   // s_m = Σ k_i |w_i|², the couplings' stiffness along the shape
+  SparseMat couplingColumns_;          // [c_m], 3n × M
   SparseMat releaseColumns_;           // C̃ = [C̃_m], 3n × R
   VecX releaseRho_;                    // ρ per column: s_m/(s_m + κ_m)
   std::vector<Eigen::Index> axialColumn_;  // per muscle: its shape's column in C̃
@@ -206,9 +216,12 @@ class AnatomicalSkin {
   RitzSettings ritz_;
   mutable std::mutex builderMutex_;
   mutable std::unique_ptr<RitzBasisBuilder> builder_;
-  std::shared_ptr<const ModalBasis> heldBasis_;  // diagonal for K̂: the cache's payload, the builder's start
+  // Diagonal for K̂: the builder's start; null after a warm start until something needs it.
+  mutable std::shared_ptr<const ModalBasis> heldBasis_;
+  BasisCache::Reader heldReader_;      // where a warm start can read it later
   std::shared_ptr<const ModalBasis> basis_;
   BasisKey key_;
+  BasisKey releasedKey_;               // the released basis's (when muscles are released)
   bool fromCache_ = false;
 };
 

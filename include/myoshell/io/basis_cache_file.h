@@ -33,6 +33,7 @@ class FileBasisCache : public BasisCache {
 
   std::optional<ModalBasis> load(const BasisKey& key) override;
   void store(const BasisKey& key, const ModalBasis& basis) override;
+  Reader reader() const override;  // reads this directory's files (no statistics)
 
   std::filesystem::path pathFor(const BasisKey& key) const;
   const std::filesystem::path& directory() const { return dir_; }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -51,6 +52,10 @@ class BasisCache {
   virtual ~BasisCache() = default;
   virtual std::optional<ModalBasis> load(const BasisKey& key) = 0;
   virtual void store(const BasisKey& key, const ModalBasis& basis) = 0;
+  // A loader that stays valid after this object is gone, for what a model may need later (a
+  // basis it skipped at start-up); empty when the cache cannot give one (the caller rebuilds).
+  using Reader = std::function<std::optional<ModalBasis>(const BasisKey&)>;
+  virtual Reader reader() const { return {}; }
 };
 
 }  // namespace myo
