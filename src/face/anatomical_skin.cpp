@@ -368,9 +368,6 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   const MatX& Z = eig.eigenvectors();
   const VecX& lam = eig.eigenvalues();
   auto solveKr = [&](const MatX& rhs) -> MatX { return Z * ((Z.transpose() * rhs).array().colwise() / lam.array()).matrix(); };
-  // p_m = Φᵀc_m = √s_m P e_m: the muscles' load patterns in the held basis.
-  MatX Pc(P.rows(), M);
-  for (Eigen::Index m = 0; m < M; ++m) Pc.col(m) = std::sqrt(shapeEnergy_(m)) * P.col(axialColumn_[static_cast<size_t>(m)]);
   MatX T;  // the final basis in the held one's coordinates
   VecX lambda;
   if (acrossColumns_ == 0) {
@@ -380,7 +377,8 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
     const Eigen::Index dModes = std::min<Eigen::Index>(ritz_.modes.modeCount, Kr.rows());
     const Eigen::Index nPatterns = M + 3 + 3 * static_cast<Eigen::Index>(drags_.size());
     MatX patterns(P.rows(), nPatterns);
-    patterns.leftCols(M) = Pc;
+    for (Eigen::Index m = 0; m < M; ++m)  // Φᵀc_m = √s_m P e_m: the muscles' load patterns
+      patterns.col(m) = std::sqrt(shapeEnergy_(m)) * P.col(axialColumn_[static_cast<size_t>(m)]);
     for (int a = 0; a < 3; ++a) patterns.col(M + a) = held.Phi.transpose() * flat(gravityPattern(a));
     for (size_t k = 0; k < drags_.size(); ++k)
       for (int a = 0; a < 3; ++a)
