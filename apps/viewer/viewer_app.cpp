@@ -303,6 +303,18 @@ class ViewerApp {
           session_.setSlider(m, a);
       }
     }
+    if (session_.hasJaw() && ImGui::CollapsingHeader("Jaw", ImGuiTreeNodeFlags_DefaultOpen)) {
+      JawPose jaw = session_.jawSlider();
+      float open = static_cast<float>(jaw.openDeg), forward = static_cast<float>(jaw.forwardCm),
+            lateral = static_cast<float>(jaw.lateralCm);
+      bool moved = ImGui::SliderFloat("open (deg)", &open, static_cast<float>(kJawOpenMinDeg),
+                                      static_cast<float>(kJawOpenMaxDeg), "%.1f");
+      moved |= ImGui::SliderFloat("forward (cm)", &forward, static_cast<float>(kJawForwardMinCm),
+                                  static_cast<float>(kJawForwardMaxCm), "%.2f");
+      moved |= ImGui::SliderFloat("lateral (cm)", &lateral, static_cast<float>(-kJawLateralMaxCm),
+                                  static_cast<float>(kJawLateralMaxCm), "%.2f");
+      if (moved) session_.setJawSlider({open, forward, lateral});
+    }
     if (ImGui::CollapsingHeader("Skin", ImGuiTreeNodeFlags_DefaultOpen)) {
       bool gravity = session_.gravity();
       if (session_.hasGravity() && ImGui::Checkbox("gravity", &gravity)) session_.setGravity(gravity);
@@ -414,6 +426,7 @@ class ViewerApp {
   void execute(const ScriptCommand& c) {
     const auto on = [&](size_t i) { return c.args.at(i) == "on"; };
     if (c.verb == "set") session_.setSlider(c.args[0], c.number(1));
+    else if (c.verb == "jaw") session_.setJawSlider({c.number(0), c.number(1), c.number(2)});
     else if (c.verb == "link") session_.linked = on(0);
     else if (c.verb == "gravity") session_.setGravity(on(0));
     else if (c.verb == "stiffness") session_.setStiffnessScale(c.number(0));

@@ -78,8 +78,26 @@ void ViewerSession::setSlider(const std::string& muscle, double activation) {
   setSlider(model_->muscleIndex(muscle), activation);
 }
 
+void ViewerSession::setJawSlider(const JawPose& pose) {
+  if (!hasJaw())
+    throw InputError("the jaw needs \"model\": \"anatomical\"; the thesis model has no jaw");
+  const auto clampTo = [&](double v, double lo, double hi, const char* what, const char* unit) {
+    if (std::isnan(v)) throw InputError(std::string("the jaw's ") + what + " is NaN");
+    if (v >= lo && v <= hi) return v;
+    const double c = std::clamp(v, lo, hi);
+    std::ostringstream w;
+    w << "the jaw's " << what << " " << v << " " << unit << " clamped to " << c;
+    warnings_.push_back(w.str());
+    return c;
+  };
+  jaw_.openDeg = clampTo(pose.openDeg, kJawOpenMinDeg, kJawOpenMaxDeg, "opening", "degrees");
+  jaw_.forwardCm = clampTo(pose.forwardCm, kJawForwardMinCm, kJawForwardMaxCm, "protrusion", "cm");
+  jaw_.lateralCm = clampTo(pose.lateralCm, -kJawLateralMaxCm, kJawLateralMaxCm, "lateral shift", "cm");
+}
+
 void ViewerSession::resetSliders() {
   std::fill(sliders_.begin(), sliders_.end(), 0.0);
+  jaw_ = JawPose{};
   release();
   sim().reset();
   pending_ = 0.0;
@@ -128,6 +146,12 @@ void ViewerSession::controls(FaceStepper& s) {
     else
       s.setActivation(m, sliders_[static_cast<size_t>(m)]);
   }
+  if (hasJaw()) {
+    if (playing && scene().hasJaw())
+      jaw_ = s.jaw();
+    else
+      s.setJaw(jaw_);
+  }
 }
 
 void ViewerSession::advance(double seconds) {
@@ -168,25 +192,40 @@ void ViewerSession::seek(double t) {
   playing = wasPlaying;
 }
 
+namespace {
+
+// `track` with a key (at, value), replacing a key already at that time.
+ScalarTrack withKey(const ScalarTrack& track, double at, double value, const std::string& label) {
+  std::vector<Keyframe<double>> keys = track.keys();
+  keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const auto& k) { return std::abs(k.time - at) < 1e-9; }),
+             keys.end());
+  Keyframe<double> key;
+  key.time = at;
+  key.value = value;
+  keys.insert(std::upper_bound(keys.begin(), keys.end(), key, [](const auto& a, const auto& b) { return a.time < b.time; }),
+              key);
+  return ScalarTrack(std::move(keys), label);
+}
+
+}  // namespace
+
 int ViewerSession::setKeysAtPlayhead() {
   SceneDesc edited = scene();
   const double at = playhead();
   for (int m = 0; m < muscleCount(); ++m) {
     const std::string& name = muscleName(m);
-    std::vector<Keyframe<double>> keys;
-    if (auto it = edited.activations.find(name); it != edited.activations.end()) keys = it->second.keys();
-    keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const auto& k) { return std::abs(k.time - at) < 1e-9; }),
-               keys.end());
-    Keyframe<double> key;
-    key.time = at;
-    key.value = slider(m);
-    keys.insert(std::upper_bound(keys.begin(), keys.end(), key, [](const auto& a, const auto& b) { return a.time < b.time; }),
-                key);
-    edited.activations[name] = ScalarTrack(std::move(keys), "activation of " + name);
+    edited.activations[name] = withKey(edited.activations[name], at, slider(m), "activation of " + name);
+  }
+  int keys = muscleCount();
+  if (hasJaw() && (!jaw_.isZero() || edited.hasJaw())) {
+    edited.jawOpen = withKey(edited.jawOpen, at, jaw_.openDeg, "timeline.jaw.open");
+    edited.jawForward = withKey(edited.jawForward, at, jaw_.forwardCm, "timeline.jaw.forward");
+    edited.jawLateral = withKey(edited.jawLateral, at, jaw_.lateralCm, "timeline.jaw.lateral");
+    keys += 3;
   }
   player_.setScene(std::move(edited));
   updateTracked();
-  return muscleCount();
+  return keys;
 }
 
 void ViewerSession::saveScene(const std::string& path) const {

@@ -12,6 +12,7 @@
 
 #include "myoshell/anim/scene.h"
 #include "myoshell/anim/scene_player.h"
+#include "myoshell/face/jaw.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/reduce/basis_cache.h"
 
@@ -51,6 +52,14 @@ class ViewerSession {
   // anatomical model refuses it: InputError).
   void setStiffnessScale(double s) { sim().setSkinStiffnessScale(s); }
 
+  // --- the jaw (anatomical model; docs/jaw.md) ---------------------------------------------------
+  bool hasJaw() const { return thesisModel() == nullptr; }
+  // The jaw's sliders: opening (degrees), protrusion and lateral shift (cm), each clamped to the
+  // jaw's range (face/jaw.h) with a warning naming it; NaN is an InputError; the thesis model has no
+  // jaw (InputError naming the model). While the timeline plays a jaw track, the sliders show it.
+  void setJawSlider(const JawPose& pose);
+  const JawPose& jawSlider() const { return jaw_; }
+
   // --- the mouse drag ----------------------------------------------------------------------------
   // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin; the anatomical
   // model grips only the mouse drag's own vertex, the nose tip, for now).
@@ -77,7 +86,8 @@ class ViewerSession {
 
   // --- authoring -------------------------------------------------------------------------------
   // A key at the playhead on every muscle's activation track with its slider value (a key already
-  // at that time is replaced). Returns the number of keys set.
+  // at that time is replaced), and on the jaw's three tracks when the jaw is off rest or the scene
+  // has jaw tracks. Returns the number of keys set.
   int setKeysAtPlayhead();
   // Writes the scene (sceneToJson) to `path` atomically.
   void saveScene(const std::string& path) const;
@@ -96,6 +106,7 @@ class ViewerSession {
   std::shared_ptr<const FaceSystem> model_;
   ScenePlayer player_;  // the scene, its timeline clock (the playhead) and the simulator
   std::vector<double> sliders_;
+  JawPose jaw_;
   std::vector<int> mirror_;
   std::vector<bool> tracked_;  // per muscle: whether the timeline has an activation track for it
   int mouseDrag_ = 0;

@@ -2,6 +2,8 @@
 // timeline (play, seek), the mouse drag, authoring (keys, save, export), scripts.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -239,6 +241,63 @@ TEST(ViewerSession, TheAnatomicalModelPlaysAndRefusesThesisOnlyControls) {
   s.advance(0.2);
   EXPECT_NEAR(s.slider(0), 1.0, 1e-9);  // the timeline drove the slider
   EXPECT_GT(s.simulator().skinDisplacement().rowwise().norm().maxCoeff(), 0.01);
+}
+
+// The jaw's sliders (anatomical model): the chin follows the opening, values outside the jaw's
+// ranges are clamped with a warning naming them, keys go on the jaw's tracks and a timeline that
+// plays them moves the sliders; the thesis model refuses them, naming the model.
+TEST(ViewerSession, TheJawSlidersOpenTheMouthKeyAndFollowTheTimeline) {
+  ViewerSession s(parseScene(R"({
+    "name": "viewer_jaw",
+    "muscles": {"use": ["zygomaticus_major_left"]},
+    "numerics": {"skin_modes": 4},
+    "duration": 0.4, "fps": 20
+  })"),
+                  nullptr);
+  ASSERT_TRUE(s.hasJaw());
+  const int chin = s.model().head().landmarks.vertex("chin_menton");
+  const Vec3 up = s.model().head().frame().axes.col(1);
+  const double rest = up.dot(s.simulator().skinPositions().row(chin).transpose());
+  s.setJawSlider({20.0, 0.0, 0.0});
+  s.advance(0.1);
+  const double open = up.dot(s.simulator().skinPositions().row(chin).transpose());
+  RecordProperty("chin_down_cm_at_20_degrees", std::to_string(rest - open));
+  EXPECT_GT(rest - open, 0.5);  // cm: the chin drops with the mandible
+
+  s.setJawSlider({55.0, 2.0, -3.0});
+  EXPECT_EQ(s.jawSlider().openDeg, kJawOpenMaxDeg);
+  EXPECT_EQ(s.jawSlider().forwardCm, kJawForwardMaxCm);
+  EXPECT_EQ(s.jawSlider().lateralCm, -kJawLateralMaxCm);
+  const std::vector<std::string> warnings = s.takeWarnings();
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_EQ(warnings[0], "the jaw's opening 55 degrees clamped to 40");
+  EXPECT_EQ(warnings[2], "the jaw's lateral shift -3 cm clamped to -1.5");
+  EXPECT_THROW(s.setJawSlider({std::nan(""), 0.0, 0.0}), InputError);
+
+  // Keys at 0 (closed) and at 0.4 s (open 10°): playing from the start, the sliders follow.
+  s.setJawSlider({0.0, 0.0, 0.0});
+  EXPECT_EQ(s.setKeysAtPlayhead(), s.muscleCount());  // at rest and no jaw track: no jaw keys
+  s.setJawSlider({10.0, 0.0, 0.0});
+  s.seek(0.4);
+  EXPECT_EQ(s.setKeysAtPlayhead(), s.muscleCount() + 3);
+  ASSERT_EQ(s.scene().jawOpen.keys().size(), 1u);
+  s.setJawSlider({0.0, 0.0, 0.0});
+  s.seek(0.0);
+  s.playing = true;
+  s.advance(0.4);
+  EXPECT_NEAR(s.jawSlider().openDeg, 10.0, 1e-9);
+  s.resetSliders();
+  EXPECT_TRUE(s.jawSlider().isZero());
+
+  ViewerSession thesis(parseScene(R"({"model": "thesis", "muscles": {"use": ["zygomaticus_major_left"]}, "duration": 0.1, "fps": 20})"),
+                       nullptr);
+  EXPECT_FALSE(thesis.hasJaw());
+  try {
+    thesis.setJawSlider({5.0, 0.0, 0.0});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "the jaw needs \"model\": \"anatomical\"; the thesis model has no jaw");
+  }
 }
 
 }  // namespace
