@@ -1,5 +1,6 @@
 #include "myoshell/reduce/modal_warping.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -287,6 +288,8 @@ ModalWarpingIntegrator::ModalWarpingIntegrator(std::shared_ptr<const ModalBasis>
     kernel_->accd = Eigen::VectorXd::Zero(d);
     kernel_->Gd = Eigen::VectorXd::Zero(kernel_->Bd.rows());
   }
+  const VecX rowNorm2 = b.Phi.rowwise().squaredNorm();
+  for (int i = 0; i < f; ++i) rowNormMax_ = std::max(rowNormMax_, std::sqrt(rowNorm2.segment(3 * i, 3).sum()));
   computeCoefficients();
 }
 
@@ -344,8 +347,9 @@ void ModalWarpingIntegrator::setStiffnessScale(double s) {
   }
 }
 
-void ModalWarpingIntegrator::updateDisplacement() {
+void ModalWarpingIntegrator::updateDisplacement() const {
   Kernel& k = *kernel_;
+  stale_ = false;
   if (k.precision == ModalPrecision::Float) {
     k.qf = q_.cast<float>();
     k.Yf.noalias() = k.Bf * k.qf;
@@ -378,14 +382,25 @@ void ModalWarpingIntegrator::step(const MatX3& freeForce) {
       Kernel::project(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.accd, ftilde_);
   }
   // 4: per-mode advance.
+  advance(ftilde_);
+  // 5: w = Ψq, u = R̃(w)Φq.
+  updateDisplacement();
+}
+
+void ModalWarpingIntegrator::stepModal(const VecX& modalForce) {
+  MYO_CHECK(!settings_.warping, "channel '" << settings_.channel << "': stepModal needs warping off");
+  MYO_CHECK_EQ(modalForce.size(), q_.size());
+  advance(modalForce);
+  stale_ = true;
+}
+
+void ModalWarpingIntegrator::advance(const VecX& ft) {
   const Eigen::Index d = q_.size();
   for (Eigen::Index j = 0; j < d; ++j) {
-    const double q = q_[j], v = v_[j], f = ftilde_[j];
+    const double q = q_[j], v = v_[j], f = ft[j];
     q_[j] = ca_[j] * q + cb_[j] * v + cg_[j] * f;
     v_[j] = cc_[j] * q + ce_[j] * v + ck_[j] * f;
   }
-  // 5: w = Ψq, u = R̃(w)Φq.
-  updateDisplacement();
 }
 
 void ModalWarpingIntegrator::step() {
@@ -412,7 +427,8 @@ double ModalWarpingIntegrator::streamBasis() const {
 void ModalWarpingIntegrator::addDisplacementTo(MatX3& full) const {
   MYO_CHECK_EQ(full.rows(), static_cast<Eigen::Index>(basis_->fullVertexCount));
   const auto& fv = basis_->freeVertices;
-  for (size_t i = 0; i < fv.size(); ++i) full.row(fv[i]) += u_.row(static_cast<Eigen::Index>(i));
+  const MatX3& u = freeDisplacement();
+  for (size_t i = 0; i < fv.size(); ++i) full.row(fv[i]) += u.row(static_cast<Eigen::Index>(i));
 }
 
 MatX3 ModalWarpingIntegrator::freeRotations() const {
@@ -429,7 +445,8 @@ MatX3 ModalWarpingIntegrator::freeRotations() const {
 void ModalWarpingIntegrator::reset() {
   q_.setZero();
   v_.setZero();
-  updateDisplacement();
+  if (settings_.warping) updateDisplacement();  // the next step's rotations read Ψq
+  else stale_ = true;                           // u = Φq = 0 when read
 }
 
 void ModalWarpingIntegrator::setState(const VecX& q, const VecX& qdot) {
