@@ -239,6 +239,28 @@ struct ModalWarpingIntegrator::Kernel {
     ft = acc.template cast<double>();
   }
 
+  // y = B q, one row at a time with four independent partial sums: for d ≈ 70 Eigen's row-major
+  // matrix-vector product ran at a third of the basis's stream rate here (1,200 against 430 µs on
+  // the ICT skin's 3n × 73), this at the stream rate (docs/PERFORMANCE.md, 2026-11-25).
+  static void rowDots(const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& B,
+                      const VecX& q, double* __restrict y) {
+    const Eigen::Index rows = B.rows(), d = B.cols();
+    const double* __restrict b = B.data();
+    const double* __restrict x = q.data();
+    for (Eigen::Index i = 0; i < rows; ++i, b += d) {
+      double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+      Eigen::Index j = 0;
+      for (; j + 4 <= d; j += 4) {
+        a0 += b[j] * x[j];
+        a1 += b[j + 1] * x[j + 1];
+        a2 += b[j + 2] * x[j + 2];
+        a3 += b[j + 3] * x[j + 3];
+      }
+      for (; j < d; ++j) a0 += b[j] * x[j];
+      y[i] = (a0 + a1) + (a2 + a3);
+    }
+  }
+
   template <class Vec>
   static void output(const Vec& Y, int stride, bool warped, MatX3& u) {
     const Eigen::Index f = u.rows();
@@ -354,8 +376,10 @@ void ModalWarpingIntegrator::updateDisplacement() const {
     k.qf = q_.cast<float>();
     k.Yf.noalias() = k.Bf * k.qf;
     Kernel::output(k.Yf, k.stride, settings_.warping, u_);
+  } else if (!settings_.warping) {
+    Kernel::rowDots(k.Bd, q_, u_.data());  // the interleaved Φ rows are u's layout: no copy
   } else {
-    k.Yd.noalias() = k.Bd * q_;
+    Kernel::rowDots(k.Bd, q_, k.Yd.data());
     Kernel::output(k.Yd, k.stride, settings_.warping, u_);
   }
 }
