@@ -240,8 +240,8 @@ struct ModalWarpingIntegrator::Kernel {
   }
 
   // y = B q, one row at a time with four independent partial sums: for d ≈ 70 Eigen's row-major
-  // matrix-vector product ran at a third of the basis's stream rate here (1,200 against 430 µs on
-  // the ICT skin's 3n × 73), this at the stream rate (docs/PERFORMANCE.md, 2026-11-25).
+  // matrix-vector product ran at a third of the basis's stream rate (u on the ICT whole face's
+  // 3n × 73: 1,250 µs, this 408 µs, the stream ~400 µs; docs/PERFORMANCE.md, 2026-11-25).
   static void rowDots(const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& B,
                       const VecX& q, double* __restrict y) {
     const Eigen::Index rows = B.rows(), d = B.cols();
