@@ -15,7 +15,8 @@
 // muscles + gravity + one drag with each model (`model: thesis` and `model: anatomical`), side by
 // side on each head. Besides steps/s they report the cold precompute (built into an empty basis
 // cache of their own), the cached start (built again from it) and the mean phases of a step
-// (StepTimings: muscles, springs / force assembly, skin channels). Row `whole_face` does the same for
+// (StepTimings: muscles, springs / force assembly, skin channels) and `read_us`, what an output frame
+// pays besides its steps (one skinPositions after a step). Row `whole_face` does the same for
 // the anatomical model with the whole face's 37 muscles (scenes/bench/whole_face.json).
 //
 // Every row also reports, beside steps/s (docs/PERFORMANCE.md, "Ratios"):
@@ -23,7 +24,9 @@
 //                   its step reads when it touches every free vertex: each integrator's stored Φ
 //                   (and Ψ when warping) rows in their own precision (ModalWarpingIntegrator::
 //                   streamBasis) — the skin's for whole-step rows, the muscles' for muscle-phase
-//                   rows; median of 9 passes. Below 1: the step skipped work (idle channels).
+//                   rows; median of 9 passes. Below 1: the step skipped work (idle channels; the
+//                   anatomical model with linear modes reads no basis row in a step: its forces
+//                   are reduced once and u = Φq is paid when positions are read, `read_us`).
 //   reference_ratio its step time over one implicit-Euler step of the full-space reference solver
 //                   (verify/reference_solver.h) under the same loads: the world force on the skin
 //                   at the end of the row's window, the same pins, masses, damping and (anatomical)
@@ -291,6 +294,21 @@ Floor measureFloor(const std::vector<const ModalWarpingIntegrator*>& integrators
   return f;
 }
 
+// What an output frame pays besides its steps: one skinPositions right after a step, median of 9
+// (anatomical, linear modes: u = Φq is computed there, not in the step).
+double readSeconds(ScenePlayer& player) {
+  MatX3 out;
+  std::vector<double> secs;
+  player.restart(0.0);
+  for (int k = 0; k < 9; ++k) {
+    player.step();
+    Stopwatch sw;
+    player.simulator().skinPositions(out);
+    secs.push_back(sw.seconds());
+  }
+  return median(secs);
+}
+
 // One full-space reference step (verify/reference_solver.h) under the loads the row's window ends
 // with, from rest: the median over --reference-steps steps of their wall time, or a note saying why
 // there is none. Leaves the player at the window's end.
@@ -474,6 +492,7 @@ nlohmann::json benchFullRow(const BenchOptions& opt, const BenchRow& row, const 
                    {"channels", perStep * phases.channels},
                    {"total", perStep * phases.total}};
   j["realtime_factor"] = median(rates) * model->dt();
+  j["read_us"] = 1e6 * readSeconds(player);
   addRatios(j, opt, row, player, j["step_us"].get<double>());
   return j;
 }
@@ -576,12 +595,12 @@ int runBench(BenchOptions opt) {
         if (!opt.json) {
           const auto& p = j["phase_us"];
           fmt::print("{:7} {:<51} {:>10.0f} steps/s  {:>2} muscles  floor x{}  reference x{}  cold {:.1f} s, cached start "
-                     "{:.2f} s; step {:.0f} us (muscles {:.0f}, springs/forces {:.0f}, skin {:.0f})\n",
+                     "{:.2f} s; step {:.0f} us (muscles {:.0f}, springs/forces {:.0f}, skin {:.0f}); read {:.0f} us\n",
                      head, row.label, j["steps_per_second"].get<double>(), j["muscles"].get<int>(),
                      ratioText(j["floor_ratio"], "{:.2f}"), ratioText(j["reference_ratio"], "{:.2e}"),
                      j["cold_precompute_seconds"].get<double>(), j["cached_start_seconds"].get<double>(),
                      p["total"].get<double>(), p["muscles"].get<double>(), p["springs"].get<double>(),
-                     p["channels"].get<double>());
+                     p["channels"].get<double>(), j["read_us"].get<double>());
         }
         results.push_back(std::move(j));
         continue;

@@ -128,6 +128,9 @@ void AnatomicalSimulator::step() {
   timings_.springs = t.force;   // the one skin's force assembly (the thesis's step 2 slot)
   timings_.channels = t.modal;
   timings_.total = clock.seconds();
+  // The bound needs no u = Φq (computed only when read): finite and below the limit, so is u.
+  const double bound = stepper_->displacementBound();
+  if (bound * (1.0 + 1e-12) < runawayLimit_ && std::isfinite(bound)) return;
   const MatX3& u = stepper_->displacement();
   const double worst = u.cwiseAbs().maxCoeff();
   if (worst < runawayLimit_ && u.allFinite()) return;
@@ -139,7 +142,7 @@ void AnatomicalSimulator::step() {
 }
 
 void AnatomicalSimulator::reset() {
-  stepper_ = std::make_unique<AnatomicalStepper>(face_->skinPtr());
+  stepper_->reset();
   steps_ = 0;
 }
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/mesh/closest_point.h"
@@ -241,6 +242,33 @@ MatX3 AnatomicalSkin::gravityPattern(int axis) const {
   MatX3 g = MatX3::Zero(head_.mesh.vertexCount(), 3);
   g.col(axis) = mass_;
   return g;
+}
+
+MatX AnatomicalSkin::modalLoadPatterns(const ModalBasis& basis) const {
+  const int n = head_.mesh.vertexCount();
+  const auto M = static_cast<Eigen::Index>(muscleLoads_.size());
+  const Eigen::Index cols = M + 3 + 3 * static_cast<Eigen::Index>(drags_.size());
+  // The patterns as one sparse 3n × cols matrix (a muscle's load and a drag touch few vertices),
+  // then one sparse-dense product with Φ.
+  std::vector<Triplet> trip;
+  for (Eigen::Index m = 0; m < M; ++m) {
+    const MatX3& f = muscleLoads_[static_cast<size_t>(m)];
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c)
+        if (f(i, c) != 0.0) trip.emplace_back(3 * i + c, static_cast<int>(m), f(i, c));
+  }
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) trip.emplace_back(3 * i + a, static_cast<int>(M) + a, mass_(i));
+  for (size_t k = 0; k < drags_.size(); ++k) {
+    const auto& vs = drags_[k].vertices;
+    for (int v : vs)
+      for (int a = 0; a < 3; ++a)
+        trip.emplace_back(3 * v + a, static_cast<int>(M + 3 + 3 * static_cast<Eigen::Index>(k)) + a,
+                          1.0 / static_cast<double>(vs.size()));
+  }
+  SparseMat S(3 * n, cols);
+  S.setFromTriplets(trip.begin(), trip.end());
+  return (S.transpose() * basis.Phi).transpose();
 }
 
 MatX3 AnatomicalSkin::dragPattern(const std::vector<int>& vertices, int axis) const {
@@ -580,7 +608,20 @@ AnatomicalStepper::AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin)
   const Eigen::Index m = static_cast<Eigen::Index>(skin_->muscles().size());
   level_ = VecX::Zero(m);
   levelRate_ = VecX::Zero(m);
-  force_ = MatX3::Zero(skin_->basis()->fullVertexCount, 3);
+  if (skin_->settings().warping) {
+    force_ = MatX3::Zero(skin_->basis()->fullVertexCount, 3);
+  } else {
+    loadModes_ = skin_->modalLoadPatterns(integrator_.basis());
+    loadCoords_ = VecX::Zero(loadModes_.cols());
+    modalForce_ = VecX::Zero(loadModes_.rows());
+  }
+}
+
+void AnatomicalStepper::reset() {
+  level_.setZero();
+  levelRate_.setZero();
+  integrator_.reset();
+  times_ = {};
 }
 
 void AnatomicalStepper::step(const SkinLoads& loads) {
@@ -595,8 +636,24 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     level_(m) += h * levelRate_(m);
   }
   times_.levels = clock.seconds();
-  // Reading (b): Σ level_m F_m + M(g − g_rest) + drags, built in place.
   const Vec3 dg = loads.gravity - skin_->gRest_;
+  if (!skin_->settings().warping) {
+    // f̃ = Φᵀ(Σ level_m F_m + M(g − g_rest) + drags) = loadModes_ [levels, g − g_rest, drags].
+    const Eigen::Index M = level_.size();
+    MYO_CHECK(M + 3 + 3 * static_cast<Eigen::Index>(loads.drags.size()) <= loadCoords_.size(),
+              "a drag added to the skin after its stepper was made");
+    loadCoords_.head(M) = level_;
+    loadCoords_.segment<3>(M) = dg;
+    loadCoords_.tail(loadCoords_.size() - M - 3).setZero();
+    for (size_t k = 0; k < loads.drags.size(); ++k)
+      loadCoords_.segment<3>(M + 3 + 3 * static_cast<Eigen::Index>(k)) = loads.drags[k];
+    modalForce_.noalias() = loadModes_ * loadCoords_;
+    times_.force = clock.seconds() - times_.levels;
+    integrator_.stepModal(modalForce_);
+    times_.modal = clock.seconds() - times_.levels - times_.force;
+    return;
+  }
+  // Reading (b): Σ level_m F_m + M(g − g_rest) + drags, built in place.
   const VecX& mass = skin_->mass_;
   for (Eigen::Index i = 0; i < force_.rows(); ++i) force_.row(i) = mass(i) * dg.transpose();
   for (Eigen::Index m = 0; m < level_.size(); ++m)

@@ -144,6 +144,7 @@ TEST(BenchCommand, FullRowsRunBothModelsSideBySide) {
     EXPECT_LT(row["cold_cache_hits"].get<int>(), row["cache_hits"].get<int>());
     for (const char* phase : {"muscles", "springs", "channels", "total"})
       EXPECT_GE(row["phase_us"][phase].get<double>(), 0.0) << phase;
+    EXPECT_GT(row["read_us"].get<double>(), 0.0);  // an output frame's positions
     // All loads active at the window's end: a floor and a full-space reference step for both models
     // (the anatomical one with its attachment and couplings' stiffness).
     const double floor = row["floor_ratio"].get<double>(), ref = row["reference_ratio"].get<double>();

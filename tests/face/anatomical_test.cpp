@@ -8,6 +8,7 @@
 #include <Eigen/SparseCholesky>
 #include <cstdlib>
 #include <memory>
+#include <sstream>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/anatomical_skin.h"
@@ -195,6 +196,40 @@ TEST(AnatomicalDefaultHead, GravityFaceDownAndFaceUpWithoutPins) {
     EXPECT_GE(g.cosine, 0.8) << name;
     EXPECT_LT(g.maxCm, 1.0) << name;
   }
+}
+
+// With linear modes the stepper forms the modal force from the load patterns reduced once
+// (AnatomicalSkin::modalLoadPatterns) and computes u = Φq when read; stepping the same basis with
+// the n×3 world force assembled and projected every step (the path before, kept for warping) gives
+// the same displacement to round-off.
+TEST(AnatomicalDefaultHead, TheReducedLoadStepIsTheAssembledForceStep) {
+  const auto skin = std::make_shared<const AnatomicalSkin>(loadDefaultHead(), thesisMuscleDefs(), AnatomicalSettings{},
+                                                           std::vector<DragSite>{{205, 1.0}}, nullptr);
+  ASSERT_FALSE(skin->settings().warping);
+  AnatomicalStepper fast(skin);
+  ModalWarpingIntegrator assembled(skin->basis(), fast.integrator().settings());
+  SkinLoads l;
+  l.activations = VecX::Zero(static_cast<Eigen::Index>(skin->muscles().size()));
+  for (Eigen::Index m = 0; m < l.activations.size(); ++m) l.activations(m) = 0.2 + 0.1 * static_cast<double>(m % 7);
+  l.gravity = gravityForPose(skin->head().frame(), Vec3(45.0, 10.0, 0.0), skin->settings().gravity);
+  l.drags = {Vec3(-2000.0, 600.0, 100.0)};
+  double worst = 0.0;
+  for (int k = 1; k <= 480; ++k) {
+    if (k == 240) l.activations.setZero();  // and let go: the levels fall back
+    fast.step(l);
+    SkinLoads now = l;
+    now.activations = fast.muscleLevels();  // the levels this step's force used
+    assembled.step(skin->worldLoad(now));
+    if (k % 60 == 0) {
+      const double err = relativeError(fast.displacement(), assembled.freeDisplacement());
+      worst = std::max(worst, err);
+      EXPECT_LE(err, 1e-10) << "step " << k;
+    }
+  }
+  std::ostringstream os;
+  os << std::scientific << worst;
+  RecordProperty("reduced_vs_assembled", os.str());
+  EXPECT_GT(assembled.freeDisplacement().rowwise().norm().maxCoeff(), 1e-3);  // cm: it moved
 }
 
 TEST_F(AnatomicalIct, SettledShapeIsLinearInTheActivation) {

@@ -188,6 +188,10 @@ class AnatomicalSkin {
   bool fitsSkin(const ModalBasis& b) const;  // a cached basis's sizes and masses fit this skin
   ModalBasis buildHeldBasis() const;          // from scratch (sets builder_)
   void ensureHeldBasis() const;               // read through heldReader_, else rebuilt
+  // Φᵀ[F_1 … F_M, M·ê_x, M·ê_y, M·ê_z, drag 1's ê_x, ê_y, ê_z spread, …] (d × (M + 3 + 3·drags)):
+  // every load pattern reduced once, so that a linear step's modal force is this times the loads'
+  // coordinates (levels, g − g_rest, drag forces).
+  MatX modalLoadPatterns(const ModalBasis& basis) const;
   MatX3 gravityPattern(int axis) const;                 // M·ê_axis
   MatX3 dragPattern(const std::vector<int>& vertices, int axis) const;  // ê_axis spread evenly
   Head head_;
@@ -229,16 +233,29 @@ class AnatomicalSkin {
 // critically damped second-order response at the muscle's natural frequency (its one mode), the
 // skin with the per-mode exact stepper of modal_warping. Gravity reading (b). step() allocates
 // nothing.
+//
+// Linear modes (warping off, the default): the loads are fixed patterns scaled by the levels,
+// g − g_rest and the drag forces, so the modal force ΦᵀF is the product of their reduced patterns
+// (AnatomicalSkin::modalLoadPatterns, d × (M + 3 + 3·drags), made once) with those coordinates:
+// a step reads no basis row and builds no n×3 force; u = Φq is computed when displacement() is
+// read. Warped: the n×3 force is assembled and rotated per vertex (ModalWarpingIntegrator::step).
 class AnatomicalStepper {
  public:
   explicit AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin);
   // Advances one dt under the loads (activation targets, gravity, drag forces).
   void step(const SkinLoads& loads);
-  const MatX3& displacement() const { return integrator_.freeDisplacement(); }  // n×3, cm
+  // n×3, cm. Linear modes: the first read after a step computes u = Φq (one pass over the basis).
+  const MatX3& displacement() const { return integrator_.freeDisplacement(); }
+  // A bound of every coordinate of displacement() (cm), without computing it
+  // (ModalWarpingIntegrator::displacementBound).
+  double displacementBound() const { return integrator_.displacementBound(); }
   const VecX& muscleLevels() const { return level_; }
   bool isAtRest(double tol) const;
-  // Wall time of the last step's phases (s): the activation levels, the n×3 force assembly
-  // (muscle loads, gravity, drags), the modal step (Φᵀf, the per-mode update, u = Φq).
+  // Back to rest (levels, q, q̇ and u zero), as a new stepper on the same skin.
+  void reset();
+  // Wall time of the last step's phases (s): the activation levels, the force (linear: the modal
+  // force from the reduced patterns; warped: the n×3 assembly of muscle loads, gravity, drags), the
+  // modal step (the per-mode update; warped also Φᵀ R(Ψq)ᵀ f and u = R̃Φq).
   struct Times {
     double levels = 0.0, force = 0.0, modal = 0.0;
   };
@@ -251,7 +268,10 @@ class AnatomicalStepper {
   Times times_;
   ModalWarpingIntegrator integrator_;
   VecX level_, levelRate_;
-  MatX3 force_;
+  MatX3 force_;         // warped: the n×3 world force (empty with linear modes)
+  MatX loadModes_;      // linear: the skin's modalLoadPatterns for the integrator's basis
+  VecX loadCoords_;     // linear: [levels, g − g_rest, drag forces]
+  VecX modalForce_;     // linear: f̃ = loadModes_ · loadCoords_ (d)
 };
 
 }  // namespace myo

@@ -73,11 +73,23 @@ class ModalWarpingIntegrator {
   void step(const MatX3& freeForce);
   // A step without force (free vibration / relaxation).
   void step();
+  // Advances one step under a force already projected, f̃ = ΦᵀF (d, dyn·g^-1/2): the same per-mode
+  // update as step(F). Linear integrators only (warping off: f̃ does not depend on q, so a caller
+  // can form it from precomputed ΦᵀF of fixed load patterns). Does not touch the basis: u = Φq is
+  // computed when it is next read (freeDisplacement, addDisplacementTo).
+  void stepModal(const VecX& modalForce);
 
   const VecX& q() const { return q_; }        // d, cm·g^1/2
   const VecX& qdot() const { return v_; }     // d, cm·g^1/2/s
-  // The current displacement of the free vertices, f×3 (cm).
-  const MatX3& freeDisplacement() const { return u_; }
+  // The current displacement of the free vertices, f×3 (cm). After stepModal the first read
+  // computes it (one pass over the basis), so two threads must not make that first read at once.
+  const MatX3& freeDisplacement() const {
+    if (stale_) updateDisplacement();
+    return u_;
+  }
+  // A bound of every coordinate of the displacement, max_i ‖Φ_i‖_F ‖q‖₂ (cm, Φ_i the vertex's 3×d
+  // rows), without computing it (the warp R̃ is an average of rotations: it does not lengthen).
+  double displacementBound() const { return rowNormMax_ * q_.norm(); }
   // Adds the displacement into a full-mesh field (n×3, cm); rows of pinned vertices untouched.
   void addDisplacementTo(MatX3& full) const;
   // The current per-vertex rotation vectors w = Ψq, free f×3 (rad) (zeros when warping is off).
@@ -116,7 +128,8 @@ class ModalWarpingIntegrator {
  private:
   struct Kernel;  // precision-specific interleaved basis and scratch buffers
   void computeCoefficients();
-  void updateDisplacement();
+  void updateDisplacement() const;
+  void advance(const VecX& modalForce);  // the per-mode update of q and q̇ under f̃
 
   std::shared_ptr<const ModalBasis> basis_;
   ModalWarpingSettings settings_;
@@ -125,7 +138,9 @@ class ModalWarpingIntegrator {
   // Per-mode step coefficients (Exact): q⁺ = a q + b v + g f, v⁺ = c q + e v + k f.
   VecX ca_, cb_, cg_, cc_, ce_, ck_;
   VecX lambdaEff_, damping_;  // sλ_j and c_j
-  MatX3 u_;
+  mutable MatX3 u_;
+  mutable bool stale_ = false;  // u_ (and the kernel's Φq) lag q_ (after stepModal)
+  double rowNormMax_ = 0.0;     // max_i ‖Φ_i‖_F
   std::unique_ptr<Kernel> kernel_;
 };
 
