@@ -62,3 +62,27 @@ def test_write_obj_round_trip(face, tmp_path):
     path = tmp_path / "frown.obj"
     myoshell.write_obj(str(path), face, shape)
     assert np.array_equal(read_obj_vertices(path), shape)
+
+
+def test_simulators_on_one_face_step_in_threads(face):
+    """step() runs without the GIL: two simulators of one face in two threads give the serial results."""
+    import threading
+
+    settings = [{"zygomaticus_major_left": 0.9}, {"depressor_anguli_oris_right": 0.5, "corrugator_supercilii_left": 1.0}]
+
+    def run(activations, out, index):
+        sim = myoshell.Simulator(face)
+        sim.set_activations(activations)
+        sim.step(48)
+        out[index] = sim.positions()
+
+    serial, parallel = [None, None], [None, None]
+    for i, a in enumerate(settings):
+        run(a, serial, i)
+    threads = [threading.Thread(target=run, args=(a, parallel, i)) for i, a in enumerate(settings)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i in range(2):
+        assert np.array_equal(parallel[i], serial[i])

@@ -61,3 +61,20 @@ def test_fit_equals_cli(face, cli, cache_dir, tmp_path):
     exact = face.fit(face.pose(used), sparsity=0.0)["activations"]
     for name in face.muscle_names:
         assert abs(exact[name] - used.get(name, 0.0)) < 1e-6, name
+
+
+def test_turned_head_and_jaw_equal_cli_run(face, cli, cache_dir, tmp_path):
+    scene = dict(SCENE, name="turned")
+    scene["timeline"] = dict(SCENE["timeline"], head_pose=[{"t": 0.0, "value": [60, 20, 0]}],
+                             jaw={"open": [{"t": 0.0, "value": 15}], "forward": [{"t": 0.0, "value": 0.3}]})
+    path = tmp_path / "turned.json"
+    path.write_text(json.dumps(scene))
+    cli("run", path, "--out", tmp_path / "run", "--cache", cache_dir)
+    frame = read_obj_vertices(tmp_path / "run" / "obj" / "turned_0003.obj")
+
+    sim = myoshell.Simulator(face)
+    sim.set_activation("zygomaticus_major_left", 0.6)
+    sim.set_head_pose(60, 20, 0)
+    sim.set_jaw(15, 0.3)
+    sim.step(24)
+    assert np.array_equal(sim.positions(), frame)
