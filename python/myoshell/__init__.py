@@ -13,23 +13,27 @@ from ._myoshell import (
     Face,
     Head,
     InputError,
+    Rig,
     ScenePlayer,
     SimulationError,
     Simulator,
     load_head,
     muscle_names,
+    read_rig,
 )
 
 __all__ = [
     "Face",
     "Head",
     "InputError",
+    "Rig",
     "ScenePlayer",
     "SimulationError",
     "Simulator",
     "load_head",
     "muscle_names",
     "pose",
+    "read_rig",
     "write_obj",
 ]
 

@@ -46,5 +46,6 @@ void bindHeads(py::module_& m);
 void bindFace(py::module_& m);
 void bindSimulator(py::module_& m);
 void bindScenePlayer(py::module_& m);
+void bindRigs(py::module_& m);
 
 }  // namespace myo::python

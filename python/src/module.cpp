@@ -8,4 +8,5 @@ PYBIND11_MODULE(_myoshell, m) {
   myo::python::bindFace(m);
   myo::python::bindSimulator(m);
   myo::python::bindScenePlayer(m);
+  myo::python::bindRigs(m);
 }
