@@ -28,8 +28,14 @@ NamedValues namedValues(const py::object& activations) {
   NamedValues values;
   if (activations.is_none()) return values;
   if (!py::isinstance<py::dict>(activations)) throw InputError("activations: expected a dict muscle name -> value");
-  for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(activations))
-    values.emplace_back(py::str(key).cast<std::string>(), value.cast<double>());
+  for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(activations)) {
+    const std::string name = py::str(key).cast<std::string>();
+    try {
+      values.emplace_back(name, value.cast<double>());
+    } catch (const py::cast_error&) {
+      throw InputError("activations: the value of '" + name + "' is not a number");
+    }
+  }
   return values;
 }
 
@@ -84,6 +90,15 @@ std::shared_ptr<FaceHandle> buildFace(std::shared_ptr<const HeadHandle> head, co
   handle->face = std::make_shared<const AnatomicalFace>(head->head, muscles, AnatomicalSettings{}, std::vector<DragDef>{},
                                                         gravity, handle->cache.get());
   return handle;
+}
+
+// A basis that could not be kept is no error (the next build computes it again), but say so once,
+// as the command line does.
+void warnIfNotKept(const FaceHandle& face) {
+  const auto* files = dynamic_cast<const FileBasisCache*>(face.cache.get());
+  if (files && !files->lastStoreError().empty())
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, ("the basis cache keeps nothing: " + files->lastStoreError()).c_str(), 1) != 0)
+      throw py::error_already_set();  // warnings turned into errors
 }
 
 // `myoshell pose`: the static equilibrium under the activations, gravity (turned with the head pose)
@@ -185,7 +200,9 @@ The anatomical face (docs/anatomical_model.md) on a head: the skin held by the s
 a library, gravity; the face `myoshell pose` and `myoshell fit` build.)doc")
       .def(py::init([](const std::shared_ptr<HeadHandle>& head, const std::string& library,
                        const std::optional<std::vector<std::string>>& muscles, const py::object& cache, bool gravity) {
-             return buildFace(head, library, muscles.value_or(std::vector<std::string>{}), cache, gravity);
+             auto face = buildFace(head, library, muscles.value_or(std::vector<std::string>{}), cache, gravity);
+             warnIfNotKept(*face);
+             return face;
            }),
            py::arg("head") = py::none(), py::arg("library") = "builtin", py::arg("muscles") = py::none(),
            py::arg("cache") = py::none(), py::arg("gravity") = true, R"doc(

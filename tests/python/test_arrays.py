@@ -86,3 +86,10 @@ def test_simulators_on_one_face_step_in_threads(face):
         t.join()
     for i in range(2):
         assert np.array_equal(parallel[i], serial[i])
+
+
+def test_module_pose_builds_the_same_face(face, cache_dir):
+    used = {"depressor_labii_inferioris_left": 0.7}
+    assert np.array_equal(myoshell.pose(used, cache=cache_dir, head_pose=(0, 45, 0)),
+                          face.pose(used, head_pose=(0, 45, 0)))
+    assert myoshell.Face(cache=cache_dir).basis_from_cache

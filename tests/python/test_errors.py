@@ -61,3 +61,5 @@ def test_bad_shapes_and_ranges(face, tmp_path):
         face.fit(face.rest_positions(), align="affine")
     with pytest.raises(myoshell.InputError):
         myoshell.Simulator(face).step(-1)
+    with pytest.raises(myoshell.InputError, match="is not a number"):
+        face.pose({"zygomaticus_major_left": "much"})
