@@ -1,5 +1,6 @@
 """Results equal the command line's: pose against `myoshell pose --out` (its OBJ prints round-trip
-text, so equal means bit for bit), stepping against `myoshell run`, fit against `myoshell fit`."""
+text, so equal means bit for bit), stepping against `myoshell run`, fit (a shape, markers) against
+`myoshell fit`."""
 import json
 
 import numpy as np
@@ -78,3 +79,15 @@ def test_turned_head_and_jaw_equal_cli_run(face, cli, cache_dir, tmp_path):
     sim.set_jaw(15, 0.3)
     sim.step(24)
     assert np.array_equal(sim.positions(), frame)
+
+
+def test_marker_fit_equals_cli(face, cli, cache_dir, tmp_path):
+    shape = face.pose({"zygomaticus_major_left": 0.8, "depressor_anguli_oris_right": 0.4})
+    vertices = sorted(set(face.head.landmarks().values()))
+    markers = {v: tuple(shape[v]) for v in vertices}
+    path = tmp_path / "markers.json"
+    path.write_text(json.dumps({"units": "cm", "markers": [{"vertex": v, "position": list(p)} for v, p in markers.items()]}))
+    result = json.loads(cli("fit", path, "--align", "rigid", "--json", "--cache", cache_dir).stdout)
+    python = face.fit(markers=markers, align="rigid")
+    assert python["activations"] == result["activations"]
+    assert python["rms_mm"] == result["rms_mm"] and python["compared_vertices"] == result["compared_vertices"]
