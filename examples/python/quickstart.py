@@ -8,7 +8,7 @@ import numpy as np
 
 import myoshell
 
-# The skin's basis is kept where the command line keeps it: the second run builds in about a second.
+# The skin's basis is kept where the command line keeps it: a second run skips the basis computation.
 cache = os.environ.get("MYOSHELL_CACHE") or os.path.expanduser("~/.cache/myoshell")
 head = myoshell.load_head()                      # the built-in head, cm
 face = myoshell.Face(head, cache=cache)          # the anatomical face with the thesis's eight muscles

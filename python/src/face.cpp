@@ -85,7 +85,7 @@ std::shared_ptr<FaceHandle> buildFace(std::shared_ptr<const HeadHandle> head, co
   handle->head = head;
   if (!cacheDir.is_none()) handle->cache = std::make_shared<FileBasisCache>(cacheDir.cast<fs::path>());
   const std::vector<MuscleDef> muscles = libraryMuscles(library, use);
-  py::gil_scoped_release unlocked;  // ~10 s without a cached basis
+  py::gil_scoped_release unlocked;  // seconds without a cached basis
   // As buildSceneFace for a scene with only this head: default anatomical settings, no drags.
   handle->face = std::make_shared<const AnatomicalFace>(head->head, muscles, AnatomicalSettings{}, std::vector<DragDef>{},
                                                         gravity, handle->cache.get());
@@ -210,7 +210,8 @@ Builds the face on `head` (a Head from load_head(); default the built-in head).
 library: 'builtin' (the thesis's eight muscles), 'face' (the whole face) or a library file.
 muscles: a list of the library's names to use (default all).
 cache: a basis cache folder (made if missing; the command line's is ~/.cache/myoshell): a build
-  whose basis it holds takes about a second instead of about ten. None: computed, not kept.
+  whose basis it holds skips the basis computation (on the built-in head 0.2 s instead of 3 s).
+  None: computed, not kept.
 gravity: False builds the face without any gravity load.)doc")
       .def_property_readonly("head", [](const FaceHandle& f) { return std::const_pointer_cast<HeadHandle>(f.head); })
       .def_property_readonly("muscle_names", [](const FaceHandle& f) {
