@@ -4,7 +4,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup configure build test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
+.PHONY: all setup configure build python test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
 
 all: build
 
@@ -16,6 +16,10 @@ configure: setup
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The Python module alone, into $(BUILD_DIR)/python/myoshell (docs/python.md); `make test` runs its tests.
+python: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target _myoshell
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

@@ -29,5 +29,7 @@ function(myo_add_layer name)
     $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
   target_link_libraries(myo_${name} PUBLIC ${ARGN})
   target_compile_options(myo_${name} PRIVATE -Wall -Wextra)
+  # Position-independent, so the layers also link into shared objects: the Python module (python/).
+  set_target_properties(myo_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   myo_precompile(myo_${name} layer)
 endfunction()

@@ -1,0 +1,51 @@
+// What the binding files share: the objects Python holds (a head with the files it came from, a
+// built face), NumPy conversions, and each file's bind function (module.cpp calls them in order).
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+
+#include "myoshell/core/types.h"
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/head.h"
+#include "myoshell/reduce/basis_cache.h"
+
+namespace myo::python {
+
+namespace py = pybind11;
+
+// A loaded head and where it came from: writing a shape back needs the OBJ file and its unit.
+struct HeadHandle {
+  Head head;              // in cm
+  std::string obj;        // the OBJ file; "" for the built-in head
+  LengthUnit unit = LengthUnit::cm;  // the unit the OBJ is written in
+};
+
+// A built anatomical face (the model a scene with only this head would build) and its head.
+struct FaceHandle {
+  std::shared_ptr<const HeadHandle> head;
+  std::shared_ptr<const AnatomicalFace> face;
+  std::shared_ptr<BasisCache> cache;  // kept for the face's lifetime (null: none)
+};
+
+// NumPy copies of the library's n×3 arrays: float64 (n, 3) and int32 (m, 3).
+py::array_t<double> toNumpy(const MatX3& m);
+py::array_t<int> toNumpy(const MatX3i& m);
+// An (n, 3) array-like of finite numbers as an n×3 matrix; `rows` < 0 accepts any n. InputError
+// naming `what` for another shape or a non-finite value.
+MatX3 toMatX3(const py::handle& array, const std::string& what, Eigen::Index rows = -1);
+
+// Writes `positions` (n×3, cm) as an OBJ in the head's own unit, as `myoshell pose --out` does.
+void writeHeadObj(const HeadHandle& head, const std::string& path, const MatX3& positions);
+
+void bindErrors(py::module_& m);
+void bindHeads(py::module_& m);
+void bindFace(py::module_& m);
+void bindSimulator(py::module_& m);
+void bindScenePlayer(py::module_& m);
+void bindRigs(py::module_& m);
+
+}  // namespace myo::python
