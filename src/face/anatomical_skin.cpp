@@ -224,6 +224,7 @@ void AnatomicalSkin::ensureHeldBasis() const {
 // muscle's coordinate q_m = 1), 1 when muscles are held.
 void AnatomicalSkin::setMuscleStrengths() {
   muscleLoads_ = couplingLoads_;
+  strength_ = VecX::Ones(static_cast<Eigen::Index>(muscles_.size()));
   const ModalBasis& B = *basis_;
   const bool released = releaseColumns_.cols() > 0;
   if (B.modeCount() == 0 || muscles_.empty() || (!released && settings_.strength == StrengthRule::MuscleShortens)) return;
@@ -235,6 +236,7 @@ void AnatomicalSkin::setMuscleStrengths() {
     const double alpha = settings_.strength == StrengthRule::SkinFollows ? shapeEnergy_(mi) / cKc
                                                                          : 1.0 / (1.0 + release_(mi) * cKc);
     muscleLoads_[m] = alpha * couplingLoads_[m];
+    strength_(mi) = alpha;
   }
 }
 
@@ -244,19 +246,15 @@ MatX3 AnatomicalSkin::gravityPattern(int axis) const {
   return g;
 }
 
-MatX AnatomicalSkin::modalLoadPatterns(const ModalBasis& basis) const {
+// The skin's load patterns as one sparse 3n × (M + 3 + 3·drags) matrix (a muscle's pull and a drag
+// touch few vertices): each muscle's coupling pull c_m (its load at strength 1), M·ê_x, M·ê_y, M·ê_z,
+// each drag's ê_x, ê_y, ê_z spread over its vertices.
+SparseMat AnatomicalSkin::loadPatternColumns() const {
   const int n = head_.mesh.vertexCount();
-  const auto M = static_cast<Eigen::Index>(muscleLoads_.size());
-  const Eigen::Index cols = M + 3 + 3 * static_cast<Eigen::Index>(drags_.size());
-  // The patterns as one sparse 3n × cols matrix (a muscle's load and a drag touch few vertices),
-  // then one sparse-dense product with Φ.
+  const Eigen::Index M = couplingColumns_.cols();
   std::vector<Triplet> trip;
-  for (Eigen::Index m = 0; m < M; ++m) {
-    const MatX3& f = muscleLoads_[static_cast<size_t>(m)];
-    for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c)
-        if (f(i, c) != 0.0) trip.emplace_back(3 * i + c, static_cast<int>(m), f(i, c));
-  }
+  for (Eigen::Index m = 0; m < M; ++m)
+    for (SparseMat::InnerIterator it(couplingColumns_, m); it; ++it) trip.emplace_back(it.row(), static_cast<int>(m), it.value());
   for (int i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) trip.emplace_back(3 * i + a, static_cast<int>(M) + a, mass_(i));
   for (size_t k = 0; k < drags_.size(); ++k) {
@@ -266,9 +264,15 @@ MatX AnatomicalSkin::modalLoadPatterns(const ModalBasis& basis) const {
         trip.emplace_back(3 * v + a, static_cast<int>(M + 3 + 3 * static_cast<Eigen::Index>(k)) + a,
                           1.0 / static_cast<double>(vs.size()));
   }
-  SparseMat S(3 * n, cols);
+  SparseMat S(3 * n, M + 3 + 3 * static_cast<Eigen::Index>(drags_.size()));
   S.setFromTriplets(trip.begin(), trip.end());
-  return (S.transpose() * basis.Phi).transpose();
+  return S;
+}
+
+MatX AnatomicalSkin::modalLoadPatterns(const ModalBasis& basis) const {
+  MatX P = (loadPatternColumns().transpose() * basis.Phi).transpose();
+  for (Eigen::Index m = 0; m < strength_.size(); ++m) P.col(m) *= strength_(m);  // F_m = α_m c_m
+  return P;
 }
 
 MatX3 AnatomicalSkin::dragPattern(const std::vector<int>& vertices, int axis) const {
@@ -290,7 +294,6 @@ void AnatomicalSkin::buildReleaseColumns() {
   const int n = head_.mesh.vertexCount();
   const auto M = static_cast<Eigen::Index>(muscles_.size());
   release_.resize(0);
-  axialColumn_.clear();
   acrossColumns_ = 0;
   shapeEnergy_ = VecX::Zero(M);
   std::vector<Triplet> pulls;  // c_m = K_c,m w, column m
@@ -329,7 +332,6 @@ void AnatomicalSkin::buildReleaseColumns() {
     const double kappa = settings_.relaxedMuscleModulus * area * sigma * sigma * cm.muscle.restLength;
     release_(m) = 1.0 / (kappa + s);
     rho[static_cast<size_t>(m)] = s / (s + kappa);
-    axialColumn_.push_back(m);
     const double root = std::sqrt(s);
     for (size_t i = 0; i < ns; ++i)
       for (int c = 0; c < 3; ++c)
@@ -403,14 +405,8 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
     lambda = lam;
   } else {
     const Eigen::Index dModes = std::min<Eigen::Index>(ritz_.modes.modeCount, Kr.rows());
-    const Eigen::Index nPatterns = M + 3 + 3 * static_cast<Eigen::Index>(drags_.size());
-    MatX patterns(P.rows(), nPatterns);
-    for (Eigen::Index m = 0; m < M; ++m)  // Φᵀc_m = √s_m P e_m: the muscles' load patterns
-      patterns.col(m) = std::sqrt(shapeEnergy_(m)) * P.col(axialColumn_[static_cast<size_t>(m)]);
-    for (int a = 0; a < 3; ++a) patterns.col(M + a) = held.Phi.transpose() * flat(gravityPattern(a));
-    for (size_t k = 0; k < drags_.size(); ++k)
-      for (int a = 0; a < 3; ++a)
-        patterns.col(M + 3 + 3 * static_cast<Eigen::Index>(k) + a) = held.Phi.transpose() * flat(dragPattern(drags_[k].vertices, a));
+    const MatX patterns = (loadPatternColumns().transpose() * held.Phi).transpose();
+    const Eigen::Index nPatterns = patterns.cols();
     MatX Y(P.rows(), dModes + nPatterns);
     Y.leftCols(dModes) = Z.leftCols(dModes);
     Y.rightCols(nPatterns) = solveKr(patterns);

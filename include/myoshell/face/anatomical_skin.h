@@ -192,6 +192,7 @@ class AnatomicalSkin {
   // every load pattern reduced once, so that a linear step's modal force is this times the loads'
   // coordinates (levels, g − g_rest, drag forces).
   MatX modalLoadPatterns(const ModalBasis& basis) const;
+  SparseMat loadPatternColumns() const;  // [c_m, M·ê_x,y,z, drags' ê_x,y,z] (3n × (M + 3 + 3·drags))
   MatX3 gravityPattern(int axis) const;                 // M·ê_axis
   MatX3 dragPattern(const std::vector<int>& vertices, int axis) const;  // ê_axis spread evenly
   Head head_;
@@ -204,9 +205,9 @@ class AnatomicalSkin {
   VecX release_;                       // γ_m (empty when muscles are held)
   VecX shapeEnergy_;                   // s_m = Σ k_i |w_i|², the couplings' stiffness along the shape
   SparseMat couplingColumns_;          // [c_m], 3n × M
-  SparseMat releaseColumns_;           // C̃ = [C̃_m], 3n × R
+  VecX strength_;                      // α_m: muscleLoads_[m] = α_m c_m
+  SparseMat releaseColumns_;           // C̃ = [C̃_m], 3n × R: the M shapes' columns first, then the across ones
   VecX releaseRho_;                    // ρ per column: s_m/(s_m + κ_m)
-  std::vector<Eigen::Index> axialColumn_;  // per muscle: its shape's column in C̃
   int acrossColumns_ = 0;              // columns beyond the muscles' shapes (0: nothing to cut back)
   mutable std::vector<MatX3> heldCouplingResponses_;  // K̂⁻¹C̃_j, for linearFullResponse
   struct Drag {
