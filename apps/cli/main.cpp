@@ -5,11 +5,13 @@
 #include <exception>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "command.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/io_error.h"
+#include "myoshell/core/parallel.h"
 
 namespace myo::cli {
 
@@ -43,6 +45,17 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
       if (std::find(before.begin(), before.end(), sub) == before.end()) runners[sub] = run;
   }
+  // --threads on the commands that build a face (its eigen-solves and static responses) or fit many
+  // targets: every hardware thread by default. The output is the same bytes for every N
+  // (core/parallel.h); `bench` measures the single-threaded step and keeps its own option.
+  int threads = 0;
+  const std::vector<std::string> threaded{"drive", "fit", "fit-rig", "pose", "render", "rig", "run"};
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    if (std::find(threaded.begin(), threaded.end(), sub->get_name()) != threaded.end())
+      sub->add_option("--threads", threads,
+                      "Threads for the precompute and independent work (0 = every hardware thread, the default; "
+                      "the output does not depend on it)")
+          ->check(CLI::NonNegativeNumber);
 
   // A first word that is neither an option nor a command: say so by name (CLI11 would only say
   // that a subcommand is required).
@@ -62,6 +75,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    myo::setParallelThreads(threads);
     for (CLI::App* sub : app.get_subcommands())
       if (auto it = runners.find(sub); it != runners.end()) return it->second();
     fmt::print(stderr, "myoshell: no command given (see --help)\n");

@@ -189,16 +189,15 @@ bool AnatomicalSkin::fitsSkin(const ModalBasis& b) const {
 ModalBasis AnatomicalSkin::buildHeldBasis() const {
   Stopwatch clock;
   builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_);
-  for (const MatX3& f : couplingLoads_) builder_->addLoad(f);
-  for (int a = 0; a < 3; ++a) builder_->addLoad(gravityPattern(a));  // gravity along x, y, z: M·ê_a
+  std::vector<MatX3> loads = couplingLoads_;
+  for (int a = 0; a < 3; ++a) loads.push_back(gravityPattern(a));  // gravity along x, y, z: M·ê_a
   // The across columns' responses, so that the release stays exact in the basis (Woodbury).
-  for (int j = 0; j < acrossColumns_; ++j) {
-    const VecX col = releaseColumns_.col(releaseColumns_.cols() - acrossColumns_ + j);
-    builder_->addLoad(rows3(col));
-  }
+  for (int j = 0; j < acrossColumns_; ++j)
+    loads.push_back(rows3(VecX(releaseColumns_.col(releaseColumns_.cols() - acrossColumns_ + j))));
+  builder_->addLoads(loads);
   builder_->diagonalize();
   for (const Drag& d : drags_) {
-    for (int a = 0; a < 3; ++a) builder_->addLoad(dragPattern(d.vertices, a));
+    builder_->addLoads({dragPattern(d.vertices, 0), dragPattern(d.vertices, 1), dragPattern(d.vertices, 2)});
     builder_->diagonalize();
   }
   ModalBasis b = builder_->basis();
@@ -471,7 +470,7 @@ int AnatomicalSkin::addDrag(int vertex, double radius, double* seconds) {
   Stopwatch clock;
   Drag d{dragVertices(vertex, radius)};
   RitzBasisBuilder& b = builder();
-  for (int a = 0; a < 3; ++a) b.addLoad(dragPattern(d.vertices, a));
+  b.addLoads({dragPattern(d.vertices, 0), dragPattern(d.vertices, 1), dragPattern(d.vertices, 2)});
   b.diagonalize();
   heldBasis_ = std::make_shared<const ModalBasis>(b.basis());
   drags_.push_back(std::move(d));  // before the release: its cut-back basis keeps the drag's responses

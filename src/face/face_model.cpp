@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <Eigen/SparseCholesky>
+#include <atomic>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
 #include "myoshell/face/simulator.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/mesh/closest_point.h"
@@ -78,6 +82,24 @@ ModalBasis staticShapeMode(const ModalBasis& full, const DiscreteShell& shell, c
   return one;
 }
 
+// A cache reached from several threads, one call at a time.
+class SerializedBasisCache final : public BasisCache {
+ public:
+  explicit SerializedBasisCache(BasisCache* inner) : inner_(inner) {}
+  std::optional<ModalBasis> load(const BasisKey& key) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return inner_->load(key);
+  }
+  void store(const BasisKey& key, const ModalBasis& basis) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    inner_->store(key, basis);
+  }
+
+ private:
+  BasisCache* inner_;
+  std::mutex mutex_;
+};
+
 ModalSettings modalSettings(int modes) {
   ModalSettings s;
   s.modeCount = modes;
@@ -95,9 +117,13 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
   Stopwatch clock;
   const int n = head_.mesh.vertexCount();
   const MatX3& skinRest = head_.mesh.V;
+  // The bases are solved on parallelThreads() (core/parallel.h); the cache is reached by one thread
+  // at a time (it need not be thread-safe).
+  SerializedBasisCache sharedCache(cache);
+  std::atomic<int> cacheHits{0};
   auto solve = [&](const DiscreteShell& shell, const std::vector<int>& pins, int modes) {
-    ModalBasis b = computeModalBasis(shell, pins, modalSettings(modes), cache);
-    if (b.fromCache) ++cacheHits_;
+    ModalBasis b = computeModalBasis(shell, pins, modalSettings(modes), cache ? &sharedCache : nullptr);
+    if (b.fromCache) ++cacheHits;
     return b;
   };
   auto complement = [n](const std::vector<int>& keep) {
@@ -109,11 +135,15 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     return out;
   };
 
-  for (const MuscleDef& def : defs) {
+  for (const MuscleDef& def : defs)
     if (def.isRing())
       throw InputError("muscle '" + def.name + "': a ring muscle (a sphincter) is played by the anatomical model only "
                        "(\"model\": \"anatomical\"); the thesis's muscles are linear");
-    MuscleUnit unit;
+  // Each muscle's unit (its shell, eigen-solve, stretch mode, springs, ROI) is independent of the others.
+  muscles_.resize(defs.size());
+  parallelFor(static_cast<std::int64_t>(defs.size()), [&](std::int64_t index) {
+    const MuscleDef& def = defs[static_cast<size_t>(index)];
+    MuscleUnit& unit = muscles_[static_cast<size_t>(index)];
     unit.muscle = buildMuscle(def, head_);
     const TriMesh& mm = unit.muscle.mesh;
     unit.shell = std::make_shared<const DiscreteShell>(mm.V, mm.F, buildEdgeTable(mm.F, mm.vertexCount()),
@@ -188,8 +218,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     }
     for (int v = 0; v < n; ++v)
       if (inRoi[static_cast<size_t>(v)]) unit.roi.push_back(v);
-    muscles_.push_back(std::move(unit));
-  }
+  });
 
   // Skin channels: one per muscle (non-ROI pinned), gravity, one per drag (eq. 20–25). The skin's
   // K is assembled once for all the load-participation reports.
@@ -199,13 +228,28 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     if (load.squaredNorm() == 0.0) return 0.0;
     return loadParticipation(basis, restrictToFree(skinK, basis.freeVertices, n), load).ratio;
   };
+  for (const DragDef& drag : settings_.drags)
+    if (drag.vertex < 0 || drag.vertex >= n)
+      throw InputError("drag '" + drag.name + "': vertex " + std::to_string(drag.vertex) + " is outside [0, " +
+                       std::to_string(n) + ")");
+  // Every channel's pins (muscles' ROI complements, gravity's, the drags'), then their bases in parallel.
+  std::vector<std::vector<int>> channelPins;
+  for (const MuscleUnit& unit : muscles_) channelPins.push_back(complement(unit.roi));
+  if (settings_.gravity) channelPins.push_back(gravityPins());
+  for (const DragDef& drag : settings_.drags) channelPins.push_back(drag.pins.empty() ? gravityPins() : drag.pins);
+  std::vector<std::shared_ptr<const ModalBasis>> channelBases(channelPins.size());
+  parallelFor(static_cast<std::int64_t>(channelPins.size()), [&](std::int64_t c) {
+    channelBases[static_cast<size_t>(c)] =
+        std::make_shared<const ModalBasis>(solve(skin_, channelPins[static_cast<size_t>(c)], settings_.skinModes));
+  });
+  size_t nextBasis = 0;
   for (size_t m = 0; m < muscles_.size(); ++m) {
     MuscleUnit& unit = muscles_[m];
     SkinChannel ch;
     ch.name = unit.muscle.def.name;
     ch.kind = ChannelKind::Muscle;
     ch.source = static_cast<int>(m);
-    ch.basis = std::make_shared<const ModalBasis>(solve(skin_, complement(unit.roi), settings_.skinModes));
+    ch.basis = channelBases[nextBasis++];
     const std::vector<int> toFree = ch.basis->fullToFree();
     // The typical load: the springs' pull when the muscle sits at its a = 1 static state.
     MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
@@ -223,7 +267,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     SkinChannel ch;
     ch.name = "gravity";
     ch.kind = ChannelKind::Gravity;
-    ch.basis = std::make_shared<const ModalBasis>(solve(skin_, gravityPins(), settings_.skinModes));
+    ch.basis = channelBases[nextBasis++];
     MatX3 load = MatX3::Zero(ch.basis->freeCount(), 3);
     load.col(1) = -settings_.gravityAcceleration * ch.basis->freeMass;
     ch.loadParticipation = participation(*ch.basis, load);
@@ -232,15 +276,11 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
   }
   for (size_t d = 0; d < settings_.drags.size(); ++d) {
     const DragDef& drag = settings_.drags[d];
-    if (drag.vertex < 0 || drag.vertex >= n)
-      throw InputError("drag '" + drag.name + "': vertex " + std::to_string(drag.vertex) + " is outside [0, " +
-                       std::to_string(n) + ")");
     SkinChannel ch;
     ch.name = drag.name;
     ch.kind = ChannelKind::Drag;
     ch.source = static_cast<int>(d);
-    ch.basis = std::make_shared<const ModalBasis>(
-        solve(skin_, drag.pins.empty() ? gravityPins() : drag.pins, settings_.skinModes));
+    ch.basis = channelBases[nextBasis++];
     const std::vector<int> toFree = ch.basis->fullToFree();
     const Vec3 centre = skinRest.row(drag.vertex);
     for (int v = 0; v < n; ++v)
@@ -254,6 +294,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     ch.loadParticipation = participation(*ch.basis, load);
     channels_.push_back(std::move(ch));
   }
+  cacheHits_ = cacheHits;
   buildSeconds_ = clock.seconds();
 }
 

@@ -1,11 +1,14 @@
 #include "myoshell/reduce/ritz_basis.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <vector>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
 #include "myoshell/reduce/rotation_operator.h"
 
 namespace myo {
@@ -13,7 +16,7 @@ namespace myo {
 RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, const MatX3& rest,
                                    const MatX3i& F, const RitzSettings& settings)
     : K_(K), settings_(settings) {
-  factorize(vertexMass, rest, F);
+  prepare(vertexMass, rest, F);
   const Eigen::Index n = rest.rows();
   basis_.fullVertexCount = static_cast<int>(n);
   basis_.freeVertices.resize(static_cast<size_t>(n));
@@ -21,9 +24,17 @@ RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, c
   basis_.freeMass = vertexMass;
   basis_.solver = "ritz";
   if (settings.modes.modeCount > 0) {
-    lowestModes(K_, mass3_, settings.modes, basis_.lambda, basis_.Phi, nullptr);
+    // K's factorisation and step 1 (which factorises K − σM for itself) are independent: on two
+    // threads they overlap. Body 0 first, so a K that is not positive definite says so first.
+    parallelFor(2, [&](std::int64_t part) {
+      if (part == 0)
+        factorize();
+      else
+        lowestModes(K_, mass3_, settings.modes, basis_.lambda, basis_.Phi, nullptr);
+    });
     basis_.solver += "+modes";
   } else {
+    factorize();
     basis_.Phi.resize(3 * n, 0);
     basis_.lambda.resize(0);
   }
@@ -39,23 +50,27 @@ RitzBasisBuilder::RitzBasisBuilder(const SparseMat& K, const VecX& vertexMass, c
               start.Phi.cols() == d && start.Psi.rows() == 3 * n && start.Psi.cols() == d;
   for (Eigen::Index i = 0; fits && i < n; ++i) fits = start.freeVertices[static_cast<size_t>(i)] == i;
   if (!fits) throw InputError("Ritz basis: the start basis does not fit this mesh (n = " + std::to_string(n) + ")");
-  factorize(vertexMass, rest, F);
+  prepare(vertexMass, rest, F);
+  factorize();
   basis_ = std::move(start);
 }
 
-void RitzBasisBuilder::factorize(const VecX& vertexMass, const MatX3& rest, const MatX3i& F) {
+void RitzBasisBuilder::prepare(const VecX& vertexMass, const MatX3& rest, const MatX3i& F) {
   const Eigen::Index n = rest.rows();
   if (K_.rows() != 3 * n || K_.cols() != 3 * n || vertexMass.size() != n)
     throw InputError("Ritz basis: K must be 3n×3n and the masses n (n = " + std::to_string(n) + ")");
   if (settings_.modes.modeCount < 0 || settings_.modes.modeCount > 3 * n)
     throw InputError("Ritz basis: mode count must lie in [0, 3n]");
   if (!(vertexMass.minCoeff() > 0.0)) throw InputError("Ritz basis: every vertex mass must be > 0");
-  ldlt_.compute(K_);
-  if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0))
-    throw NumericalError("Ritz basis: K is not positive definite");
   W_ = rotationOperator(rest, F);
   mass3_.resize(3 * n);
   for (Eigen::Index i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(vertexMass(i));
+}
+
+void RitzBasisBuilder::factorize() {
+  ldlt_.compute(K_);
+  if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0))
+    throw NumericalError("Ritz basis: K is not positive definite");
 }
 
 MatX3 RitzBasisBuilder::staticResponse(const MatX3& f) const {
@@ -66,7 +81,27 @@ MatX3 RitzBasisBuilder::staticResponse(const MatX3& f) const {
 
 bool RitzBasisBuilder::addLoad(const MatX3& f) {
   if (f.rows() * 3 != K_.rows()) throw InputError("Ritz basis: the load must be n×3");
-  VecX r = ldlt_.solve(flat(f));
+  return appendResponse(ldlt_.solve(flat(f)));
+}
+
+int RitzBasisBuilder::addLoads(const std::vector<MatX3>& loads) {
+  for (const MatX3& f : loads)
+    if (f.rows() * 3 != K_.rows()) throw InputError("Ritz basis: the load must be n×3");
+  // The solves are independent (one kept factorisation, read only); the orthogonalisation is not.
+  // In chunks, so that a few dozen responses are held at a time, not one per load.
+  const size_t chunk = static_cast<size_t>(4 * parallelThreads());
+  int appended = 0;
+  for (size_t first = 0; first < loads.size(); first += chunk) {
+    std::vector<VecX> responses(std::min(chunk, loads.size() - first));
+    parallelFor(static_cast<std::int64_t>(responses.size()), [&](std::int64_t k) {
+      responses[static_cast<size_t>(k)] = ldlt_.solve(flat(loads[first + static_cast<size_t>(k)]));
+    });
+    for (VecX& r : responses) appended += appendResponse(std::move(r)) ? 1 : 0;
+  }
+  return appended;
+}
+
+bool RitzBasisBuilder::appendResponse(VecX r) {
   const double before = std::sqrt(r.dot(mass3_.cwiseProduct(r)));
   if (!(before > 0.0)) {
     ++deflated_;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/primitives.h"
 #include "myoshell/reduce/ritz_basis.h"
@@ -105,6 +106,44 @@ TEST(RitzBasis, AGrabAddedLaterIsExactAndKeepsTheOthersExact) {
   expectOrthonormalAndDiagonal(b.basis(), fx.K, fx.mass3());
   EXPECT_LE(reducedStaticError(b.basis(), b, f1), 1e-9);
   EXPECT_LE(reducedStaticError(b.basis(), b, grab), 1e-9);
+}
+
+// The build spread over threads (core/parallel.h): step 1 beside K's factorisation, the loads'
+// solves side by side. The basis must be the serial one, bit for bit, for any thread count.
+TEST(RitzBasis, ThreadsGiveTheSerialBasisBitForBit) {
+  Fixture fx;
+  RitzSettings s;
+  s.modes.modeCount = 6;
+  std::vector<MatX3> loads;
+  for (int k = 0; k < 11; ++k) loads.push_back(fx.load(5 * k + 3, Vec3(1.0 + k, 0.5 * k, 2.0 - k)));
+  loads.push_back(loads[2]);  // deflated, in the middle of a chunk
+  loads.push_back(fx.load(44, Vec3(0, 0, 1)));
+  const int saved = parallelThreads();
+  auto build = [&](int threads, bool serialCalls) {
+    setParallelThreads(threads);
+    RitzBasisBuilder b(fx.K, fx.mass, fx.mesh.V, fx.mesh.F, s);
+    int appended = 0;
+    if (serialCalls)
+      for (const MatX3& f : loads) appended += b.addLoad(f) ? 1 : 0;
+    else
+      appended = b.addLoads(loads);
+    EXPECT_EQ(appended, 12);
+    EXPECT_EQ(b.deflated(), 1);
+    b.diagonalize();
+    return b.basis();
+  };
+  const ModalBasis serial = build(1, true);
+  for (int threads : {1, 2, 3}) {
+    const ModalBasis threaded = build(threads, false);
+    EXPECT_TRUE(threaded.Phi == serial.Phi) << threads << " threads";
+    EXPECT_TRUE(threaded.Psi == serial.Psi) << threads << " threads";
+    EXPECT_TRUE(threaded.lambda == serial.lambda) << threads << " threads";
+  }
+  setParallelThreads(2);
+  const Fixture bad;
+  const SparseMat Kbad = bad.K - SparseMat(bad.K.diagonal().asDiagonal().toDenseMatrix().sparseView()) * 2.0;
+  EXPECT_THROW(RitzBasisBuilder(Kbad, bad.mass, bad.mesh.V, bad.mesh.F, s), NumericalError);  // refused on two threads too
+  setParallelThreads(saved);
 }
 
 TEST(RitzBasis, ANonPositiveDefiniteStiffnessIsRefused) {

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <Eigen/SparseCholesky>
 
@@ -47,6 +48,9 @@ class RitzBasisBuilder {
   // Step 2 for one load f (n×3, dyn): returns true when a vector was appended, false when it was
   // deflated (or f = 0). The reduced system is not re-diagonalised until diagonalize().
   bool addLoad(const MatX3& f);
+  // addLoad for each load in order, with the solves spread over parallelThreads() (core/parallel.h):
+  // the same basis, bit for bit, as the serial calls. Returns how many vectors were appended.
+  int addLoads(const std::vector<MatX3>& loads);
   // Step 3–4. Idempotent.
   void diagonalize();
   // addLoad + diagonalize: a load added at run time (a drag grabbed by the user).
@@ -72,7 +76,9 @@ class RitzBasisBuilder {
   bool diagonal_ = true;
   int appended_ = 0;
   int deflated_ = 0;
-  void factorize(const VecX& vertexMass, const MatX3& rest, const MatX3i& F);
+  bool appendResponse(VecX r);  // step 2 after the solve: orthogonalise, deflate or append
+  void prepare(const VecX& vertexMass, const MatX3& rest, const MatX3i& F);  // checks, W, M
+  void factorize();                                                           // K = LDLᵀ, kept
 };
 
 }  // namespace myo
