@@ -50,8 +50,9 @@ int main(int argc, char** argv) {
   // (core/parallel.h); `bench` measures the single-threaded step and keeps its own option.
   int threads = 0;
   const std::vector<std::string> threaded{"drive", "fit", "fit-rig", "pose", "render", "rig", "run"};
+  auto isThreaded = [&](const CLI::App* sub) { return std::find(threaded.begin(), threaded.end(), sub->get_name()) != threaded.end(); };
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
-    if (std::find(threaded.begin(), threaded.end(), sub->get_name()) != threaded.end())
+    if (isThreaded(sub))
       sub->add_option("--threads", threads,
                       "Threads for the precompute and independent work (0 = every hardware thread, the default; "
                       "the output does not depend on it)")
@@ -75,7 +76,8 @@ int main(int argc, char** argv) {
   }
 
   try {
-    myo::setParallelThreads(threads);
+    for (CLI::App* sub : app.get_subcommands())
+      if (isThreaded(sub)) myo::setParallelThreads(threads);  // the others keep one thread
     for (CLI::App* sub : app.get_subcommands())
       if (auto it = runners.find(sub); it != runners.end()) return it->second();
     fmt::print(stderr, "myoshell: no command given (see --help)\n");

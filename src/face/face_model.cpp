@@ -237,11 +237,21 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
   for (const MuscleUnit& unit : muscles_) channelPins.push_back(complement(unit.roi));
   if (settings_.gravity) channelPins.push_back(gravityPins());
   for (const DragDef& drag : settings_.drags) channelPins.push_back(drag.pins.empty() ? gravityPins() : drag.pins);
+  // A channel whose pins an earlier one has (the thesis's drag shares gravity's) comes after the
+  // batch, so that it reads the earlier one's basis back from the cache as a serial build would.
+  std::vector<size_t> firsts, repeats;
+  for (size_t c = 0; c < channelPins.size(); ++c)
+    (std::find(channelPins.begin(), channelPins.begin() + static_cast<std::ptrdiff_t>(c), channelPins[c]) ==
+             channelPins.begin() + static_cast<std::ptrdiff_t>(c)
+         ? firsts
+         : repeats)
+        .push_back(c);
   std::vector<std::shared_ptr<const ModalBasis>> channelBases(channelPins.size());
-  parallelFor(static_cast<std::int64_t>(channelPins.size()), [&](std::int64_t c) {
-    channelBases[static_cast<size_t>(c)] =
-        std::make_shared<const ModalBasis>(solve(skin_, channelPins[static_cast<size_t>(c)], settings_.skinModes));
-  });
+  auto solveChannel = [&](size_t c) {
+    channelBases[c] = std::make_shared<const ModalBasis>(solve(skin_, channelPins[c], settings_.skinModes));
+  };
+  parallelFor(static_cast<std::int64_t>(firsts.size()), [&](std::int64_t k) { solveChannel(firsts[static_cast<size_t>(k)]); });
+  for (size_t c : repeats) solveChannel(c);
   size_t nextBasis = 0;
   for (size_t m = 0; m < muscles_.size(); ++m) {
     MuscleUnit& unit = muscles_[m];

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/arkit_names.h"
 #include "myoshell/face/jaw.h"
@@ -145,54 +146,84 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   const MatX3& rest = skin.head().mesh.V;
   std::optional<JawRig> jaw;
   if (skin.head().landmarks.multipie68.size() == 68) jaw = jawRig(skin.head().mesh, skin.head().landmarks);
-  JawPose jawOpenPose;  // jawOpen's fitted pose: mouthClose rides on it
 
-  std::vector<double> cosines, rms;
-  out.map.model = "anatomical";
+  // The shapes the rig has, in ARKit order; a corrective (mouthClose) is fitted on its base's target.
+  std::vector<RigShapeFit> shapes;
   for (const std::string& name : arkitNames()) {
     auto it = byName.find(name);
     if (it == byName.end()) continue;
     RigShapeFit s = std::move(it->second);
-    RetargetShape entry;
-    entry.name = name;
     if (const std::optional<std::string> reason = unreachableReason(name)) {
       s.reachable = false;
       s.reason = *reason;
-      entry.reachable = false;
-      entry.reason = *reason;
+    } else if (name == "mouthClose") {
+      s.correctiveOf = "jawOpen";
+    }
+    shapes.push_back(std::move(s));
+  }
+  auto indexOf = [&](const std::string& name) {
+    return static_cast<size_t>(std::find_if(shapes.begin(), shapes.end(), [&](const RigShapeFit& f) { return f.name == name; }) -
+                               shapes.begin());
+  };
+
+  // One shape's fit. A jaw shape: its jaw degree of freedom and the muscles together — for each value
+  // the muscles are fitted to what the jaw's rigid motion leaves, and the value with the smallest
+  // total misfit wins. A corrective rides on its base's jaw (`basePose`).
+  auto fitShape = [&](RigShapeFit& s, const JawPose* basePose) {
+    auto fitWithJaw = [&](const JawPose& p) {
+      const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
+      FitTarget t;
+      t.displacement = s.target - jawMotion;
+      ActivationFit f = fitActivations(skin, t, settings);
+      if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
+      return f;
+    };
+    JawPose pose;
+    const JawDof dof = jawDofOf(s.name);
+    if (jaw && dof.index >= 0)
+      pose = poseOf(dof.index, goldenSection(
+                                   [&](double v) {
+                                     const ActivationFit f = fitWithJaw(poseOf(dof.index, v));
+                                     return (f.displacement - s.target).squaredNorm();
+                                   },
+                                   dof.lo, dof.hi));
+    if (jaw && basePose) pose = *basePose;
+    if (jaw) {
+      s.fit = fitWithJaw(pose);
     } else {
-      // jawOpen comes before mouthClose in ARKit order: fitted already.
-      const RigShapeFit* base = nullptr;
-      if (name == "mouthClose") {
-        s.correctiveOf = "jawOpen";
-        base = &*std::find_if(out.shapes.begin(), out.shapes.end(), [](const RigShapeFit& f) { return f.name == "jawOpen"; });
-        s.target += base->target;  // the corrective only makes sense on its base
-      }
       FitTarget target;
       target.displacement = s.target;
-      // A jaw shape: its jaw degree of freedom and the muscles together — for each value the muscles
-      // are fitted to what the jaw's rigid motion leaves, and the value with the smallest total misfit
-      // wins. A corrective rides on its base's jaw.
-      JawPose pose;
-      const JawDof dof = jawDofOf(name);
-      auto fitWithJaw = [&](const JawPose& p) {
-        const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
-        FitTarget t;
-        t.displacement = s.target - jawMotion;
-        ActivationFit f = fitActivations(skin, t, settings);
-        if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
-        return f;
-      };
-      if (jaw && dof.index >= 0)
-        pose = poseOf(dof.index, goldenSection(
-                                     [&](double v) {
-                                       const ActivationFit f = fitWithJaw(poseOf(dof.index, v));
-                                       return (f.displacement - s.target).squaredNorm();
-                                     },
-                                     dof.lo, dof.hi));
-      if (jaw && base) pose = jawOpenPose;
-      if (name == "jawOpen") jawOpenPose = pose;
-      s.fit = jaw ? fitWithJaw(pose) : fitActivations(skin, target, settings);
+      s.fit = fitActivations(skin, target, settings);
+    }
+    return pose;
+  };
+  // The shapes are independent of each other (the skin is read only): side by side on
+  // parallelThreads(), each into its own slot; then the corrective on its fitted base.
+  std::vector<JawPose> poses(shapes.size());
+  parallelFor(static_cast<std::int64_t>(shapes.size()), [&](std::int64_t i) {
+    RigShapeFit& s = shapes[static_cast<size_t>(i)];
+    if (s.reachable && s.correctiveOf.empty()) poses[static_cast<size_t>(i)] = fitShape(s, nullptr);
+  });
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    RigShapeFit& s = shapes[i];
+    if (!s.reachable || s.correctiveOf.empty()) continue;
+    const size_t base = indexOf(s.correctiveOf);
+    s.target += shapes[base].target;  // the corrective only makes sense on its base
+    poses[i] = fitShape(s, &poses[base]);
+  }
+
+  std::vector<double> cosines, rms;
+  out.map.model = "anatomical";
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    RigShapeFit& s = shapes[i];
+    RetargetShape entry;
+    entry.name = s.name;
+    if (!s.reachable) {
+      entry.reachable = false;
+      entry.reason = s.reason;
+    } else {
+      const RigShapeFit* base = s.correctiveOf.empty() ? nullptr : &shapes[indexOf(s.correctiveOf)];
+      const JawPose& pose = poses[i];
       if (!base) {  // a corrective's jaw is its base's: it adds none
         if (pose.openDeg != 0.0) entry.jaw.emplace_back("open", pose.openDeg);
         if (pose.forwardCm != 0.0) entry.jaw.emplace_back("forward", pose.forwardCm);
@@ -211,8 +242,8 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
       }
     }
     out.map.shapes.push_back(std::move(entry));
-    out.shapes.push_back(std::move(s));
   }
+  out.shapes = std::move(shapes);
   out.medianCosine = median(cosines);
   out.medianRmsMm = median(rms);
   out.seconds = clock.seconds();

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
@@ -86,6 +87,27 @@ TEST_F(RenderCommand, SmileMovesTheMouthAndNotTheForehead) {
   const Picture soft = readPicture(dir_ / "sw" / "png" / "smile_0003.png");
   ASSERT_EQ(soft.width, 128);
   EXPECT_LT(differingPixels(smile, soft, 0, 0, 128, 128), 128 * 128 / 30);
+}
+
+// Frames are painted in order and their PNGs encoded side by side: the files are the same bytes on
+// one thread and on three (the software renderer: the same pixels on every machine).
+TEST_F(RenderCommand, ThePngsAreTheSameBytesOnOneThreadAndOnThree) {
+  for (const char* threads : {"1", "3"}) {
+    const auto r = test::runCli(render(std::string("t") + threads, std::string("--frames 0:3 --size 96x96 --sheet 2 --software --threads ") + threads));
+    ASSERT_EQ(r.exitCode, 0) << r.merged;
+  }
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  int compared = 0;
+  for (const char* name : {"png/smile_0000.png", "png/smile_0001.png", "png/smile_0002.png", "png/smile_0003.png", "smile_sheet.png"}) {
+    const std::string one = bytes(dir_ / "t1" / name);
+    EXPECT_GT(one.size(), 100u) << name;
+    EXPECT_TRUE(one == bytes(dir_ / "t3" / name)) << name;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 5);
 }
 
 TEST_F(RenderCommand, RoiOverlayPaintsAHeatMapAndPinsAreMarked) {

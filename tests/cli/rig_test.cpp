@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -37,6 +38,10 @@ fs::path scratch(const std::string& name) {
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 void writeText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 // Mirror pairs at equal activations, an open jaw made of the lower-lip depressors, a corrective
 // that adds a tenth of the left smile, and an eye rotation.
@@ -149,6 +154,11 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
   EXPECT_TRUE(fs::exists(dir / "report" / "report.md"));
   EXPECT_TRUE(fs::exists(dir / "report" / "mouthSmileLeft.png"));
   EXPECT_FALSE(fs::exists(dir / "report" / "eyeLookInLeft.png"));
+  // The shapes are fitted side by side (every core by default): on one thread the map is the same bytes.
+  const test::CliResult serial = test::runCli("fit-rig " + quoted(dir / "rig.glb") + " --head default --lambda 0 --threads 1 --out " +
+                                              quoted(dir / "back1.json"));
+  ASSERT_EQ(serial.exitCode, 0) << serial.merged;
+  EXPECT_EQ(readText(dir / "back1.json"), readText(dir / "back.json"));
   fs::remove_all(dir);
 }
 
