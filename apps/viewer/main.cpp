@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "myoshell/core/parallel.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/core/errors.h"
 #include "resources.h"  // apps/cli: where the cache is
@@ -41,6 +42,10 @@ int main(int argc, char** argv) {
   app.add_flag("--stay", options.stay, "keep the window open after --script");
   app.add_option("--size", size, "window size WxH in pixels (default 1280x800)");
   app.add_option("--cache", cacheDir, "folder of cached modal bases (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
+  int threads = 0;
+  app.add_option("--threads", threads,
+                 "threads for building the face (0 = every core, the default); the live step runs on one")
+      ->check(CLI::NonNegativeNumber);
   app.set_version_flag("--version", "myoshell-view 0.1.0");
   try {
     app.parse(argc, argv);
@@ -58,6 +63,7 @@ int main(int argc, char** argv) {
   options.height = h;
   try {
     myo::viewer::checkDisplay();  // no display: say so now, not after building the face
+    myo::setParallelThreads(threads);  // the builds (core/parallel.h); a step never spreads
     myo::SceneDesc scene;
     if (isPerformanceFile(scenePath)) {
       // A recorded performance on the built-in head with the whole face (docs/performance_input.md):
