@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <Eigen/SparseCholesky>
-#include <atomic>
 #include <cmath>
 #include <memory>
-#include <mutex>
+#include <optional>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
@@ -82,28 +81,66 @@ ModalBasis staticShapeMode(const ModalBasis& full, const DiscreteShell& shell, c
   return one;
 }
 
-// A cache reached from several threads, one call at a time.
-class SerializedBasisCache final : public BasisCache {
- public:
-  explicit SerializedBasisCache(BasisCache* inner) : inner_(inner) {}
-  std::optional<ModalBasis> load(const BasisKey& key) override {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return inner_->load(key);
-  }
-  void store(const BasisKey& key, const ModalBasis& basis) override {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    inner_->store(key, basis);
-  }
-
- private:
-  BasisCache* inner_;
-  std::mutex mutex_;
-};
-
 ModalSettings modalSettings(int modes) {
   ModalSettings s;
   s.modeCount = modes;
   return s;
+}
+
+// One basis problem of the build: a shell, its pinned vertices, its mode count.
+struct BasisJob {
+  const DiscreteShell* shell = nullptr;
+  std::vector<int> pins;
+  int modes = 0;
+  bool sameAs(const BasisJob& o) const { return shell == o.shell && pins == o.pins && modes == o.modes; }
+};
+
+// What computeModalBasis sees of the cache while it runs on a worker thread: the entry read for it
+// beforehand, and a slot that keeps what it would store until the calling thread stores it.
+class PreloadedCache final : public BasisCache {
+ public:
+  std::optional<ModalBasis> entry;
+  std::optional<ModalBasis> toStore;
+  std::optional<ModalBasis> load(const BasisKey&) override { return std::move(entry); }
+  void store(const BasisKey&, const ModalBasis& basis) override { toStore = basis; }
+};
+
+// The bases of `jobs`, solved side by side on parallelThreads() (core/parallel.h). The cache is
+// reached from the calling thread only: every entry read in job order first, then the misses solved
+// in parallel, then stored in job order. A cache that processes share holds a key's lock from its
+// miss to its store (io/basis_cache_file.h), so taking the keys in one order, never while waiting
+// for another thread, keeps processes from waiting on each other in a cycle. A job equal to an
+// earlier one comes after the store and reads it back, as a serial build would (a cache hit).
+std::vector<ModalBasis> solveBases(const std::vector<BasisJob>& jobs, BasisCache* cache, int& hits) {
+  std::vector<ModalBasis> out(jobs.size());
+  std::vector<size_t> firsts, repeats;
+  for (size_t j = 0; j < jobs.size(); ++j)
+    (std::any_of(jobs.begin(), jobs.begin() + static_cast<std::ptrdiff_t>(j), [&](const BasisJob& o) { return o.sameAs(jobs[j]); })
+         ? repeats
+         : firsts)
+        .push_back(j);
+  auto run = [&](size_t j, BasisCache* c) {
+    const BasisJob& job = jobs[j];
+    out[j] = computeModalBasis(*job.shell, job.pins, modalSettings(job.modes), c);
+  };
+  std::vector<PreloadedCache> slots(firsts.size());
+  if (cache)
+    for (size_t k = 0; k < firsts.size(); ++k) {
+      const BasisJob& job = jobs[firsts[k]];
+      slots[k].entry = cache->load(modalBasisKey(*job.shell, job.pins, modalSettings(job.modes)));
+    }
+  parallelFor(static_cast<std::int64_t>(firsts.size()), [&](std::int64_t k) {
+    run(firsts[static_cast<size_t>(k)], cache ? &slots[static_cast<size_t>(k)] : nullptr);
+  });
+  if (cache)
+    for (size_t k = 0; k < firsts.size(); ++k)
+      if (slots[k].toStore) {
+        const BasisJob& job = jobs[firsts[k]];
+        cache->store(modalBasisKey(*job.shell, job.pins, modalSettings(job.modes)), *slots[k].toStore);
+      }
+  for (size_t j : repeats) run(j, cache);
+  for (const ModalBasis& b : out) hits += b.fromCache ? 1 : 0;
+  return out;
 }
 
 }  // namespace
@@ -117,15 +154,7 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
   Stopwatch clock;
   const int n = head_.mesh.vertexCount();
   const MatX3& skinRest = head_.mesh.V;
-  // The bases are solved on parallelThreads() (core/parallel.h); the cache is reached by one thread
-  // at a time (it need not be thread-safe).
-  SerializedBasisCache sharedCache(cache);
-  std::atomic<int> cacheHits{0};
-  auto solve = [&](const DiscreteShell& shell, const std::vector<int>& pins, int modes) {
-    ModalBasis b = computeModalBasis(shell, pins, modalSettings(modes), cache ? &sharedCache : nullptr);
-    if (b.fromCache) ++cacheHits;
-    return b;
-  };
+  int cacheHits = 0;
   auto complement = [n](const std::vector<int>& keep) {
     std::vector<char> in(static_cast<size_t>(n), 0);
     for (int v : keep) in[static_cast<size_t>(v)] = 1;
@@ -139,18 +168,28 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
     if (def.isRing())
       throw InputError("muscle '" + def.name + "': a ring muscle (a sphincter) is played by the anatomical model only "
                        "(\"model\": \"anatomical\"); the thesis's muscles are linear");
-  // Each muscle's unit (its shell, eigen-solve, stretch mode, springs, ROI) is independent of the others.
+  // Each muscle's unit (its shell, eigen-solve, stretch mode, springs, ROI) is independent of the
+  // others: built side by side, the eigen-solves through solveBases.
   muscles_.resize(defs.size());
   parallelFor(static_cast<std::int64_t>(defs.size()), [&](std::int64_t index) {
-    const MuscleDef& def = defs[static_cast<size_t>(index)];
     MuscleUnit& unit = muscles_[static_cast<size_t>(index)];
-    unit.muscle = buildMuscle(def, head_);
+    unit.muscle = buildMuscle(defs[static_cast<size_t>(index)], head_);
     const TriMesh& mm = unit.muscle.mesh;
     unit.shell = std::make_shared<const DiscreteShell>(mm.V, mm.F, buildEdgeTable(mm.F, mm.vertexCount()),
                                                        settings_.muscle);
-    // Eq. 11–12: the pinned muscle's d lowest modes; keep the one that carries the activation load.
-    const int modes = std::min(settings_.muscleModes, 3 * (mm.vertexCount() - static_cast<int>(unit.muscle.originNodes.size())));
-    const ModalBasis full = solve(*unit.shell, unit.muscle.originNodes, modes);
+  });
+  // Eq. 11–12: the pinned muscle's d lowest modes; keep the one that carries the activation load.
+  std::vector<BasisJob> muscleJobs;
+  for (const MuscleUnit& unit : muscles_) {
+    const int free = unit.muscle.mesh.vertexCount() - static_cast<int>(unit.muscle.originNodes.size());
+    muscleJobs.push_back({unit.shell.get(), unit.muscle.originNodes, std::min(settings_.muscleModes, 3 * free)});
+  }
+  const std::vector<ModalBasis> muscleBases = solveBases(muscleJobs, cache, cacheHits);
+  parallelFor(static_cast<std::int64_t>(defs.size()), [&](std::int64_t index) {
+    const MuscleDef& def = defs[static_cast<size_t>(index)];
+    MuscleUnit& unit = muscles_[static_cast<size_t>(index)];
+    const TriMesh& mm = unit.muscle.mesh;
+    const ModalBasis& full = muscleBases[static_cast<size_t>(index)];
     const std::vector<int> toFree = full.fullToFree();
     const MatX3 P = activationPattern(unit.muscle, toFree, full.freeCount());
     const LoadParticipation lp = loadParticipation(full, *unit.shell, P);
@@ -237,21 +276,10 @@ FaceModel::FaceModel(Head head, const std::vector<MuscleDef>& defs, const FaceMo
   for (const MuscleUnit& unit : muscles_) channelPins.push_back(complement(unit.roi));
   if (settings_.gravity) channelPins.push_back(gravityPins());
   for (const DragDef& drag : settings_.drags) channelPins.push_back(drag.pins.empty() ? gravityPins() : drag.pins);
-  // A channel whose pins an earlier one has (the thesis's drag shares gravity's) comes after the
-  // batch, so that it reads the earlier one's basis back from the cache as a serial build would.
-  std::vector<size_t> firsts, repeats;
-  for (size_t c = 0; c < channelPins.size(); ++c)
-    (std::find(channelPins.begin(), channelPins.begin() + static_cast<std::ptrdiff_t>(c), channelPins[c]) ==
-             channelPins.begin() + static_cast<std::ptrdiff_t>(c)
-         ? firsts
-         : repeats)
-        .push_back(c);
-  std::vector<std::shared_ptr<const ModalBasis>> channelBases(channelPins.size());
-  auto solveChannel = [&](size_t c) {
-    channelBases[c] = std::make_shared<const ModalBasis>(solve(skin_, channelPins[c], settings_.skinModes));
-  };
-  parallelFor(static_cast<std::int64_t>(firsts.size()), [&](std::int64_t k) { solveChannel(firsts[static_cast<size_t>(k)]); });
-  for (size_t c : repeats) solveChannel(c);
+  std::vector<BasisJob> channelJobs;
+  for (std::vector<int>& pins : channelPins) channelJobs.push_back({&skin_, std::move(pins), settings_.skinModes});
+  std::vector<std::shared_ptr<const ModalBasis>> channelBases;
+  for (ModalBasis& b : solveBases(channelJobs, cache, cacheHits)) channelBases.push_back(std::make_shared<const ModalBasis>(std::move(b)));
   size_t nextBasis = 0;
   for (size_t m = 0; m < muscles_.size(); ++m) {
     MuscleUnit& unit = muscles_[m];

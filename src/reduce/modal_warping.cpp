@@ -125,6 +125,27 @@ inline void warp(double wx, double wy, double wz, double lx, double ly, double l
   u[2] = lz + c.a * cz + c.b * ccz;
 }
 
+// y = B q for a row-major B (rows × d), one row at a time with independent partial sums: for d ≈ 70
+// Eigen's row-major matrix-vector product ran at a third of the basis's stream rate (u on the ICT
+// whole face's 3n × 73: 1,250 µs, this 408 µs, the stream ~400 µs; docs/PERFORMANCE.md, 2026-11-25).
+// Compiled for AVX-512, AVX2 + FMA and the x86-64 baseline, chosen when the program starts (GCC
+// function multi-versioning), so one binary uses the machine's widest vectors: the clones may
+// differ in the last bits (FMA contraction), never on one machine between runs.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
+void rowDots(const double* __restrict b, Eigen::Index rows, Eigen::Index d, const double* __restrict x,
+             double* __restrict y) {
+  for (Eigen::Index i = 0; i < rows; ++i, b += d) {
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    Eigen::Index j = 0;
+    for (; j + 8 <= d; j += 8)
+      for (int k = 0; k < 8; ++k) a[k] += b[j + k] * x[j + k];
+    for (; j < d; ++j) a[j % 8] += b[j] * x[j];
+    y[i] = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -237,28 +258,6 @@ struct ModalWarpingIntegrator::Kernel {
     }
     acc.noalias() = B.transpose() * G;  // into a preallocated d-vector: no temporary
     ft = acc.template cast<double>();
-  }
-
-  // y = B q, one row at a time with four independent partial sums: for d ≈ 70 Eigen's row-major
-  // matrix-vector product ran at a third of the basis's stream rate (u on the ICT whole face's
-  // 3n × 73: 1,250 µs, this 408 µs, the stream ~400 µs; docs/PERFORMANCE.md, 2026-11-25).
-  static void rowDots(const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& B,
-                      const VecX& q, double* __restrict y) {
-    const Eigen::Index rows = B.rows(), d = B.cols();
-    const double* __restrict b = B.data();
-    const double* __restrict x = q.data();
-    for (Eigen::Index i = 0; i < rows; ++i, b += d) {
-      double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
-      Eigen::Index j = 0;
-      for (; j + 4 <= d; j += 4) {
-        a0 += b[j] * x[j];
-        a1 += b[j + 1] * x[j + 1];
-        a2 += b[j + 2] * x[j + 2];
-        a3 += b[j + 3] * x[j + 3];
-      }
-      for (; j < d; ++j) a0 += b[j] * x[j];
-      y[i] = (a0 + a1) + (a2 + a3);
-    }
   }
 
   template <class Vec>
@@ -377,9 +376,9 @@ void ModalWarpingIntegrator::updateDisplacement() const {
     k.Yf.noalias() = k.Bf * k.qf;
     Kernel::output(k.Yf, k.stride, settings_.warping, u_);
   } else if (!settings_.warping) {
-    Kernel::rowDots(k.Bd, q_, u_.data());  // the interleaved Φ rows are u's layout: no copy
+    rowDots(k.Bd.data(), k.Bd.rows(), k.Bd.cols(), q_.data(), u_.data());  // the interleaved Φ rows are u's layout: no copy
   } else {
-    Kernel::rowDots(k.Bd, q_, k.Yd.data());
+    rowDots(k.Bd.data(), k.Bd.rows(), k.Bd.cols(), q_.data(), k.Yd.data());
     Kernel::output(k.Yd, k.stride, settings_.warping, u_);
   }
 }
