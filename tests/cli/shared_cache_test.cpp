@@ -209,5 +209,59 @@ TEST_F(SharedCache, EightColdProcessesKilledAndRestartedAtRandomComputeEachBasis
   }
 }
 
+// A cache folder the command cannot write (a batch's shared cache, built beforehand): read without
+// locks, never written; a basis missing from it is computed, with one warning that it is not kept.
+// Read-only through a read-only bind mount in a private mount namespace when root (whom permission
+// bits do not stop), through permission bits otherwise.
+TEST_F(SharedCache, AReadOnlyCacheFolderIsReadWithoutLocksAndNeverWritten) {
+  writeTake(dir_ / "take.csv");
+  const test::CliResult head = test::runCli("head default --levels 1 --write-obj '" + (dir_ / "small.obj").string() +
+                                            "' --write-landmarks '" + (dir_ / "small.json").string() + "'");
+  ASSERT_EQ(head.exitCode, 0) << head.merged;
+  const fs::path cache = dir_ / "cache";
+  const test::CliResult warm = test::runCli(driveArgs(dir_, dir_ / "warm", cache));
+  ASSERT_EQ(warm.exitCode, 0) << warm.merged;
+  for (const auto& e : fs::directory_iterator(cache))
+    if (e.path().extension() == ".lock") fs::remove(e.path());
+  const auto listing = [&] {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(cache)) names.insert(e.path().filename().string());
+    return names;
+  };
+  const std::set<std::string> before = listing();
+  ASSERT_EQ(before.size(), 2u);
+
+  std::string prefix;
+  if (::geteuid() == 0) {
+    if (std::system("unshare -m true 2> /dev/null") != 0)
+      GTEST_SKIP() << "root without mount namespaces: no way to make the folder read-only";
+    const std::string c = "'" + cache.string() + "'";
+    prefix = "unshare -m sh -c 'mount --bind \"$0\" \"$0\" && mount -o remount,bind,ro \"$0\" && exec \"$@\"' " + c;
+  } else {
+    fs::permissions(cache, fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                    fs::perm_options::remove);
+  }
+  const test::CliResult hit = test::runCli(driveArgs(dir_, dir_ / "hit", cache), {}, prefix);
+  ASSERT_EQ(hit.exitCode, 0) << hit.merged;
+  nlohmann::json j = nlohmann::json::parse(hit.out);
+  EXPECT_EQ(j.at("basis_cache"), "hit");
+  EXPECT_EQ(j.at("basis_cache_counts").at("read_only"), true);
+  EXPECT_EQ(hit.err.find("warning"), std::string::npos) << hit.err;
+  EXPECT_EQ(readFile(dir_ / "hit" / "take.pc2"), readFile(dir_ / "warm" / "take.pc2"));
+
+  // The whole face's muscles: other bases, computed and not kept.
+  std::string args = driveArgs(dir_, dir_ / "miss", cache);
+  args.replace(args.find("--library builtin"), 17, "--library face");
+  const test::CliResult miss = test::runCli(args, {}, prefix);
+  ASSERT_EQ(miss.exitCode, 0) << miss.merged;
+  j = nlohmann::json::parse(miss.out);
+  EXPECT_EQ(j.at("basis_cache"), "computed");
+  EXPECT_THAT(miss.err, ::testing::HasSubstr("warning: the basis cache keeps nothing: the basis cache folder " +
+                                             cache.string() + " is read-only"));
+  EXPECT_EQ(miss.err.find("warning"), miss.err.rfind("warning")) << "one warning: " << miss.err;
+  EXPECT_EQ(listing(), before) << "no entry, lock or temporary file added";
+  fs::permissions(cache, fs::perms::owner_all, fs::perm_options::add);
+}
+
 }  // namespace
 }  // namespace myo
