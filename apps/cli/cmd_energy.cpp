@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "job_report.h"
 #include "command.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -38,7 +37,7 @@ int runEnergy(const EnergyArgs& args) {
     j["k_A"] = k.kA;
     j["k_L"] = k.kL;
     j["k_B"] = k.kB;
-    printJsonReport(j);
+    fmt::print("{}\n", j.dump(2));
   } else {
     fmt::print("{} → {} ({} vertices, {} triangles)\n", args.rest, args.deformed, rest.vertexCount(),
                rest.triangleCount());

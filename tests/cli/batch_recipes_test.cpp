@@ -69,7 +69,10 @@ class BatchRecipes : public ::testing::Test {
     std::ofstream(dir_ / "heads.txt") << "# name head [landmarks]\ndefault default\nsmall " << (dir_ / "small.obj").string()
                                       << " " << (dir_ / "small.json").string() << "\n";
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
   static fs::path recipe(const std::string& name) { return test::sourceDir() / "examples" / "batch" / name; }
   static std::string env() { return "MYOSHELL='" + std::string(MYO_CLI_PATH) + "' "; }
 
@@ -193,10 +196,13 @@ class MiniSlurm {
     }
     started_ = false;
   }
-  ~MiniSlurm() {
+  ~MiniSlurm() {  // stops the daemons and waits (up to 10 s each) until they are gone
     for (const char* pidFile : {"d.pid", "ctld.pid", "munge/pid"}) {
       const std::string pid = readFile(dir_ / pidFile);
-      if (!pid.empty()) ::kill(std::stoi(pid), SIGTERM);
+      if (pid.empty()) continue;
+      const pid_t p = std::stoi(pid);
+      ::kill(p, SIGTERM);
+      for (int i = 0; i < 1000 && ::kill(p, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
   }
   bool started() const { return started_; }
