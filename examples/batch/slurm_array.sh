@@ -61,12 +61,12 @@ case "${1:-}" in
     h=$(myo_heads "$heads_file" | wc -l)
     # shellcheck disable=SC2086  # SBATCH_ARGS: options split on spaces
     first=$(sbatch --parsable --job-name=myoshell-cache --array=0-$((h - 1)) --output="$out/slurm/%A_%a.out" \
-      ${SBATCH_ARGS:-} --wrap "'$here/slurm_array.sh' task '$out'")
+      ${SBATCH_ARGS:-} --wrap "bash '$here/slurm_array.sh' task '$out'")
     echo "cache-building array: $first (tasks 0-$((h - 1)))"
     if [ "$n" -gt "$h" ]; then
       # shellcheck disable=SC2086
       rest=$(sbatch --parsable --job-name=myoshell-drive --array=$h-$((n - 1)) --dependency=afterok:"${first%%;*}" \
-        --output="$out/slurm/%A_%a.out" ${SBATCH_ARGS:-} --wrap "'$here/slurm_array.sh' task '$out'")
+        --output="$out/slurm/%A_%a.out" ${SBATCH_ARGS:-} --wrap "bash '$here/slurm_array.sh' task '$out'")
       echo "drive array: $rest (tasks $h-$((n - 1)), after $first)"
     fi
     ;;
