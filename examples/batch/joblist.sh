@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by parallel.sh and slurm_array.sh (sourced, not run): the job list of a batch, one job a
 # line, tab-separated: PERFORMANCE_FILE  HEAD_NAME  HEAD  LANDMARKS (empty for 'default' and folders).
 # Jobs go performance-major: line k (from 0) is performance k / H, head k % H, for H heads.

@@ -60,7 +60,7 @@ printf '%s\n' "$jobs_list" | tail -n +"$((heads + 1))" > "$out/jobs_rest.tsv"
 
 run() {  # run LOG LIST: the jobs of LIST through parallel; its exit status is the failures' count
   parallel --will-cite --jobs "$jobs" --colsep '\t' --joblog "$1" --halt never \
-    bash "$here/parallel.sh" --job "$out" "$cache" "$myoshell" {1} {2} {3} {4} "${drive_args[@]}" :::: "$2"
+    bash "$here/parallel.sh" --job "$out" "$cache" "$myoshell" '{1}' '{2}' '{3}' '{4}' "${drive_args[@]}" :::: "$2"
 }
 
 failed=0
