@@ -300,6 +300,25 @@ TEST(BasisCache, TwoCacheObjectsOfOneProcessDoNotWaitForEachOther) {
   EXPECT_TRUE(a.lockNote().empty());
 }
 
+TEST(BasisCache, WithoutALockTheCacheStillComputesAndStoresWholeEntries) {
+  // The lock file cannot be made (a folder in its place; on a network file system flock itself may
+  // fail, EOPNOTSUPP or ENOLCK, and takes the same path): atomic rename alone.
+  TempDir dir;
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  FileBasisCache cache(dir.path);
+  fs::create_directories(cache.lockPathFor(key));
+  const ModalBasis b = computeModalBasis(shell, kPins, s, &cache);
+  EXPECT_FALSE(b.fromCache);
+  EXPECT_NE(cache.lockNote().find("cannot create the lock file " + cache.lockPathFor(key).string()), std::string::npos)
+      << cache.lockNote();
+  EXPECT_NE(cache.lockNote().find("computing without the lock"), std::string::npos) << cache.lockNote();
+  EXPECT_EQ(cache.stats().stores, 1);
+  EXPECT_TRUE(computeModalBasis(shell, kPins, s, &cache).fromCache);
+}
+
 TEST(BasisCache, AReadOnlyCacheReadsWithoutLocksAndNeverWrites) {
   TempDir dir;
   const DiscreteShell shell = stripShell();
