@@ -18,7 +18,8 @@ double peakRssMb() {
 void addJobReport(nlohmann::json& j) {
   j["peak_rss_mb"] = std::round(peakRssMb() * 10.0) / 10.0;
   const BasisCacheActivity& a = basisCacheActivity();
-  const char* status = !a.enabled         ? "off"
+  const char* status = !a.requested       ? "unused"
+                       : !a.enabled       ? "off"
                        : a.computed > 0   ? "computed"
                        : a.waited > 0     ? "waited"
                        : a.hits > 0       ? "hit"

@@ -4,7 +4,8 @@
 //                         child processes such as ffmpeg are not counted)
 //   basis_cache           "computed" (this process computed at least one basis), else "waited" (it
 //                         read a basis another process was computing), else "hit" (every basis read
-//                         from the cache), "unused" (no basis asked for), "off" (no usable folder)
+//                         from the cache), "unused" (no basis asked for: a command without a cache,
+//                         such as modes), "off" (no usable cache folder)
 //   basis_cache_counts    {hits, waited, computed, stored, rejected, read_only}
 //   basis_cache_computed  the keys (hex, the cache file names) of the bases it computed
 #pragma once

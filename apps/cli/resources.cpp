@@ -135,6 +135,7 @@ ResolvedPath cacheDir(const std::string& option, const EnvLookup& env) {
 
 std::unique_ptr<BasisCache> openBasisCache(const std::string& option, const std::string& program) {
   const ResolvedPath where = cacheDir(option);
+  activity().requested = true;
   const auto off = [&](const std::string& why) -> std::unique_ptr<BasisCache> {
     fmt::print(stderr, "{}: warning: no basis cache ({}); the bases are computed and not kept\n", program, why);
     return std::make_unique<NoBasisCache>();

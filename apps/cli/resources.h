@@ -49,6 +49,7 @@ std::unique_ptr<BasisCache> openBasisCache(const std::string& option, const std:
 
 // What the basis caches opened by openBasisCache did in this process (for --json's basis_cache).
 struct BasisCacheActivity {
+  bool requested = false; // the command asked for a cache (openBasisCache)
   bool enabled = false;   // a cache folder was usable
   bool readOnly = false;  // ... and read-only
   int hits = 0;           // bases read without waiting
