@@ -48,6 +48,7 @@
 
 #include <unistd.h>
 
+#include "job_report.h"
 #include "command.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
@@ -646,7 +647,7 @@ int runBench(BenchOptions opt) {
   out["full_side_by_side"] = sideBySide;
   out["reference"] = references;
   out["notes"] = notes;
-  if (opt.json) fmt::print("{}\n", out.dump(2));
+  if (opt.json) printJsonReport(out);
   return kExitOk;
 }
 

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "job_report.h"
 #include "command.h"
 #include "fit_head.h"
 #include "myoshell/core/atomic_file.h"
@@ -208,7 +209,7 @@ int runFit(const FitArgs& a) {
   j["seconds"] = total.seconds();
   if (!a.out.empty()) writeFileAtomically(a.out, j.dump(2) + "\n");
   if (a.json) {
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
     return kExitOk;
   }
   std::string used;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "job_report.h"
 #include "command.h"
 #include "fit_head.h"
 #include "myoshell/core/atomic_file.h"
@@ -185,7 +186,7 @@ int runFitRig(FitRigArgs& a) {
     j["build_seconds"] = buildSeconds;
     j["fit_seconds"] = fit.seconds;
     j["seconds"] = total.seconds();
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
     return kExitOk;
   }
   for (size_t i = 0; i < fit.shapes.size(); ++i) {

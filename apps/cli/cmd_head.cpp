@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "job_report.h"
 #include "command.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -166,7 +167,7 @@ int runHead(const HeadArgs& a) {
   }
 
   if (a.json) {
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
     return kExitOk;
   }
   fmt::print("head {}: {} vertices, {} triangles, {} boundary loop(s)", head.name, m.vertexCount(),

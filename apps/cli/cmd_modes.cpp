@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "job_report.h"
 #include "command.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/edge_table.h"
@@ -59,7 +60,7 @@ int runModes(const ModesArgs& args) {
     j["free_vertices"] = basis.freeCount();
     j["pinned_vertices"] = mesh.vertexCount() - basis.freeCount();
     j["modes"] = basis.modeCount();
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
   } else {
     fmt::print("{}: {} vertices, {} free, {} modes ({} solver, {:.3f} s)\n", args.mesh, mesh.vertexCount(),
                basis.freeCount(), basis.modeCount(), basis.solver, basis.solveSeconds);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "job_report.h"
 #include "command.h"
 #include "fit_head.h"
 #include "myoshell/core/errors.h"
@@ -61,7 +62,7 @@ int runMuscles(MusclesArgs& a) {
     j["library"] = a.head.library;
     if (placed) j["head"] = inputs.head.name;
     j["muscles"] = list;
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
     return kExitOk;
   }
   fmt::print("{} muscles in library {}{}\n", list.size(), a.head.library,

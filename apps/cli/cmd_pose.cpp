@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "job_report.h"
 #include "command.h"
 #include "resources.h"
 #include "myoshell/core/errors.h"
@@ -268,7 +269,7 @@ int runPose(const PoseArgs& a) {
     j["build_seconds"] = buildSeconds;
     j["settle_seconds"] = settleSeconds;
     j["seconds"] = seconds;
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
     return kExitOk;
   }
   std::string set;

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "job_report.h"
 #include "command.h"
 #include "resources.h"
 #include "myoshell/io/scene_face.h"
@@ -223,7 +224,7 @@ int runRender(const RenderCommandOptions& opt) {
     if (video) j["video"] = {videoPath.string(), gifPath.string()};
     j["render_ms"] = paintMs;
     if (overlays.displacement) j["color_scale_cm"] = overlays.displacementScale;
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
   } else {
     fmt::print("{}: {} frames drawn by {} at {}x{}, median {:.1f} ms per frame\n", scene.name, frames.size(),
                painter->name(), width, height, median(paintMs));

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "job_report.h"
 #include "command.h"
 #include "fit_head.h"
 #include "myoshell/core/errors.h"
@@ -131,7 +132,7 @@ int runRig(RigArgs& a) {
     j["build_seconds"] = buildSeconds;
     j["settle_seconds"] = settleSeconds;
     j["seconds"] = total.seconds();
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
     return kExitOk;
   }
   fmt::print("rig of {} ({} vertices) from {}: {} of the 52 ARKit shapes made by physics, the others zero ({:.1f} s)\nwrote {}\n",

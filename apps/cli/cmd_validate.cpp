@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "job_report.h"
 #include "command.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/verify/validation.h"
@@ -59,7 +60,7 @@ int runValidate(const ValidateArgs& args) {
     for (const auto& c : report.cases) j["cases"].push_back(toJson(c));
     j["all_passed"] = report.allPassed();
     j["seconds"] = report.seconds;
-    fmt::print("{}\n", j.dump(2));
+    printJsonReport(j);
   } else {
     for (const auto& c : report.cases) {
       fmt::print("{}  [{}]  d = {}\n  {}\n", c.name, c.passed ? "pass" : "FAIL", c.d, c.description);

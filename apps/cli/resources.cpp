@@ -48,14 +48,47 @@ class NoBasisCache : public BasisCache {
   void store(const BasisKey&, const ModalBasis&) override {}
 };
 
-// The file cache, warning once when a basis cannot be stored.
+// What the basis caches of this process did (basisCacheActivity()).
+BasisCacheActivity& activity() {
+  static BasisCacheActivity a;
+  return a;
+}
+
+// The file cache, warning once when a basis cannot be stored, once when it works without a lock,
+// and for every unusable entry it meets (which is then recomputed).
 class WarningBasisCache : public BasisCache {
  public:
-  WarningBasisCache(fs::path dir, std::string program) : files_(std::move(dir)), program_(std::move(program)) {}
-  std::optional<ModalBasis> load(const BasisKey& key) override { return files_.load(key); }
+  WarningBasisCache(fs::path dir, FileBasisCache::Access access, std::string program)
+      : files_(std::move(dir), access), program_(std::move(program)) {
+    activity().enabled = true;
+    activity().readOnly = activity().readOnly || files_.readOnly();
+  }
+  std::optional<ModalBasis> load(const BasisKey& key) override {
+    const FileBasisCache::Stats before = files_.stats();
+    std::optional<ModalBasis> b = files_.load(key);
+    const FileBasisCache::Stats& now = files_.stats();
+    BasisCacheActivity& a = activity();
+    a.hits += now.hits - before.hits;
+    a.waited += now.waited - before.waited;
+    a.rejected += now.rejected - before.rejected;
+    if (now.misses > before.misses) {
+      ++a.computed;
+      a.computedKeys.push_back(now.missedKeys.back());
+    }
+    if (now.rejected > before.rejected)
+      fmt::print(stderr, "{}: warning: ignoring an unusable basis cache entry, recomputing it: {}\n", program_,
+                 files_.lastRejection());
+    if (!warnedLock_ && !files_.lockNote().empty()) {
+      warnedLock_ = true;
+      fmt::print(stderr, "{}: warning: basis cache without a lock: {}\n", program_, files_.lockNote());
+    }
+    return b;
+  }
   Reader reader() const override { return files_.reader(); }
   void store(const BasisKey& key, const ModalBasis& basis) override {
+    const int storesBefore = files_.stats().stores;
     files_.store(key, basis);
+    activity().stored += files_.stats().stores - storesBefore;
     if (!warned_ && !files_.lastStoreError().empty()) {
       warned_ = true;
       fmt::print(stderr, "{}: warning: the basis cache keeps nothing: {}\n", program_, files_.lastStoreError());
@@ -66,6 +99,7 @@ class WarningBasisCache : public BasisCache {
   FileBasisCache files_;
   std::string program_;
   bool warned_ = false;
+  bool warnedLock_ = false;
 };
 
 }  // namespace
@@ -101,22 +135,28 @@ ResolvedPath cacheDir(const std::string& option, const EnvLookup& env) {
 
 std::unique_ptr<BasisCache> openBasisCache(const std::string& option, const std::string& program) {
   const ResolvedPath where = cacheDir(option);
+  activity().requested = true;
   const auto off = [&](const std::string& why) -> std::unique_ptr<BasisCache> {
     fmt::print(stderr, "{}: warning: no basis cache ({}); the bases are computed and not kept\n", program, why);
     return std::make_unique<NoBasisCache>();
   };
   if (where.dir.empty()) return off("no folder: " + where.source);
-  std::unique_ptr<WarningBasisCache> cache;
+  // An existing folder we cannot add files to (a read-only folder or file system, a shared cache
+  // built beforehand) is read without locks and never written.
+  std::error_code ec;
+  if (fs::is_directory(where.dir, ec) && ::access(where.dir.c_str(), W_OK | X_OK) != 0) {
+    if (::access(where.dir.c_str(), R_OK | X_OK) != 0)
+      return off("cannot read the basis cache folder " + where.dir.string() + " (" + std::strerror(errno) + ")");
+    return std::make_unique<WarningBasisCache>(where.dir, FileBasisCache::Access::ReadOnly, program);
+  }
   try {
-    cache = std::make_unique<WarningBasisCache>(where.dir, program);
+    return std::make_unique<WarningBasisCache>(where.dir, FileBasisCache::Access::ReadWrite, program);
   } catch (const InputError& e) {
     return off(e.what());
   }
-  // The folder exists: can we add files to it? (A read-only folder or file system.)
-  if (::access(where.dir.c_str(), W_OK | X_OK) != 0)
-    return off("cannot write into the basis cache folder " + where.dir.string() + " (" + std::strerror(errno) + ")");
-  return cache;
 }
+
+const BasisCacheActivity& basisCacheActivity() { return activity(); }
 
 void useDataDir(SceneDesc& scene, const fs::path& data) {
   for (std::string* p : {&scene.head.obj, &scene.head.landmarks, &scene.head.gravityPins, &scene.head.skull}) {

@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "myoshell/anim/scene.h"
 #include "myoshell/reduce/basis_cache.h"
@@ -39,10 +40,26 @@ ResolvedPath dataDir(const std::string& option, const EnvLookup& env = processEn
 ResolvedPath cacheDir(const std::string& option, const EnvLookup& env = processEnv());
 
 // The basis cache of a command that builds a face, at cacheDir(option). It never stops the
-// command: when the folder cannot be made or written, `program` prints one warning naming the
-// folder and the OS's reason, and the bases are computed without a cache; a basis that cannot be
-// stored warns once the same way.
+// command: when the folder cannot be made or read, `program` prints one warning naming the folder
+// and the OS's reason, and the bases are computed without a cache; a folder it cannot write (a
+// shared, read-only cache) is read without locks and never written; a basis that cannot be stored
+// warns once the same way. Processes sharing the folder lock each key while one of them computes it
+// (io/basis_cache_file.h, docs/batch.md).
 std::unique_ptr<BasisCache> openBasisCache(const std::string& option, const std::string& program = "myoshell");
+
+// What the basis caches opened by openBasisCache did in this process (for --json's basis_cache).
+struct BasisCacheActivity {
+  bool requested = false; // the command asked for a cache (openBasisCache)
+  bool enabled = false;   // a cache folder was usable
+  bool readOnly = false;  // ... and read-only
+  int hits = 0;           // bases read without waiting
+  int waited = 0;         // bases read after waiting for another process computing them
+  int computed = 0;       // bases this process computed (cache misses)
+  int stored = 0;         // bases it stored
+  int rejected = 0;       // unusable entries met (then recomputed)
+  std::vector<std::string> computedKeys;  // the keys (hex) of the computed bases
+};
+const BasisCacheActivity& basisCacheActivity();
 
 // The thesis scenes name the ICT head through the team's data folder beside the project
 // (`../../../shared/data/ict/head_skin.obj`). Each head path with a `shared/data/` part is re-rooted

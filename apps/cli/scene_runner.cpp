@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "job_report.h"
 #include "command.h"
 #include "interrupt.h"
 #include "myoshell/gl/gl_face_painter.h"
@@ -293,7 +294,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     summary.erase("per_frame");
     summary["out"] = out.string();
     summary["removed_stale"] = stale;
-    fmt::print("{}\n", summary.dump(2));
+    printJsonReport(summary);
   } else {
     fmt::print("{}: {} frames, {} steps at {:.0f} steps/s (precompute {:.2f} s, {} cached bases)\n", scene.name,
                frames, steps, steps / std::max(stepSeconds, 1e-12), buildSeconds, model->cacheHits());

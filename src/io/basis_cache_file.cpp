@@ -1,7 +1,14 @@
 #include "myoshell/io/basis_cache_file.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
+#include <set>
 #include <vector>
 
 #include "myoshell/core/atomic_file.h"
@@ -162,32 +169,154 @@ std::optional<ModalBasis> readBasisFile(const std::filesystem::path& path, const
   return b;
 }
 
-FileBasisCache::FileBasisCache(std::filesystem::path directory) : dir_(std::move(directory)) {
+namespace {
+
+// The lock files this process holds, over all FileBasisCache objects: flock locks belong to an open
+// file description, so a second object of this process locking a file the first holds would wait
+// for itself. (Process state, as the locks themselves are.)
+std::mutex& heldLocksMutex() {
+  static std::mutex m;
+  return m;
+}
+std::set<std::string>& heldLockPaths() {
+  static std::set<std::string> paths;
+  return paths;
+}
+
+}  // namespace
+
+FileBasisCache::FileBasisCache(std::filesystem::path directory, Access access)
+    : dir_(std::move(directory)), access_(access) {
   std::error_code ec;
+  if (access_ == Access::ReadOnly) {
+    if (!std::filesystem::is_directory(dir_, ec))
+      throw InputError("the read-only basis cache directory " + dir_.string() + " is not a folder" +
+                       (ec ? " (" + ec.message() + ")" : std::string()));
+    return;
+  }
   std::filesystem::create_directories(dir_, ec);
   if (!ec && !std::filesystem::is_directory(dir_)) ec = std::make_error_code(std::errc::not_a_directory);
   if (ec) throw InputError("cannot create the basis cache directory " + dir_.string() + " (" + ec.message() + ")");
+}
+
+FileBasisCache::~FileBasisCache() {
+  std::lock_guard<std::mutex> g(heldLocksMutex());
+  for (const auto& [hex, fd] : held_) {
+    heldLockPaths().erase((dir_ / (hex + ".lock")).string());
+    ::close(fd);  // releases the flock
+  }
 }
 
 std::filesystem::path FileBasisCache::pathFor(const BasisKey& key) const {
   return dir_ / (key.hex() + ".myobasis");
 }
 
-std::optional<ModalBasis> FileBasisCache::load(const BasisKey& key) {
+std::filesystem::path FileBasisCache::lockPathFor(const BasisKey& key) const {
+  return dir_ / (key.hex() + ".lock");
+}
+
+std::optional<ModalBasis> FileBasisCache::read(const BasisKey& key, bool* rejected) {
   const auto path = pathFor(key);
-  if (!std::filesystem::exists(path)) {
-    ++stats_.misses;
-    return std::nullopt;
-  }
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
   std::string why;
   std::optional<ModalBasis> b = readBasisFile(path, key, &why);
   if (!b) {
-    ++stats_.rejected;
+    *rejected = true;
     lastRejection_ = path.string() + ": " + why;
-    return std::nullopt;
   }
-  ++stats_.hits;
   return b;
+}
+
+bool FileBasisCache::lock(const BasisKey& key, bool* blocked) {
+  *blocked = false;
+  const std::string path = lockPathFor(key).string();
+  {
+    std::lock_guard<std::mutex> g(heldLocksMutex());
+    if (!heldLockPaths().insert(path).second) {
+      lockNote_ = path + " is held by another cache object of this process; computing without the lock";
+      return false;
+    }
+  }
+  const auto giveUp = [&](const std::string& what, int error) {
+    lockNote_ = what + " " + path + " (" + std::strerror(error) +
+                "); computing without the lock: the entries stay whole (atomic rename), but processes "
+                "starting at once may compute the same basis";
+    std::lock_guard<std::mutex> g(heldLocksMutex());
+    heldLockPaths().erase(path);
+    return false;
+  };
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) return giveUp("cannot create the lock file", errno);
+  int rc = ::flock(fd, LOCK_EX | LOCK_NB);
+  if (rc != 0 && errno == EWOULDBLOCK) {
+    *blocked = true;
+    do rc = ::flock(fd, LOCK_EX);
+    while (rc != 0 && errno == EINTR);
+  }
+  if (rc != 0) {
+    const int error = errno;
+    ::close(fd);
+    return giveUp("cannot lock", error);
+  }
+  held_[key.hex()] = fd;
+  return true;
+}
+
+void FileBasisCache::unlock(const BasisKey& key) {
+  const auto it = held_.find(key.hex());
+  if (it == held_.end()) return;
+  ::close(it->second);  // releases the flock; the (empty) lock file stays, as waiters may hold it open
+  held_.erase(it);
+  std::lock_guard<std::mutex> g(heldLocksMutex());
+  heldLockPaths().erase(lockPathFor(key).string());
+}
+
+void FileBasisCache::removeStaleTemporaries(const BasisKey& key) const {
+  // writeFileAtomically's temporaries of this key: ".<hex>.myobasis.<pid>.<n>.tmp". With the key's
+  // lock held no other process writes it, so those of other processes were left by a killed writer.
+  std::string prefix(1, '.');  // (appends: gcc 12 warns falsely on "." + string)
+  prefix.append(key.hex()).append(".myobasis.");
+  std::string own = prefix;
+  own.append(std::to_string(::getpid())).append(".");
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator(dir_, ec); !ec && it != std::filesystem::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) == 0 && name.rfind(own, 0) != 0 && name.size() > 4 &&
+        name.compare(name.size() - 4, 4, ".tmp") == 0)
+      removeQuietly(it->path().string());
+  }
+}
+
+std::optional<ModalBasis> FileBasisCache::load(const BasisKey& key) {
+  bool rejected = false;  // an unusable file met (counted once per load)
+  std::optional<ModalBasis> b = read(key, &rejected);
+  if (!b && access_ == Access::ReadWrite && !held_.count(key.hex())) {
+    bool blocked = false;
+    if (lock(key, &blocked)) {
+      // Another process may have stored it since the first read (while we waited, or just before).
+      b = read(key, &rejected);
+      if (b) {
+        unlock(key);
+        if (blocked) {
+          stats_.rejected += rejected;
+          ++stats_.waited;
+          return b;
+        }
+      } else {
+        removeStaleTemporaries(key);
+      }
+    }
+  }
+  stats_.rejected += rejected;
+  if (b) {
+    ++stats_.hits;
+    return b;
+  }
+  ++stats_.misses;
+  stats_.missedKeys.push_back(key.hex());
+  return std::nullopt;
 }
 
 BasisCache::Reader FileBasisCache::reader() const {
@@ -195,6 +324,10 @@ BasisCache::Reader FileBasisCache::reader() const {
 }
 
 void FileBasisCache::store(const BasisKey& key, const ModalBasis& basis) {
+  if (access_ == Access::ReadOnly) {
+    lastStoreError_ = "the basis cache folder " + dir_.string() + " is read-only: the computed basis is not kept";
+    return;
+  }
   try {
     writeBasisFile(pathFor(key), key, basis);
     ++stats_.stores;
@@ -204,6 +337,7 @@ void FileBasisCache::store(const BasisKey& key, const ModalBasis& basis) {
   } catch (const IoError& e) {  // a full disk, a file-size limit
     lastStoreError_ = e.what();
   }
+  unlock(key);  // after the rename: a waiter that wakes finds the file whole
 }
 
 }  // namespace myo

@@ -1,6 +1,11 @@
-// The file basis cache: bit-identical round trip; corrupt, truncated and foreign files rejected.
+// The file basis cache: bit-identical round trip; corrupt, truncated and foreign files rejected;
+// the per-key lock that processes sharing a folder take; a read-only folder.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 
@@ -8,6 +13,7 @@
 #include <fstream>
 #include <random>
 
+#include "myoshell/core/errors.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/primitives.h"
@@ -73,9 +79,10 @@ TEST(BasisCache, RoundTripIsBitIdenticalAndSkipsTheSolve) {
   EXPECT_EQ(cache.stats().stores, 1);
   const fs::path file = cache.pathFor(modalBasisKey(shell, kPins, s));
   EXPECT_TRUE(fs::exists(file));
-  // No temporary files are left behind.
+  // No temporary files are left behind: the entry, and the key's (empty) lock file.
   int files = 0;
-  for (const auto& e : fs::directory_iterator(cache.directory())) files += e.is_regular_file();
+  for (const auto& e : fs::directory_iterator(cache.directory()))
+    files += e.is_regular_file() && e.path().extension() != ".lock";
   EXPECT_EQ(files, 1);
 
   const ModalBasis second = computeModalBasis(shell, kPins, s, &cache);
@@ -110,7 +117,8 @@ TEST(BasisCache, AStoreFailingForTheSystemIsNotFatalAndKeepsItsReason) {
   EXPECT_EQ(cache.stats().stores, 0);
   const std::string file = cache.pathFor(modalBasisKey(shell, kPins, s)).string();
   EXPECT_EQ(cache.lastStoreError(), file + ": cannot write the basis cache file (File too large)");
-  EXPECT_TRUE(fs::is_empty(cache.directory()));
+  for (const auto& e : fs::directory_iterator(cache.directory()))  // the key's lock file only
+    EXPECT_EQ(e.path().extension(), ".lock") << e.path();
 }
 
 TEST(BasisCache, CorruptTruncatedAndForeignFilesAreRebuilt) {
@@ -170,6 +178,170 @@ TEST(BasisCache, CorruptTruncatedAndForeignFilesAreRebuilt) {
   EXPECT_FALSE(readBasisFile(dir.path / "missing.myobasis", key, &why).has_value());
   EXPECT_EQ(why, "no file");
   EXPECT_TRUE(readBasisFile(file, key, &why).has_value());
+}
+
+// Whether another open file description could take `path`'s lock now (it is free).
+bool lockIsFree(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) return false;
+  const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  ::close(fd);
+  return free;
+}
+
+TEST(BasisCache, AMissHoldsTheKeysLockUntilTheStore) {
+  TempDir dir;
+  FileBasisCache cache(dir.path);
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  EXPECT_FALSE(cache.load(key).has_value());
+  ASSERT_TRUE(fs::exists(cache.lockPathFor(key)));
+  EXPECT_FALSE(lockIsFree(cache.lockPathFor(key))) << "another process would wait";
+  EXPECT_FALSE(cache.load(key).has_value()) << "the holder asking again does not wait for itself";
+  EXPECT_EQ(cache.stats().misses, 2);
+  EXPECT_EQ(cache.stats().missedKeys, (std::vector<std::string>{key.hex(), key.hex()}));
+  cache.store(key, computeModalBasis(shell, kPins, s));
+  EXPECT_TRUE(lockIsFree(cache.lockPathFor(key)));
+  EXPECT_TRUE(cache.load(key).has_value());
+  EXPECT_TRUE(lockIsFree(cache.lockPathFor(key))) << "a hit takes no lock";
+  EXPECT_TRUE(cache.lockNote().empty()) << cache.lockNote();
+}
+
+TEST(BasisCache, ACacheDestroyedAfterAMissWithoutStoringReleasesTheLock) {
+  TempDir dir;
+  const BasisKey key = KeyHasher().str("never stored").key();
+  fs::path lockPath;
+  {
+    FileBasisCache cache(dir.path);
+    EXPECT_FALSE(cache.load(key).has_value());
+    lockPath = cache.lockPathFor(key);
+    EXPECT_FALSE(lockIsFree(lockPath));
+  }
+  EXPECT_TRUE(lockIsFree(lockPath));
+}
+
+// A child process that loads `key` (a miss: it takes the lock), tells the parent through a pipe,
+// then either stores `basis` after `holdMs` or waits to be killed.
+pid_t missingChild(const fs::path& dir, const BasisKey& key, const ModalBasis* basis, int holdMs) {
+  int fds[2];
+  if (::pipe(fds) != 0) return -1;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(fds[0]);
+    FileBasisCache cache(dir);
+    const bool miss = !cache.load(key).has_value();
+    const char c = miss ? 'm' : 'h';
+    if (::write(fds[1], &c, 1) != 1) ::_exit(3);
+    if (!basis) for (;;) ::pause();
+    ::usleep(holdMs * 1000);
+    cache.store(key, *basis);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  char c = 0;
+  const bool told = ::read(fds[0], &c, 1) == 1 && c == 'm';
+  ::close(fds[0]);
+  return told ? pid : -1;
+}
+
+TEST(BasisCache, AWaiterReadsWhatTheHolderStoredInsteadOfComputingIt) {
+  TempDir dir;
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  const ModalBasis ref = computeModalBasis(shell, kPins, s);
+  const pid_t child = missingChild(dir.path, key, &ref, 1500);
+  ASSERT_GT(child, 0);
+  FileBasisCache cache(dir.path);
+  const ModalBasis b = computeModalBasis(shell, kPins, s, &cache);  // blocks until the child stores
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_TRUE(b.fromCache);
+  EXPECT_EQ(cache.stats().misses, 0);
+  EXPECT_EQ(cache.stats().stores, 0);
+  EXPECT_EQ(cache.stats().waited + cache.stats().hits, 1);
+  expectBitIdentical(ref, b);
+}
+
+TEST(BasisCache, AHolderKilledMidComputationHandsTheKeyOnAndItsTemporaryIsRemoved) {
+  TempDir dir;
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  const pid_t child = missingChild(dir.path, key, nullptr, 0);
+  ASSERT_GT(child, 0);
+  // What a writer killed mid-write leaves: a half temporary beside the entry.
+  const fs::path stale = dir.path / ("." + key.hex() + ".myobasis." + std::to_string(child) + ".0.tmp");
+  writeAll(stale, std::vector<char>(100, 'x'));
+  EXPECT_FALSE(lockIsFree(dir.path / (key.hex() + ".lock")));
+  ::kill(child, SIGKILL);
+  ::waitpid(child, nullptr, 0);
+  FileBasisCache cache(dir.path);
+  const ModalBasis b = computeModalBasis(shell, kPins, s, &cache);
+  EXPECT_FALSE(b.fromCache);
+  EXPECT_EQ(cache.stats().misses, 1);
+  EXPECT_EQ(cache.stats().stores, 1);
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(readBasisFile(cache.pathFor(key), key).has_value());
+}
+
+TEST(BasisCache, TwoCacheObjectsOfOneProcessDoNotWaitForEachOther) {
+  TempDir dir;
+  const BasisKey key = KeyHasher().str("one process").key();
+  FileBasisCache a(dir.path), b(dir.path);
+  EXPECT_FALSE(a.load(key).has_value());
+  EXPECT_FALSE(b.load(key).has_value());  // would block forever if it locked
+  EXPECT_NE(b.lockNote().find("held by another cache object of this process"), std::string::npos) << b.lockNote();
+  EXPECT_TRUE(a.lockNote().empty());
+}
+
+TEST(BasisCache, WithoutALockTheCacheStillComputesAndStoresWholeEntries) {
+  // The lock file cannot be made (a folder in its place; on a network file system flock itself may
+  // fail, EOPNOTSUPP or ENOLCK, and takes the same path): atomic rename alone.
+  TempDir dir;
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  FileBasisCache cache(dir.path);
+  fs::create_directories(cache.lockPathFor(key));
+  const ModalBasis b = computeModalBasis(shell, kPins, s, &cache);
+  EXPECT_FALSE(b.fromCache);
+  EXPECT_NE(cache.lockNote().find("cannot create the lock file " + cache.lockPathFor(key).string()), std::string::npos)
+      << cache.lockNote();
+  EXPECT_NE(cache.lockNote().find("computing without the lock"), std::string::npos) << cache.lockNote();
+  EXPECT_EQ(cache.stats().stores, 1);
+  EXPECT_TRUE(computeModalBasis(shell, kPins, s, &cache).fromCache);
+}
+
+TEST(BasisCache, AReadOnlyCacheReadsWithoutLocksAndNeverWrites) {
+  TempDir dir;
+  const DiscreteShell shell = stripShell();
+  ModalSettings s;
+  s.modeCount = 6;
+  const BasisKey key = modalBasisKey(shell, kPins, s);
+  writeBasisFile(dir.path / (key.hex() + ".myobasis"), key, computeModalBasis(shell, kPins, s));
+  FileBasisCache cache(dir.path, FileBasisCache::Access::ReadOnly);
+  EXPECT_TRUE(cache.readOnly());
+  EXPECT_TRUE(computeModalBasis(shell, kPins, s, &cache).fromCache);
+  s.modeCount = 7;  // not in the cache: computed, and not kept
+  EXPECT_FALSE(computeModalBasis(shell, kPins, s, &cache).fromCache);
+  EXPECT_EQ(cache.stats().hits, 1);
+  EXPECT_EQ(cache.stats().misses, 1);
+  EXPECT_EQ(cache.stats().stores, 0);
+  EXPECT_NE(cache.lastStoreError().find("is read-only"), std::string::npos) << cache.lastStoreError();
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir.path)) {
+    ++files;
+    EXPECT_EQ(e.path().extension(), ".myobasis") << "no lock or temporary file: " << e.path();
+  }
+  EXPECT_EQ(files, 1);
+  EXPECT_THROW(FileBasisCache(dir.path / "missing", FileBasisCache::Access::ReadOnly), InputError);
 }
 
 TEST(BasisCache, KeyHashIsStable) {
