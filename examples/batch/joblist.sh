@@ -53,5 +53,11 @@ myo_job() {
   mkdir -p "$dir"
   local args=(drive "$perf" --head "$head" --out "$dir" --cache "$cache" --json)
   [ -n "$landmarks" ] && args+=(--landmarks "$landmarks")
+  # One thread a job unless told otherwise (the recipes run a job per core; a Slurm task gets the
+  # cores it asked for): a drive's --threads defaults to every core, which jobs side by side share.
+  case " $* " in
+    *" --threads "*) ;;
+    *) args+=(--threads "${SLURM_CPUS_PER_TASK:-1}") ;;
+  esac
   "$myoshell" "${args[@]}" "$@" > "$dir/job.json" 2> "$dir/job.log"
 }
