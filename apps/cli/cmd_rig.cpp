@@ -16,8 +16,8 @@
 
 #include "job_report.h"
 #include "command.h"
-#include "fit_head.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/arkit_names.h"
