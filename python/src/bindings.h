@@ -59,5 +59,6 @@ void bindRigMaking(py::module_& m);
 void bindRigFitting(py::module_& m);
 void bindDrive(py::module_& m);
 void bindExports(py::module_& m);
+void bindThreads(py::module_& m);
 
 }  // namespace myo::python

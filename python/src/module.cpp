@@ -13,4 +13,5 @@ PYBIND11_MODULE(_myoshell, m) {
   myo::python::bindRigFitting(m);
   myo::python::bindDrive(m);
   myo::python::bindExports(m);
+  myo::python::bindThreads(m);
 }

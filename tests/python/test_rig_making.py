@@ -113,3 +113,20 @@ def test_bad_arguments_as_the_cli(made, cli, tmp_path):
     assert str(python.value).endswith("the map uses the whole face's muscles (orbicularis_oris_upper, …): give --library face")
     assert str(python.value) in cli_error(cli, "rig", "--map", face_map, "--out", tmp_path / "rig.glb")
     assert not (tmp_path / "rig.glb").exists()
+
+
+def test_threads_change_nothing(made, cache_dir):
+    folder, _, _ = made
+    rig = myoshell.read_rig(folder / "cli.glb")
+    assert myoshell.threads() == 1  # the module's default
+    one = myoshell.fit_rig(rig, head="default", cache=cache_dir)
+    myoshell.set_threads(2)
+    try:
+        assert myoshell.threads() == 2
+        two = myoshell.fit_rig(rig, head="default", cache=cache_dir)
+    finally:
+        myoshell.set_threads(1)
+    assert one["map"] == two["map"]
+    assert [s["rms_mm"] for s in one["shapes"]] == [s["rms_mm"] for s in two["shapes"]]
+    with pytest.raises(myoshell.InputError):
+        myoshell.set_threads(-1)
