@@ -51,27 +51,33 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   CLI::App* sub = app.add_subcommand(
       "drive", "Play a recorded performance (OpenFace action units, Live Link Face or MediaPipe blendshape weights) on a "
                "head and write the animation");
-  sub->add_option("performance", a->scene.performance, "the performance file (OpenFace CSV, Live Link Face CSV, MediaPipe "
-                                                 "JSON Lines)")->required();
+  sub->add_option("performance", a->scene.performance,
+                  "the performance file (OpenFace CSV, Live Link Face CSV, MediaPipe JSON Lines)")
+      ->required();
   sub->add_option("--out", a->run.outDir, "Output folder")->required();
-  sub->add_option("--head", a->scene.head, "'default', an OBJ file (with --landmarks), or a folder like ../shared/data/ict");
+  sub->add_option("--head", a->scene.head,
+                  "'default', an OBJ file (with --landmarks), or a folder like ../shared/data/ict");
   sub->add_option("--landmarks", a->scene.landmarks, "landmark file of an OBJ head (docs/heads.md)");
   sub->add_option("--units", a->scene.units, "the OBJ head's length unit, m, mm or cm (default cm)");
-  sub->add_option("--library", a->scene.library, "muscles: 'face' (the whole face, default), 'builtin' (the thesis's eight) "
-                                           "or a library file");
+  sub->add_option("--library", a->scene.library,
+                  "muscles: 'face' (the whole face, default), 'builtin' (the thesis's eight) or a library file");
   sub->add_option("--map", a->scene.map, "ARKit input: a retargeting map (fit-rig --out); default the shipped ICT map");
   sub->add_option("--input", a->scene.input, "openface, livelink or mediapipe (default: from the file's header)");
-  sub->add_option("--au-scale", a->scene.auScale, "OpenFace: the intensities' scale, 5 (raw) or 1 (default: from the header)")
+  sub->add_option("--au-scale", a->scene.auScale,
+                  "OpenFace: the intensities' scale, 5 (raw) or 1 (default: from the header)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--face", a->scene.face, "OpenFace: the face_id to play when the file tracks several")->check(CLI::NonNegativeNumber);
+  sub->add_option("--face", a->scene.face, "OpenFace: the face_id to play when the file tracks several")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--min-confidence", a->scene.minConfidence, "OpenFace: frames below it are bridged (default 0.7)")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--input-fps", a->scene.inputFps, "Live Link: the timecode's frame rate (default: inferred)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--filter", a->scene.filter, "the One-Euro filter on the input curves: on (default) or off");
-  sub->add_option("--min-cutoff", a->scene.oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")->capture_default_str();
+  sub->add_option("--min-cutoff", a->scene.oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")
+      ->capture_default_str();
   sub->add_option("--beta", a->scene.oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
-  sub->add_option("--start", a->scene.start, "play from this time, s after the first frame")->check(CLI::NonNegativeNumber);
+  sub->add_option("--start", a->scene.start, "play from this time, s after the first frame")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--end", a->scene.end, "play up to this time, s after the first frame");
   sub->add_option("--format", a->run.formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')
