@@ -29,9 +29,17 @@ namespace fs = std::filesystem;
 
 std::string text(const py::object& o) { return o.is_none() ? std::string() : py::str(o).cast<std::string>(); }
 
+double number(const py::object& o, const char* name) {
+  try {
+    return o.cast<double>();
+  } catch (const py::cast_error&) {
+    throw InputError(fmt::format("{}: expected a number", name));
+  }
+}
+
 // A number the command line checks with a validator: > 0 (`positive`) or in [low, high].
 double checked(const py::object& o, const char* name, double low, double high, bool positive) {
-  const double v = o.cast<double>();
+  const double v = number(o, name);
   if (!std::isfinite(v) || (positive ? v <= 0.0 : (v < low || v > high)))
     throw InputError(positive ? fmt::format("{}: expected a number > 0, got {}", name, v)
                               : fmt::format("{}: expected a number in [{}, {}], got {}", name, low, high, v));
@@ -56,11 +64,11 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   def.minConfidence = checked(py::float_(minConfidence), "min_confidence", 0.0, 1.0, false);
   if (!inputFps.is_none()) def.inputFps = checked(inputFps, "input_fps", 0, 0, true);
   def.filter = py::isinstance<py::bool_>(filter) ? (filter.cast<bool>() ? "on" : "off") : text(filter);
-  if (!minCutoff.is_none()) def.oneEuro.minCutoff = minCutoff.cast<double>();
-  if (!beta.is_none()) def.oneEuro.beta = beta.cast<double>();
+  if (!minCutoff.is_none()) def.oneEuro.minCutoff = number(minCutoff, "min_cutoff");
+  if (!beta.is_none()) def.oneEuro.beta = number(beta, "beta");
   if (!(start >= 0.0)) throw InputError(fmt::format("start: expected a number ≥ 0, got {}", start));
   def.start = start;
-  if (!end.is_none()) def.end = end.cast<double>();
+  if (!end.is_none()) def.end = number(end, "end");
 
   // In drive's order: the scene (its performance read), then, as runScene, the output folder and
   // the formats, then the face's build.

@@ -109,8 +109,10 @@ def test_bad_arguments_as_the_cli(driven, cli, tmp_path):
         myoshell.write_glb(tmp_path / "x.glb", myoshell.load_head(), python["frames"][:, :10])
     with pytest.raises(myoshell.InputError, match="head: expected a Head"):
         myoshell.write_glb(tmp_path / "x.glb", "default", python["frames"])
-    with pytest.raises(myoshell.InputError, match="au_scale"):
+    with pytest.raises(myoshell.InputError, match="au_scale: expected a number > 0, got -1"):
         myoshell.drive(take, au_scale=-1)
+    with pytest.raises(myoshell.InputError, match="end: expected a number"):
+        myoshell.drive(take, end="soon")
 
 
 # A write past RLIMIT_FSIZE fails with EFBIG ("File too large"): the system's failure, IoError, an
