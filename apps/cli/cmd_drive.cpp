@@ -8,7 +8,6 @@
 // frames; the frames come at the performance's rate, over its duration.
 #include <fmt/core.h>
 
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,71 +15,24 @@
 #include "command.h"
 #include "myoshell/anim/performance_map.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/io/head_files.h"
 #include "myoshell/io/performance_file.h"
-#include "myoshell/io/scene_face.h"
+#include "myoshell/io/performance_scene.h"
 #include "scene_runner.h"
 
 namespace myo::cli {
 namespace {
 
-namespace fs = std::filesystem;
-
 struct DriveArgs {
-  std::string performance;
-  std::string head = "default";
-  std::string landmarks;
-  std::string units = "cm";
-  std::string library = "face";
-  std::string map;
-  std::string input;
-  double auScale = 0.0;       // 0 = from the header
-  int face = -1;
-  double minConfidence = 0.7;
-  double inputFps = 0.0;      // 0 = inferred
-  std::string filter = "on";
-  OneEuroSettings oneEuro;
-  double start = 0.0;
-  double end = -1.0;
+  PerformanceSceneDef scene;
   bool headMotion = false;
   RunOptions run;
 };
 
-// The scene drive plays: the head, the muscle library, the performance; the anatomical defaults.
-SceneDesc driveScene(const DriveArgs& a) {
-  if (a.filter != "on" && a.filter != "off") throw InputError("--filter: expected on or off (got '" + a.filter + "')");
-  if (!fs::is_regular_file(a.performance)) throw InputError("cannot open performance file", a.performance);
-  SceneDesc scene;
-  scene.name = fs::path(a.performance).stem().string();
-  if (scene.name.empty()) scene.name = "performance";
-  const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, "", a.units);
-  scene.head.obj = files.obj;
-  scene.head.landmarks = files.landmarks;
-  scene.head.units = files.unit;
-  scene.muscleLibrary = a.library == "builtin" || a.library == "face" ? a.library : fs::absolute(a.library).string();
-  PerformanceDesc& p = scene.performance;
-  p.file = fs::absolute(a.performance).string();
-  if (!a.input.empty()) p.read.input = performanceInputFromString(a.input);
-  if (a.auScale > 0.0) p.read.auScale = a.auScale;
-  p.read.face = a.face;
-  p.read.minConfidence = a.minConfidence;
-  if (a.inputFps > 0.0) p.read.inputFps = a.inputFps;
-  p.map = a.map.empty() ? "" : fs::absolute(a.map).string();
-  p.filter = a.oneEuro;
-  p.filter.enabled = a.filter == "on";
-  checkOneEuroSettings(p.filter, "--min-cutoff/--beta");
-  if (a.end >= 0.0 && a.end <= a.start)
-    throw InputError(fmt::format("--end {} must lie after --start {}", a.end, a.start));
-  p.start = a.start;
-  p.end = a.end;
-  loadScenePerformance(scene);
-  return scene;
-}
-
 // The input curves for --video's panel: the performance's own curves, as read (before mapping).
 CurvePanel inputCurves(const SceneDesc& scene, const DriveArgs& a) {
   const std::string& file = scene.performanceReport->file;
-  const Performance perf = cropPerformance(readPerformanceFile(file, scene.performance.read), a.start, a.end, file);
+  const Performance perf =
+      cropPerformance(readPerformanceFile(file, scene.performance.read), a.scene.start, a.scene.end, file);
   CurvePanel all;
   all.times = perf.times;
   for (const PerformanceChannel& c : perf.channels) all.curves.push_back({c.name, c.values});
@@ -88,7 +40,7 @@ CurvePanel inputCurves(const SceneDesc& scene, const DriveArgs& a) {
 }
 
 int runDrive(DriveArgs& a) {
-  const SceneDesc scene = driveScene(a);
+  const SceneDesc scene = performanceScene(a.scene);
   a.run.headMotion = a.headMotion;
   if (a.run.video) a.run.videoPanel = inputCurves(scene, a);
   return runScene(scene, a.run);
@@ -99,28 +51,34 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   CLI::App* sub = app.add_subcommand(
       "drive", "Play a recorded performance (OpenFace action units, Live Link Face or MediaPipe blendshape weights) on a "
                "head and write the animation");
-  sub->add_option("performance", a->performance, "the performance file (OpenFace CSV, Live Link Face CSV, MediaPipe "
-                                                 "JSON Lines)")->required();
+  sub->add_option("performance", a->scene.performance,
+                  "the performance file (OpenFace CSV, Live Link Face CSV, MediaPipe JSON Lines)")
+      ->required();
   sub->add_option("--out", a->run.outDir, "Output folder")->required();
-  sub->add_option("--head", a->head, "'default', an OBJ file (with --landmarks), or a folder like ../shared/data/ict");
-  sub->add_option("--landmarks", a->landmarks, "landmark file of an OBJ head (docs/heads.md)");
-  sub->add_option("--units", a->units, "the OBJ head's length unit, m, mm or cm (default cm)");
-  sub->add_option("--library", a->library, "muscles: 'face' (the whole face, default), 'builtin' (the thesis's eight) "
-                                           "or a library file");
-  sub->add_option("--map", a->map, "ARKit input: a retargeting map (fit-rig --out); default the shipped ICT map");
-  sub->add_option("--input", a->input, "openface, livelink or mediapipe (default: from the file's header)");
-  sub->add_option("--au-scale", a->auScale, "OpenFace: the intensities' scale, 5 (raw) or 1 (default: from the header)")
+  sub->add_option("--head", a->scene.head,
+                  "'default', an OBJ file (with --landmarks), or a folder like ../shared/data/ict");
+  sub->add_option("--landmarks", a->scene.landmarks, "landmark file of an OBJ head (docs/heads.md)");
+  sub->add_option("--units", a->scene.units, "the OBJ head's length unit, m, mm or cm (default cm)");
+  sub->add_option("--library", a->scene.library,
+                  "muscles: 'face' (the whole face, default), 'builtin' (the thesis's eight) or a library file");
+  sub->add_option("--map", a->scene.map, "ARKit input: a retargeting map (fit-rig --out); default the shipped ICT map");
+  sub->add_option("--input", a->scene.input, "openface, livelink or mediapipe (default: from the file's header)");
+  sub->add_option("--au-scale", a->scene.auScale,
+                  "OpenFace: the intensities' scale, 5 (raw) or 1 (default: from the header)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--face", a->face, "OpenFace: the face_id to play when the file tracks several")->check(CLI::NonNegativeNumber);
-  sub->add_option("--min-confidence", a->minConfidence, "OpenFace: frames below it are bridged (default 0.7)")
+  sub->add_option("--face", a->scene.face, "OpenFace: the face_id to play when the file tracks several")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--min-confidence", a->scene.minConfidence, "OpenFace: frames below it are bridged (default 0.7)")
       ->check(CLI::Range(0.0, 1.0));
-  sub->add_option("--input-fps", a->inputFps, "Live Link: the timecode's frame rate (default: inferred)")
+  sub->add_option("--input-fps", a->scene.inputFps, "Live Link: the timecode's frame rate (default: inferred)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--filter", a->filter, "the One-Euro filter on the input curves: on (default) or off");
-  sub->add_option("--min-cutoff", a->oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")->capture_default_str();
-  sub->add_option("--beta", a->oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
-  sub->add_option("--start", a->start, "play from this time, s after the first frame")->check(CLI::NonNegativeNumber);
-  sub->add_option("--end", a->end, "play up to this time, s after the first frame");
+  sub->add_option("--filter", a->scene.filter, "the One-Euro filter on the input curves: on (default) or off");
+  sub->add_option("--min-cutoff", a->scene.oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")
+      ->capture_default_str();
+  sub->add_option("--beta", a->scene.oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
+  sub->add_option("--start", a->scene.start, "play from this time, s after the first frame")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--end", a->scene.end, "play up to this time, s after the first frame");
   sub->add_option("--format", a->run.formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')
       ->capture_default_str();

@@ -23,9 +23,9 @@
 
 #include "job_report.h"
 #include "command.h"
-#include "fit_head.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/activation_fit.h"
 #include "myoshell/face/anatomical_skin.h"

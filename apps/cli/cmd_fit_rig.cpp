@@ -16,12 +16,12 @@
 
 #include "job_report.h"
 #include "command.h"
-#include "fit_head.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/rig_fit.h"
+#include "myoshell/io/rig_fitting.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/render/contact_sheet.h"
@@ -124,26 +124,13 @@ int runFitRig(FitRigArgs& a) {
   a.head.unitsGiven = a.unitsOption->count() > 0;
 
   const RigFile rig = readRig(a.rig);
-  SceneInputs inputs = fitHeadInputs(a.head, &rig, "fit-rig " + a.rig);
-  const Head& head = inputs.head;
-  if (rig.vertexCount() != head.mesh.vertexCount())
-    throw InputError(fmt::format("the rig's base has {} vertices and the head {}: give the head the rig was made for (or "
-                                 "no head option and --landmarks)",
-                                 rig.vertexCount(), head.mesh.vertexCount()),
-                     rig.path);
-  std::vector<RigTarget> targets;
-  for (const std::string& name : rig.names) targets.push_back({name, rig.delta(name)});
-
-  const Stopwatch buildClock;
+  const SceneInputs inputs = rigFitInputs(rig, a.head);
   const auto cache = openBasisCache(a.cacheDir);
-  const auto face = std::make_shared<const AnatomicalFace>(head, inputs.muscles, inputs.anatomical, std::vector<DragDef>{},
-                                                           false, cache.get());
-  const double buildSeconds = buildClock.seconds();
-  RigFit fit = fitRig(face->skin(), targets, settings);
-  fit.map.rig = fs::path(a.rig).filename().string();
-  fit.map.head = head.name;
-  fit.map.note = fmt::format("fitted by myoshell fit-rig on the shapes of {} (head {}, {} muscles, lambda {})",
-                             fit.map.rig, head.name, face->muscleCount(), settings.lambda);
+  const FittedRig fitted = fitRigShapes(rig, inputs, settings, cache.get());
+  const RigFit& fit = fitted.fit;
+  const AnatomicalFace& face = *fitted.face;
+  const Head& head = face.head();
+  const double buildSeconds = fitted.buildSeconds;
   for (const std::string& n : fit.skipped)
     fmt::print(stderr, "myoshell fit-rig: warning: {}: shape '{}' is no ARKit name; not fitted\n", a.rig, n);
 
@@ -151,7 +138,7 @@ int runFitRig(FitRigArgs& a) {
   std::vector<std::string> reportFiles;
   if (!a.report.empty()) {
     fs::create_directories(a.report);
-    reportFiles = writeReport(a.report, *face, fit, fs::path(a.rig).filename().string());
+    reportFiles = writeReport(a.report, face, fit, fs::path(a.rig).filename().string());
   }
 
   if (a.json) {

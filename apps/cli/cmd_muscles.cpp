@@ -12,8 +12,8 @@
 
 #include "job_report.h"
 #include "command.h"
-#include "fit_head.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/face/muscle.h"
 #include "myoshell/face/muscle_def.h"
 

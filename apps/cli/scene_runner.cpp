@@ -27,35 +27,13 @@
 #include "myoshell/face/anatomical_face.h"
 #include "myoshell/face/face_frame.h"
 #include "myoshell/face/simulator.h"
-#include "myoshell/io/animation_export.h"
+#include "myoshell/anim/head_motion.h"
+#include "myoshell/io/animation_exporter.h"
 #include "myoshell/io/output_manifest.h"
-#include "myoshell/io/obj_writer.h"
 
 namespace myo::cli {
-namespace {
 
 namespace fs = std::filesystem;
-
-struct ExportFormats {
-  bool obj = false, glb = false, pc2 = false;
-};
-
-ExportFormats parseFormats(const std::vector<std::string>& names) {
-  ExportFormats f;
-  for (const std::string& name : names) {
-    if (name == "obj") f.obj = true;
-    else if (name == "glb") f.glb = true;
-    else if (name == "pc2") f.pc2 = true;
-    else throw InputError("unknown export format '" + name + "' (use glb, pc2 or obj)");
-  }
-  return f;
-}
-
-// The pivot of --head-motion's turn: about where the skull sits on the spine (the atlanto-occipital
-// joint), below and behind the eyes — 0.9 of the eye distance down and back in the face frame.
-Vec3 headMotionPivot(const FaceFrame& frame) { return frame.fromFrame(Vec3(0.0, -0.9, -0.9)); }
-
-}  // namespace
 
 std::unique_ptr<FacePainter> makePainter(bool software) {
   std::string warning;
@@ -69,7 +47,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   scene.model.measureLoadParticipation = opt.diagnostics;
   const fs::path out(opt.outDir);
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
-  const ExportFormats formats = parseFormats(opt.formats);  // before any work: a typo fails at once
+  const ExportFormats formats = parseExportFormats(opt.formats);  // before any work: a typo fails at once
   const ViewPreset view = parseView(opt.view);
   const auto cache = openBasisCache(opt.cacheDir);
 
@@ -80,10 +58,8 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   const auto model = buildSceneFace(scene, cache.get());
   const double buildSeconds = buildClock.seconds();
   // Folders only once the scene has built: a bad scene leaves nothing behind.
-  std::error_code ec;
-  fs::create_directories(formats.obj ? out / "obj" : out, ec);
-  if (ec && isRunTimeIoFailure(ec.value())) throw IoError("cannot create the output folder (" + ec.message() + ")", out.string());
-  if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", out.string());
+  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps,
+                             ScenePlayer::frameCount(scene.duration, scene.fps));
   // What the last run here wrote: whatever of it this run does not rewrite goes at the end.
   const std::vector<std::string> previous = readOutputManifest(out);
   std::vector<std::string> written;  // relative to out
@@ -93,16 +69,6 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   const double dt = model->dt();
   const int frames = player.frameCount();
   const std::vector<std::string> channels = model->channelNames();
-  AnimationFrames animation;  // kept only for the GLB and PC2 exports
-  const bool keepFrames = formats.glb || formats.pc2;
-  if (keepFrames) {
-    animation.name = scene.name;
-    animation.triangles = model->head().mesh.F;
-    animation.rest = model->head().mesh.V;
-    animation.uv = model->head().mesh.UV;  // TEXCOORD_0 when the head has UVs
-    animation.fps = scene.fps;
-    animation.positions.reserve(frames);
-  }
 
   FaceOverlays overlays;
   overlays.muscles = opt.showMuscles;
@@ -120,8 +86,6 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   }
   // --head-motion: the rigid turn of every exported frame, about the neck pivot.
   const bool turnHead = opt.headMotion && !scene.headPose.empty();
-  const FaceFrame& frame = model->head().frame();
-  const Vec3 pivot = headMotionPivot(frame);
   MatX3 turned;
   std::vector<Image> sheet;
   std::vector<std::string> sheetCaptions;
@@ -140,18 +104,10 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     steps += snap.steps;
     const MatX3* shown = &snap.positions;
     if (turnHead) {
-      // p' = c + A R Aᵀ (p − c): the head pose R is in face-frame axes A (anim/head_pose_track.h).
-      const Mat3 r = frame.axes * scene.headPose.at(snap.time).toRotationMatrix() * frame.axes.transpose();
-      turned = ((snap.positions.rowwise() - pivot.transpose()) * r.transpose()).rowwise() + pivot.transpose();
+      turnWithHead(snap.positions, model->head().frame(), scene.headPose, snap.time, turned);
       shown = &turned;
     }
-    const MatX3& positions = *shown;
-    if (formats.obj) {
-      const std::string rel = fmt::format("obj/{}_{:04d}.obj", scene.name, f);
-      writeObj((out / rel).string(), model->head().mesh, &positions);
-      written.push_back(rel);
-    }
-    if (keepFrames) animation.positions.push_back(positions);
+    if (const std::string rel = exporter.addFrame(f, *shown); !rel.empty()) written.push_back(rel);
     const bool png = opt.render && f % opt.renderEvery == 0;
     const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
     if (video || png || onSheet) {
@@ -208,14 +164,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     written.push_back(scene.name + ".mp4");
     written.push_back(scene.name + ".gif");
   }
-  if (formats.glb) {
-    writeGlb(out / (scene.name + ".glb"), animation);
-    written.push_back(scene.name + ".glb");
-  }
-  if (formats.pc2) {
-    writePc2(out / (scene.name + ".pc2"), animation);
-    written.push_back(scene.name + ".pc2");
-  }
+  for (const std::string& rel : exporter.finish()) written.push_back(rel);
 
   nlohmann::json stats;
   stats["scene"] = scene.name;

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/anatomical_face.h"
@@ -37,6 +38,13 @@ py::array_t<int> toNumpy(const MatX3i& m);
 // An (n, 3) array-like of finite numbers as an n×3 matrix; `rows` < 0 accepts any n. InputError
 // naming `what` for another shape or a non-finite value.
 MatX3 toMatX3(const py::handle& array, const std::string& what, Eigen::Index rows = -1);
+// Frames as one float64 (F, n, 3) copy, and back: an (F, n, 3) array-like (or a sequence of (n, 3)
+// arrays) of finite numbers, F ≥ 1, n = `rows` (any n when < 0); InputError naming `what` otherwise.
+py::array_t<double> toNumpy(const std::vector<MatX3>& frames);
+std::vector<MatX3> toFrames(const py::handle& frames, const std::string& what, Eigen::Index rows);
+
+// The skin mesh (cm) of a Head or a Face given to a function as `head`; InputError for anything else.
+const TriMesh& meshOf(const py::handle& headOrFace);
 
 // Writes `positions` (n×3, cm) as an OBJ in the head's own unit, as `myoshell pose --out` does.
 void writeHeadObj(const HeadHandle& head, const std::string& path, const MatX3& positions);
@@ -47,5 +55,10 @@ void bindFace(py::module_& m);
 void bindSimulator(py::module_& m);
 void bindScenePlayer(py::module_& m);
 void bindRigs(py::module_& m);
+void bindRigMaking(py::module_& m);
+void bindRigFitting(py::module_& m);
+void bindDrive(py::module_& m);
+void bindExports(py::module_& m);
+void bindThreads(py::module_& m);
 
 }  // namespace myo::python

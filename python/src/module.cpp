@@ -9,4 +9,9 @@ PYBIND11_MODULE(_myoshell, m) {
   myo::python::bindSimulator(m);
   myo::python::bindScenePlayer(m);
   myo::python::bindRigs(m);
+  myo::python::bindRigMaking(m);
+  myo::python::bindRigFitting(m);
+  myo::python::bindDrive(m);
+  myo::python::bindExports(m);
+  myo::python::bindThreads(m);
 }

@@ -1,5 +1,5 @@
-// The head a fitting command (`fit`, `fit-rig`) works on: --head default|DIR|OBJ (with --landmarks
-// and --units) as every command reads it, or, for a glTF rig without a head option, the rig's base
+// The head a fitting command (`fit`, `fit-rig`, `rig`, `muscles`; Python's fit_rig and rig) works
+// on: --head default|DIR|OBJ (with --landmarks and --units) as every command reads it, or, for a glTF rig without a head option, the rig's base
 // mesh with the landmark file given (a glTF file carries no landmarks). With the anatomical model's
 // settings and the muscles of --library.
 #pragma once
@@ -9,7 +9,7 @@
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"
 
-namespace myo::cli {
+namespace myo {
 
 struct FitHeadOptions {
   std::string head = "default";
@@ -37,4 +37,4 @@ void checkOutputFile(const std::string& path, const std::string& option, const s
 // --lambda: the sparsity weight, a number ≥ 0 (InputError otherwise).
 double parseLambda(const std::string& text);
 
-}  // namespace myo::cli
+}  // namespace myo

@@ -1,4 +1,4 @@
-#include "fit_head.h"
+#include "myoshell/io/fit_head.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -8,7 +8,7 @@
 #include "myoshell/face/head_checks.h"
 #include "myoshell/io/head_files.h"
 
-namespace myo::cli {
+namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
@@ -70,4 +70,4 @@ void checkOutputFile(const std::string& path, const std::string& option, const s
   if (!parent.empty() && !fs::is_directory(parent)) throw InputError(option + ": no such folder '" + parent.string() + "'");
 }
 
-}  // namespace myo::cli
+}  // namespace myo

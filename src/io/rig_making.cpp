@@ -1,0 +1,77 @@
+#include "myoshell/io/rig_making.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/face/anatomical_skin.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/io/fit_head.h"
+#include "myoshell/io/retarget_map_file.h"
+
+namespace myo {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool endsWithGlb(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".glb";
+}
+
+}  // namespace
+
+void checkRigOutputPath(const std::string& path) {
+  checkOutputFile(path, "--out", "rig file (.glb)");
+  if (!endsWithGlb(path)) throw InputError("--out: a rig is written as a glTF binary; give a file name ending in .glb", path);
+}
+
+RetargetMap readRigMap(const std::string& path, const std::vector<MuscleDef>& muscleDefs, const std::string& library) {
+  std::vector<std::string> muscles;
+  for (const MuscleDef& d : muscleDefs) muscles.push_back(d.name);
+  RetargetMap map;
+  try {
+    map = readRetargetMapFile(path, muscles);
+  } catch (const InputError&) {
+    // A map fitted with the whole face's muscles needs that library: say so rather than "unknown
+    // muscle" (the map is read again, without the muscle list, on this error path only).
+    if (library != "face")
+      for (const std::string& name : readRetargetMapFile(path).muscleNames())
+        if (std::find(muscles.begin(), muscles.end(), name) == muscles.end() &&
+            std::any_of(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == name; }))
+          throw InputError("the map uses the whole face's muscles (" + name + ", …): give --library face", path);
+    throw;
+  }
+  for (const RetargetShape& s : map.shapes)
+    if (!s.jaw.empty())
+      throw InputError("shape " + s.name + " sets jaw values, and the anatomical model has no jaw yet", path);
+  return map;
+}
+
+MadeRig makeArkitRig(const SceneInputs& inputs, const RetargetMap& map, BasisCache* cache) {
+  MadeRig made;
+  const Stopwatch buildClock;
+  const AnatomicalSkin skin(inputs.head, inputs.muscles, inputs.anatomical, {}, cache);
+  made.buildSeconds = buildClock.seconds();
+  const Stopwatch settleClock;
+  made.settled = settleArkitRig(skin, map);
+  made.settleSeconds = settleClock.seconds();
+
+  const Head& head = skin.head();
+  RigExport& rig = made.glb;
+  rig.name = head.name;
+  rig.rest = head.mesh.V;
+  rig.triangles = head.mesh.F;
+  rig.uv = head.mesh.UV;
+  rig.cornerUV = head.mesh.cornerUV;  // an OBJ head's UV seams become appended duplicate vertices
+  for (const ArkitRigShape& s : made.settled.shapes) {
+    rig.names.push_back(s.name);
+    rig.deltas.push_back(s.delta);
+  }
+  return made;
+}
+
+}  // namespace myo
