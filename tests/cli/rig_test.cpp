@@ -91,6 +91,12 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
   EXPECT_EQ(report["shapes_made"], 8);
   ASSERT_EQ(report["shapes"].size(), 52u);
 
+  // The shapes are settled side by side (every core by default): on one thread the rig is the same bytes.
+  const test::CliResult serialRig =
+      test::runCli("rig --head default --map " + quoted(dir / "map.json") + " --threads 1 --out " + quoted(dir / "rig1.glb"));
+  ASSERT_EQ(serialRig.exitCode, 0) << serialRig.merged;
+  EXPECT_TRUE(readText(dir / "rig1.glb") == readText(dir / "rig.glb"));
+
   const RigFile rig = readRig((dir / "rig.glb").string());
   EXPECT_EQ(rig.names, arkitNames());
   const Head head = loadDefaultHead();
