@@ -1,14 +1,16 @@
-// The size sweep (issue 19): the ICT head Loop-subdivided 0, 1 and 2 times (11k, 45k and 180k
-// vertices; subdivision keeps the original vertex ids first, so the landmarks stay valid), the
-// whole face on each — every muscle of the built-in `face` library, gravity, the jaw open 10°, one
+// The size sweep (issue 19): the built-in head at 1, 2 and 3 subdivision levels (1.8k, 7.2k and 28k
+// vertices) and the ICT head Loop-subdivided 0, 1 and 2 times (11k, 45k and 180k vertices;
+// subdivision keeps the original vertex ids first, so the landmarks stay valid), the whole face on each — every muscle of the built-in `face` library, gravity, the jaw open 10°, one
 // drag at the nose tip — built cold (no cache) and stepped with every load on. Reported per size:
 // the build's seconds (precompute), a step's µs, a step plus a positions read, and the basis size,
 // against Σ vertices × basis columns (the data a read streams).
 //
 //   MYOSHELL_DATA=../shared/data build/bin/bench_size_sweep --benchmark_counters_tabular=true
-//   (--threads for the build: MYOSHELL_BUILD_THREADS=2; the step is single-threaded)
+//   (threads for the build: MYOSHELL_BUILD_THREADS=2; the step is single-threaded)
 //
-// Level 2 needs about 6 GB of memory and minutes of build; skipped with a message without the data.
+// Arguments: head (0 built-in, 1 ICT), levels. ICT at level 2 (180k vertices) takes tens of minutes
+// and gigabytes to build: run only with MYOSHELL_SWEEP_LARGE=1. ICT rows skip with a message
+// without the data.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -41,16 +43,20 @@ struct Built {
   int basisColumns = 0;
 };
 
-const Built* build(int levels) {
-  static std::map<int, Built> built;
-  if (auto it = built.find(levels); it != built.end()) return &it->second;
-  const std::string dir = ictFolder();
-  if (!fs::exists(fs::path(dir) / "head_skin.obj")) return nullptr;
+const Built* build(int headKind, int levels) {
+  static std::map<std::pair<int, int>, Built> built;
+  if (auto it = built.find({headKind, levels}); it != built.end()) return &it->second;
   if (const char* t = std::getenv("MYOSHELL_BUILD_THREADS")) setParallelThreads(std::atoi(t));
-  Head head = loadHead((fs::path(dir) / "head_skin.obj").string(), (fs::path(dir) / "landmarks_multipie68.json").string());
-  if (levels > 0) {
-    LoopOptions o;
-    head.mesh = loopSubdivide(head.mesh, levels, o);
+  Head head;
+  if (headKind == 0) {
+    DefaultHeadOptions o;
+    o.subdivisionLevels = levels;
+    head = loadDefaultHead(o);
+  } else {
+    const std::string dir = ictFolder();
+    if (!fs::exists(fs::path(dir) / "head_skin.obj")) return nullptr;
+    head = loadHead((fs::path(dir) / "head_skin.obj").string(), (fs::path(dir) / "landmarks_multipie68.json").string());
+    if (levels > 0) head.mesh = loopSubdivide(head.mesh, levels, LoopOptions{});
   }
   DragDef drag;
   drag.vertex = head.landmarks.vertex("nose_tip");
@@ -60,7 +66,7 @@ const Built* build(int levels) {
   b.buildSeconds = clock.seconds();
   b.vertices = head.mesh.vertexCount();
   b.basisColumns = b.face->skin().basis()->modeCount();
-  return &built.emplace(levels, std::move(b)).first->second;
+  return &built.emplace(std::make_pair(headKind, levels), std::move(b)).first->second;
 }
 
 std::unique_ptr<FaceStepper> loadedStepper(const Built& b) {
@@ -82,7 +88,7 @@ void counters(benchmark::State& state, const Built& b) {
 }
 
 void BM_WholeFaceStep(benchmark::State& state) {
-  const Built* b = build(static_cast<int>(state.range(0)));
+  const Built* b = build(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   if (!b) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
   auto stepper = loadedStepper(*b);
   for (auto _ : state) stepper->step();
@@ -90,7 +96,7 @@ void BM_WholeFaceStep(benchmark::State& state) {
 }
 
 void BM_WholeFaceStepAndRead(benchmark::State& state) {
-  const Built* b = build(static_cast<int>(state.range(0)));
+  const Built* b = build(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   if (!b) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
   auto stepper = loadedStepper(*b);
   MatX3 positions;
@@ -102,8 +108,14 @@ void BM_WholeFaceStepAndRead(benchmark::State& state) {
   counters(state, *b);
 }
 
-BENCHMARK(BM_WholeFaceStep)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_WholeFaceStepAndRead)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+void sizes(benchmark::internal::Benchmark* b) {
+  for (int levels : {1, 2, 3}) b->Args({0, levels});
+  for (int levels : {0, 1}) b->Args({1, levels});
+  if (std::getenv("MYOSHELL_SWEEP_LARGE")) b->Args({1, 2});
+  b->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK(BM_WholeFaceStep)->Apply(sizes);
+BENCHMARK(BM_WholeFaceStepAndRead)->Apply(sizes);
 
 }  // namespace
 
