@@ -10,9 +10,22 @@
 
 namespace myo {
 
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map) {
+JawPose jawPoseOf(const RetargetShape& shape) {
+  JawPose pose;
+  for (const auto& [dof, value] : shape.jaw) {
+    if (dof == "open") pose.openDeg += value;
+    else if (dof == "forward") pose.forwardCm += value;
+    else if (dof == "lateral") pose.lateralCm += value;
+    else throw InputError("shape " + shape.name + ": jaw value '" + dof + "' is not open, forward or lateral");
+  }
+  return pose;
+}
+
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw) {
   const bool warped = skin.settings().warping;
-  auto settle = [&](const NamedValues& activations) -> MatX3 {
+  const MatX3& restPositions = skin.head().mesh.V;
+  // The muscles' settled displacement, carried by the jaw when the pose is not zero.
+  auto settle = [&](const NamedValues& activations, const JawPose& pose) -> MatX3 {
     SkinLoads loads;
     loads.gravity = skin.restGravity();  // no gravity load: the rig's shapes are the muscles' alone
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
@@ -21,12 +34,28 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map) {
     const SettledSkin s = skin.settle(loads, warped);
     if (!s.converged || !s.u.allFinite())
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
-    return s.u;
+    if (pose.isZero()) return s.u;
+    MatX3 moved;
+    jawedPositions(*jaw, pose, restPositions, s.u, moved);
+    return moved - restPositions;
   };
-  const MatX3 rest = settle({});  // zero with warping off; the warped solve's own rest otherwise
+  const MatX3 rest = settle({}, JawPose{});  // zero with warping off; the warped solve's own rest otherwise
+
+  // Every shape's jaw first (serially: the errors in ARKit order).
+  const std::vector<std::string>& names = arkitNames();
+  std::vector<JawPose> poses(names.size());
+  for (size_t k = 0; k < names.size(); ++k) {
+    const RetargetShape* s = map.find(names[k]);
+    if (!s || !s->reachable) continue;
+    const RetargetShape* base = s->correctiveOf.empty() ? s : map.find(s->correctiveOf);
+    poses[k] = jawPoseOf(*base);  // a corrective rides on its base's jaw
+    if (poses[k].isZero()) continue;
+    if (!jaw)
+      throw InputError("shape " + s->name + " sets jaw values, and the head has no jaw (its landmarks have no 68-point jaw line)");
+    validateJawPose(poses[k], "shape " + s->name + ": jaw");
+  }
 
   const Eigen::Index n = skin.head().mesh.vertexCount();
-  const std::vector<std::string>& names = arkitNames();
   ArkitRig rig;
   rig.shapes.resize(names.size());
   // Each shape is its own static solve on the read-only skin: side by side on parallelThreads().
@@ -36,8 +65,10 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map) {
     shape.name = names[static_cast<size_t>(k)];
     shape.delta = MatX3::Zero(n, 3);
     if (s && s->reachable) {
-      shape.delta = settle(map.totalActivations(*s)) - rest;
-      if (!s->correctiveOf.empty()) shape.delta -= settle(map.totalActivations(*map.find(s->correctiveOf))) - rest;
+      const JawPose& pose = poses[static_cast<size_t>(k)];
+      shape.delta = settle(map.totalActivations(*s), pose) - rest;
+      if (!s->correctiveOf.empty())
+        shape.delta -= settle(map.totalActivations(*map.find(s->correctiveOf)), pose) - rest;
       shape.mapped = true;
     }
     Eigen::Index peakVertex = 0;

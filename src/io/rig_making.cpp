@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <optional>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_skin.h"
+#include "myoshell/face/arkit_rig.h"
+#include "myoshell/face/jaw.h"
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/io/retarget_map_file.h"
@@ -46,8 +49,11 @@ RetargetMap readRigMap(const std::string& path, const std::vector<MuscleDef>& mu
     throw;
   }
   for (const RetargetShape& s : map.shapes)
-    if (!s.jaw.empty())
-      throw InputError("shape " + s.name + " sets jaw values, and the anatomical model has no jaw yet", path);
+    try {
+      jawPoseOf(s);  // a jaw value's name, here where the file can be named
+    } catch (const InputError& e) {
+      throw InputError(e.message(), path);
+    }
   return map;
 }
 
@@ -57,7 +63,10 @@ MadeRig makeArkitRig(const SceneInputs& inputs, const RetargetMap& map, BasisCac
   const AnatomicalSkin skin(inputs.head, inputs.muscles, inputs.anatomical, {}, cache);
   made.buildSeconds = buildClock.seconds();
   const Stopwatch settleClock;
-  made.settled = settleArkitRig(skin, map);
+  // The jaw of a head with the 68-point jaw line: the map's jaw shapes (jawOpen, …) move it.
+  std::optional<JawRig> jaw;
+  if (inputs.head.landmarks.multipie68.size() == 68) jaw = jawRig(inputs.head.mesh, inputs.head.landmarks);
+  made.settled = settleArkitRig(skin, map, jaw ? &*jaw : nullptr);
   made.settleSeconds = settleClock.seconds();
 
   const Head& head = skin.head();

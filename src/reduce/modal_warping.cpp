@@ -125,27 +125,52 @@ inline void warp(double wx, double wy, double wz, double lx, double ly, double l
   u[2] = lz + c.a * cz + c.b * ccz;
 }
 
-// y = B q for a row-major B (rows × d), one row at a time with independent partial sums: for d ≈ 70
-// Eigen's row-major matrix-vector product ran at a third of the basis's stream rate (u on the ICT
-// whole face's 3n × 73: 1,250 µs, this 408 µs, the stream ~400 µs; docs/PERFORMANCE.md, 2026-11-25).
-// Compiled for AVX-512, AVX2 + FMA and the x86-64 baseline, chosen when the program starts (GCC
-// function multi-versioning), so one binary uses the machine's widest vectors: the clones may
-// differ in the last bits (FMA contraction), never on one machine between runs.
+// The step's and the read's kernels over the interleaved basis (row-major, rows × d), compiled for
+// AVX-512, AVX2 + FMA and the x86-64 baseline and chosen when the program starts (GCC function
+// multi-versioning, MYO_KERNEL): one portable binary uses the machine's widest vectors. The clones
+// may differ in the last bits (FMA contraction, lane count), never on one machine between runs.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define MYO_KERNEL __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define MYO_KERNEL
 #endif
-void rowDots(const double* __restrict b, Eigen::Index rows, Eigen::Index d, const double* __restrict x,
-             double* __restrict y) {
+
+// y = B q, one row at a time with independent partial sums: for d ≈ 70 Eigen's row-major
+// matrix-vector product ran at a third of the basis's stream rate (u on the ICT whole face's
+// 3n × 73: 1,250 µs, this 408 µs, the stream ~400 µs; docs/PERFORMANCE.md, 2026-11-25).
+template <class S, int kLanes>
+inline void rowDotsImpl(const S* __restrict b, Eigen::Index rows, Eigen::Index d, const S* __restrict x, S* __restrict y) {
   for (Eigen::Index i = 0; i < rows; ++i, b += d) {
-    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    S a[kLanes] = {};
     Eigen::Index j = 0;
-    for (; j + 8 <= d; j += 8)
-      for (int k = 0; k < 8; ++k) a[k] += b[j + k] * x[j + k];
-    for (; j < d; ++j) a[j % 8] += b[j] * x[j];
-    y[i] = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+    for (; j + kLanes <= d; j += kLanes)
+      for (int k = 0; k < kLanes; ++k) a[k] += b[j + k] * x[j + k];
+    for (; j < d; ++j) a[j % kLanes] += b[j] * x[j];
+    for (int width = kLanes / 2; width >= 1; width /= 2)  // pairwise: the same tree in every clone
+      for (int k = 0; k < width; ++k) a[k] += a[k + width];
+    y[i] = a[0];
   }
 }
+MYO_KERNEL void rowDots(const double* b, Eigen::Index rows, Eigen::Index d, const double* x, double* y) {
+  rowDotsImpl<double, 8>(b, rows, d, x, y);
+}
+MYO_KERNEL void rowDots(const float* b, Eigen::Index rows, Eigen::Index d, const float* x, float* y) {
+  rowDotsImpl<float, 16>(b, rows, d, x, y);
+}
 
+// a += px·sx + py·sy + pz·sz over d modes: one loaded vertex's three Φ rows into the projection.
+template <class S>
+inline void addVertexImpl(S* __restrict a, const S* __restrict px, Eigen::Index d, S sx, S sy, S sz) {
+  const S* __restrict py = px + d;
+  const S* __restrict pz = py + d;
+  for (Eigen::Index j = 0; j < d; ++j) a[j] += px[j] * sx + py[j] * sy + pz[j] * sz;
+}
+MYO_KERNEL void addVertex(double* a, const double* px, Eigen::Index d, double sx, double sy, double sz) {
+  addVertexImpl(a, px, d, sx, sy, sz);
+}
+MYO_KERNEL void addVertex(float* a, const float* px, Eigen::Index d, float sx, float sy, float sz) {
+  addVertexImpl(a, px, d, sx, sy, sz);
+}
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -224,11 +249,7 @@ struct ModalWarpingIntegrator::Kernel {
         const auto* w = Y.data() + stride * i + 3;
         rotateBack(w[0], w[1], w[2], F(i, 0), F(i, 1), F(i, 2), gx, gy, gz);
       }
-      const S sx = S(gx), sy = S(gy), sz = S(gz);
-      const S* __restrict px = B.data() + stride * i * d;
-      const S* __restrict py = px + d;
-      const S* __restrict pz = py + d;
-      for (Eigen::Index j = 0; j < d; ++j) a[j] += px[j] * sx + py[j] * sy + pz[j] * sz;
+      addVertex(a, B.data() + stride * i * d, d, S(gx), S(gy), S(gz));
       if (++inBlock == kBlock) {
         ft += acc.template cast<double>();
         acc.setZero();
@@ -373,7 +394,7 @@ void ModalWarpingIntegrator::updateDisplacement() const {
   stale_ = false;
   if (k.precision == ModalPrecision::Float) {
     k.qf = q_.cast<float>();
-    k.Yf.noalias() = k.Bf * k.qf;
+    rowDots(k.Bf.data(), k.Bf.rows(), k.Bf.cols(), k.qf.data(), k.Yf.data());
     Kernel::output(k.Yf, k.stride, settings_.warping, u_);
   } else if (!settings_.warping) {
     rowDots(k.Bd.data(), k.Bd.rows(), k.Bd.cols(), q_.data(), u_.data());  // the interleaved Φ rows are u's layout: no copy

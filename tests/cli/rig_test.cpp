@@ -183,6 +183,34 @@ TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFi
   EXPECT_EQ(reachable, 26);
 }
 
+// The shipped whole-face map has jaw shapes: jawOpen opens the jaw (its pose, 19°, carries the
+// muscles' field), its corrective mouthClose rides on the same jaw, jawLeft shifts the chin to the
+// subject's left; the forehead stays put.
+TEST(CliRig, TheShippedFaceMapsJawShapesMoveTheJaw) {
+  const fs::path dir = scratch("jaw");
+  const test::CliResult made = test::runCli("rig --head default --library face --map " +
+                                            quoted(test::sourceDir() / "assets/retarget/arkit_ict_face.json") + " --out " +
+                                            quoted(dir / "rig.glb"));
+  ASSERT_EQ(made.exitCode, 0) << made.merged;
+  const RigFile rig = readRig((dir / "rig.glb").string());
+  const Head head = loadDefaultHead();
+  const MatX3& V = head.mesh.V;
+  const int chin = head.landmarks.vertex("chin_menton");
+  const int forehead = head.landmarks.vertex("nasion_approx");
+  const MatX3 open = rig.delta("jawOpen");
+  EXPECT_LT(open(chin, 1), -0.8) << open.row(chin);  // down
+  // The chin's drop is the jaw's rotation: 19° about the pivot moves it by 2 sin(9.5°)·|chin − pivot|, ~1/3 of that downwards at least.
+  EXPECT_LT(open.row(forehead).norm(), 0.05 * open.row(chin).norm()) << open.row(forehead);
+  const MatX3 left = rig.delta("jawLeft");
+  EXPECT_GT(left(chin, 0), 0.3) << left.row(chin);  // + x: the subject's left
+  // mouthClose is a corrective on the open jaw: the lips close, the chin stays where the jaw put it.
+  const MatX3 close = rig.delta("mouthClose");
+  EXPECT_LT(std::abs(close(chin, 1)), 0.2 * std::abs(open(chin, 1))) << close.row(chin);
+  EXPECT_GT(close.norm(), 0.0);
+  (void)V;
+  fs::remove_all(dir);
+}
+
 TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
   const fs::path dir = scratch("bad");
   writeText(dir / "map.json", kMap);
@@ -198,6 +226,17 @@ TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
   r = run("rig --head default --map " + quoted(dir / "unknown_muscle.json") + " --out " + quoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("unknown_muscle.json:1:98: key 'shapes[0].activations.masseter': unknown muscle 'masseter'"));
+  writeText(dir / "bad_jaw.json",
+            R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "jawOpen", "activations": {}, "jaw": {"twist": 3}}]})");
+  r = run("rig --head default --map " + quoted(dir / "bad_jaw.json") + " --out " + quoted(dir / "rig.glb"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("bad_jaw.json: shape jawOpen: jaw value 'twist' is not open, forward or lateral"));
+  writeText(dir / "wide_jaw.json",
+            R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "jawOpen", "activations": {}, "jaw": {"open": 70}}]})");
+  r = run("rig --head default --map " + quoted(dir / "wide_jaw.json") + " --out " + quoted(dir / "rig.glb"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("shape jawOpen: jaw: open 70 degrees is outside [0, 40] degrees"));
+  EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   writeText(dir / "face_map.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "mouthPucker", "activations": {"orbicularis_oris_upper": 1}}]})");

@@ -8,6 +8,7 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/anatomical_skin.h"
+#include "myoshell/face/jaw.h"
 #include "myoshell/face/retarget_map.h"
 
 namespace myo {
@@ -27,9 +28,17 @@ struct ArkitRig {
 };
 
 // Settles every reachable shape of `map` without gravity load (the shapes are the muscles' alone),
-// warped when the skin's settings say so. InputError for a muscle the skin does not have (read the
-// map with the skin's names to name the file); NumericalError when a warped solve does not
-// converge ("rig: the warped static solve did not converge (residual R)").
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map);
+// warped when the skin's settings say so. A shape with jaw values (open in degrees, forward and
+// lateral in cm: rig_fit.h) is its muscles' settled displacement carried by the jaw in that pose
+// (jawedPositions, face/jaw.h) minus the rest; a corrective rides on its base's jaw. InputError for
+// a muscle the skin does not have (read the map with the skin's names to name the file), for jaw
+// values without a `jaw` (a head without the 68-point jaw line) or outside their ranges;
+// NumericalError when a warped solve does not converge ("rig: the warped static solve did not
+// converge (residual R)").
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw = nullptr);
+
+// The jaw pose a map's shape names (its "open", "forward", "lateral" values summed); InputError
+// naming the shape for another name.
+JawPose jawPoseOf(const RetargetShape& shape);
 
 }  // namespace myo
