@@ -125,10 +125,12 @@ inline void warp(double wx, double wy, double wz, double lx, double ly, double l
   u[2] = lz + c.a * cz + c.b * ccz;
 }
 
-// The step's and the read's kernels over the interleaved basis (row-major, rows × d), compiled for
-// AVX-512, AVX2 + FMA and the x86-64 baseline and chosen when the program starts (GCC function
-// multi-versioning, MYO_KERNEL): one portable binary uses the machine's widest vectors. The clones
-// may differ in the last bits (FMA contraction, lane count), never on one machine between runs.
+// The read's kernel over the interleaved basis (row-major, rows × d), compiled for AVX-512, AVX2 + FMA
+// and the x86-64 baseline and chosen when the program starts (GCC function multi-versioning,
+// MYO_KERNEL): one portable binary uses the machine's widest vectors. The clones may differ in the
+// last bits (FMA contraction), never on one machine between runs. A clone is a call through the
+// loader's table, never inlined: a whole loop is cloned, not its per-row body (cloning the
+// projection's per-vertex rows made the thesis's step 2.7× slower; docs/PERFORMANCE.md).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define MYO_KERNEL __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
@@ -154,23 +156,7 @@ inline void rowDotsImpl(const S* __restrict b, Eigen::Index rows, Eigen::Index d
 MYO_KERNEL void rowDots(const double* b, Eigen::Index rows, Eigen::Index d, const double* x, double* y) {
   rowDotsImpl<double, 8>(b, rows, d, x, y);
 }
-MYO_KERNEL void rowDots(const float* b, Eigen::Index rows, Eigen::Index d, const float* x, float* y) {
-  rowDotsImpl<float, 16>(b, rows, d, x, y);
-}
 
-// a += px·sx + py·sy + pz·sz over d modes: one loaded vertex's three Φ rows into the projection.
-template <class S>
-inline void addVertexImpl(S* __restrict a, const S* __restrict px, Eigen::Index d, S sx, S sy, S sz) {
-  const S* __restrict py = px + d;
-  const S* __restrict pz = py + d;
-  for (Eigen::Index j = 0; j < d; ++j) a[j] += px[j] * sx + py[j] * sy + pz[j] * sz;
-}
-MYO_KERNEL void addVertex(double* a, const double* px, Eigen::Index d, double sx, double sy, double sz) {
-  addVertexImpl(a, px, d, sx, sy, sz);
-}
-MYO_KERNEL void addVertex(float* a, const float* px, Eigen::Index d, float sx, float sy, float sz) {
-  addVertexImpl(a, px, d, sx, sy, sz);
-}
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -249,7 +235,11 @@ struct ModalWarpingIntegrator::Kernel {
         const auto* w = Y.data() + stride * i + 3;
         rotateBack(w[0], w[1], w[2], F(i, 0), F(i, 1), F(i, 2), gx, gy, gz);
       }
-      addVertex(a, B.data() + stride * i * d, d, S(gx), S(gy), S(gz));
+      const S sx = S(gx), sy = S(gy), sz = S(gz);
+      const S* __restrict px = B.data() + stride * i * d;
+      const S* __restrict py = px + d;
+      const S* __restrict pz = py + d;
+      for (Eigen::Index j = 0; j < d; ++j) a[j] += px[j] * sx + py[j] * sy + pz[j] * sz;
       if (++inBlock == kBlock) {
         ft += acc.template cast<double>();
         acc.setZero();
@@ -394,7 +384,7 @@ void ModalWarpingIntegrator::updateDisplacement() const {
   stale_ = false;
   if (k.precision == ModalPrecision::Float) {
     k.qf = q_.cast<float>();
-    rowDots(k.Bf.data(), k.Bf.rows(), k.Bf.cols(), k.qf.data(), k.Yf.data());
+    k.Yf.noalias() = k.Bf * k.qf;
     Kernel::output(k.Yf, k.stride, settings_.warping, u_);
   } else if (!settings_.warping) {
     rowDots(k.Bd.data(), k.Bd.rows(), k.Bd.cols(), q_.data(), u_.data());  // the interleaved Φ rows are u's layout: no copy
