@@ -530,6 +530,13 @@ MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const {
   return out;
 }
 
+SparseMat AnatomicalSkin::releaseStiffness() const {
+  const Eigen::Index n3 = Khat_.rows();
+  if (releaseColumns_.cols() == 0) return SparseMat(n3, n3);
+  const SparseMat weighted = releaseColumns_ * releaseRho_.asDiagonal();
+  return SparseMat(weighted * releaseColumns_.transpose());
+}
+
 SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
   const ModalBasis& B = *basis_;
   const int n = B.fullVertexCount;

@@ -172,6 +172,9 @@ class AnatomicalSkin {
   // The full-space linear response (n×3, cm) of the world load (reading (b)): K⁻¹F with K = K̂ and
   // the relaxed muscles released (Woodbury: K̂⁻¹F + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ CᵀK̂⁻¹F, C = [C̃_m]).
   MatX3 linearFullResponse(const SkinLoads& loads) const;
+  // The release's stiffness, Σ_m ρ_m C̃_m C̃_mᵀ (3n×3n, sparse over the muscles' skin vertices,
+  // dyn/cm): the skin's stiffness with the relaxed muscles released is K̂ − this (zero when held).
+  SparseMat releaseStiffness() const;
 
  private:
   friend class AnatomicalStepper;
