@@ -219,13 +219,12 @@ int runPose(const PoseArgs& a) {
                                      "iterations)",
                                      settled.residual, settled.iterations));
 
-  // The shape: rest + u, or with the jaw the jawed rest + u turned with it (face/jaw.h).
+  // The shape: rest + u, or with the jaw the jawed rest + u turned with it (face/jaw.h), then the
+  // lids and the eyeball contact (face/eyelids.h).
   MatX3 positions;
-  if (jaw.isZero()) positions = head.mesh.V + settled.u;
-  else jawedPositions(*face->jawRig(), jaw, head.mesh.V, settled.u, positions);
+  const LidContact contact = face->placeSkin(settled.u, jaw, act, positions);
   Eigen::Index peakVertex = 0;
-  const double peak = jaw.isZero() ? settled.u.rowwise().norm().maxCoeff(&peakVertex)
-                                   : (positions - head.mesh.V).rowwise().norm().maxCoeff(&peakVertex);
+  const double peak = (positions - head.mesh.V).rowwise().norm().maxCoeff(&peakVertex);
   if (!a.out.empty()) {
     // Back in the head file's unit: positions / (cm per unit); in cm the division is exact.
     // A head read from a file is written as a copy of that file with new positions (its seam UVs,
@@ -260,6 +259,26 @@ int runPose(const PoseArgs& a) {
       jj["jaw_weighted_vertices"] = (rig.weights.array() > 0.0).count();
       jj["max_residual_cm"] = settled.u.rowwise().norm().maxCoeff();
       j["jaw"] = jj;
+    }
+    if (const LidRig* lids = face->lidRig()) {
+      const LidPose lp = face->lidPose(act);
+      nlohmann::ordered_json lj;
+      for (int eye = 0; eye < 2; ++eye) {
+        const EyeLids& e = lids->eyes[static_cast<size_t>(eye)];
+        lj[e.side] = {{"close", lp.close[static_cast<size_t>(eye)]},
+                      {"raise", lp.raise[static_cast<size_t>(eye)]},
+                      {"gap_rest_cm", lidGap(*lids, eye, head.mesh.V)},
+                      {"gap_cm", lidGap(*lids, eye, positions)},
+                      {"eyeball_centre_cm", {e.centre.x(), e.centre.y(), e.centre.z()}},
+                      {"eyeball_radius_cm", e.radius},
+                      {"contact_radius_cm", e.contactRadius}};
+      }
+      lj["max_penetration_before_cm"] = contact.maxPenetrationBefore;
+      lj["max_penetration_after_cm"] = contact.maxPenetrationAfter;
+      lj["projected_vertices"] = contact.projected;
+      j["lids"] = lj;
+    } else {
+      j["lids"] = nullptr;
     }
     j["warped"] = warped;
     j["iterations"] = settled.iterations;

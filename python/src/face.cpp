@@ -128,8 +128,7 @@ py::array_t<double> pose(const FaceHandle& f, const py::object& activations, con
       throw NumericalError(fmt::format("pose: the warped static solve did not converge (residual {:.3g} after {} "
                                        "iterations)",
                                        settled.residual, settled.iterations));
-    if (jp.isZero()) positions = head.mesh.V + settled.u;
-    else jawedPositions(*face.jawRig(), jp, head.mesh.V, settled.u, positions);
+    face.placeSkin(settled.u, jp, loads.activations, positions);
   }
   return toNumpy(positions);
 }

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/face/eyelids.h"
 
 namespace myo {
 
@@ -181,6 +183,27 @@ double conditionNumber(const MatX& A) {
   return s(0) / smin;
 }
 
+// The lids (eyelids.h) of the skin's head when it has open eyes and lid muscles: a shape is placed
+// as every user of the face places it (AnatomicalFace::placeSkin, the jaw at rest).
+struct FitLids {
+  std::optional<LidRig> rig;
+  LidDrivers drivers;
+  MatX3 placed(const MatX3& rest, const MatX3& u, const VecX& activations) const {
+    if (!rig) return u;
+    MatX3 p = rest + u;
+    applyLids(*rig, drivers.pose(activations), p);
+    return p - rest;
+  }
+};
+
+FitLids fitLids(const AnatomicalSkin& skin) {
+  FitLids lids;
+  const Head& head = skin.head();
+  lids.drivers = lidDrivers(skin.muscleNames());
+  if (lids.drivers.any() && hasOpenEyes(head.mesh, head.landmarks)) lids.rig = lidRig(head.mesh, head.landmarks);
+  return lids;
+}
+
 }  // namespace
 
 ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings) {
@@ -231,7 +254,20 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
   }
   const auto m = static_cast<Eigen::Index>(fit.fitted.size());
   const std::vector<MatX3> cols = activationColumns(skin, fit.fitted);
-  const MatX A = columnMatrix(cols, rows);
+  // A lid muscle's column is its placed shape at a = 1 (its physics and the lid fully turned): a
+  // secant of the lid's rotation, so the bounded least squares stays linear; the fitted shape is
+  // then placed exactly (below), and the figures measure that.
+  const FitLids lids = fitLids(skin);
+  auto allActivations = [&](const VecX& act) {
+    VecX full = VecX::Zero(mAll);
+    for (Eigen::Index j = 0; j < m; ++j) full(fit.fitted[static_cast<size_t>(j)]) = act(j);
+    return full;
+  };
+  std::vector<MatX3> fitCols = cols;
+  for (Eigen::Index j = 0; j < m; ++j)
+    if (lids.drivers.drives(fit.fitted[static_cast<size_t>(j)]))
+      fitCols[static_cast<size_t>(j)] = lids.placed(rest, cols[static_cast<size_t>(j)], allActivations(VecX::Unit(m, j)));
+  const MatX A = columnMatrix(fitCols, rows);
   const MatX H = A.transpose() * A;
   const MatX3 restRows = gatherPoints(rest, rows);
   const VecX lo = VecX::Zero(m), hi = VecX::Ones(m);
@@ -262,6 +298,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
 
   MatX3 u = MatX3::Zero(n, 3);
   for (Eigen::Index j = 0; j < m; ++j) u += a(j) * cols[static_cast<size_t>(j)];
+  u = lids.placed(rest, u, allActivations(a));
 
   // Gauss–Newton on the warped static solve, the alignment kept: r(a) = u_w(a)|rows − e.
   if (skin.settings().warping && settings.refineSteps > 0) {
@@ -276,7 +313,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
       const SettledSkin s = skin.settle(loads, true);
       if (!s.converged || !s.u.allFinite())
         throw NumericalError("fit: the warped static solve did not converge (residual " + std::to_string(s.residual) + ")");
-      return MatX3(s.u - u0);
+      return lids.placed(rest, s.u - u0, allActivations(act));
     };
     auto objective = [&](const MatX3& uu, const VecX& act) {
       return (gatherRows(uu, rows) - eRows).squaredNorm() + settings.lambda * eNorm2 * act.sum();

@@ -29,7 +29,20 @@ AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& m
   skin_ = std::make_shared<const AnatomicalSkin>(head, muscles, settings, sites, cache);
   const Head& h = skin_->head();
   if (h.landmarks.multipie68.size() == 68) jaw_ = std::make_shared<const JawRig>(myo::jawRig(h.mesh, h.landmarks));
+  if (hasOpenEyes(h.mesh, h.landmarks)) {
+    lids_ = std::make_shared<const LidRig>(myo::lidRig(h.mesh, h.landmarks));
+    lidDrivers_ = lidDrivers(skin_->muscleNames());
+  }
   buildSeconds_ = clock.seconds();
+}
+
+LidPose AnatomicalFace::lidPose(const VecX& activations) const { return lidDrivers_.pose(activations); }
+
+LidContact AnatomicalFace::placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
+  const MatX3& rest = skin_->head().mesh.V;
+  if (jaw.isZero()) out = rest + u;
+  else jawedPositions(*jaw_, jaw, rest, u, out);
+  return lids_ ? applyLids(*lids_, lidPose(activations), out) : LidContact{};
 }
 
 const std::string& AnatomicalFace::muscleName(int m) const {
@@ -147,8 +160,7 @@ void AnatomicalSimulator::reset() {
 }
 
 void AnatomicalSimulator::skinPositions(MatX3& out) const {
-  if (jaw_.isZero()) out = face_->head().mesh.V + stepper_->displacement();
-  else jawedPositions(*face_->jawRig(), jaw_, face_->head().mesh.V, stepper_->displacement(), out);
+  lidContact_ = face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out);
 }
 
 void AnatomicalSimulator::channelDisplacement(int channel, MatX3& out) const {

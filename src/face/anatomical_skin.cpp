@@ -460,6 +460,12 @@ std::vector<int> AnatomicalSkin::dragVertices(int vertex, double radius) const {
   return out;
 }
 
+std::vector<std::string> AnatomicalSkin::muscleNames() const {
+  std::vector<std::string> names;
+  for (const CoupledMuscle& m : muscles_) names.push_back(m.muscle.def.name);
+  return names;
+}
+
 int AnatomicalSkin::muscleIndex(const std::string& name) const {
   for (size_t m = 0; m < muscles_.size(); ++m)
     if (muscles_[m].muscle.def.name == name) return static_cast<int>(m);

@@ -21,9 +21,10 @@ JawPose jawPoseOf(const RetargetShape& shape) {
   return pose;
 }
 
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw) {
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw, const LidRig* lids) {
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
+  const LidDrivers lidMuscles = lidDrivers(skin.muscleNames());
   // The muscles' settled displacement, carried by the jaw when the pose is not zero.
   auto settle = [&](const NamedValues& activations, const JawPose& pose) -> MatX3 {
     SkinLoads loads;
@@ -34,9 +35,11 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     const SettledSkin s = skin.settle(loads, warped);
     if (!s.converged || !s.u.allFinite())
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
-    if (pose.isZero()) return s.u;
+    if (pose.isZero() && !lids) return s.u;
     MatX3 moved;
-    jawedPositions(*jaw, pose, restPositions, s.u, moved);
+    if (pose.isZero()) moved = restPositions + s.u;
+    else jawedPositions(*jaw, pose, restPositions, s.u, moved);
+    if (lids) applyLids(*lids, lidMuscles.pose(loads.activations), moved);
     return moved - restPositions;
   };
   const MatX3 rest = settle({}, JawPose{});  // zero with warping off; the warped solve's own rest otherwise

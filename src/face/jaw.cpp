@@ -2,41 +2,21 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <functional>
-#include <limits>
-#include <queue>
 #include <cmath>
 #include <sstream>
 #include <utility>
 #include <vector>
 
 #include "myoshell/core/check.h"
+#include "myoshell/core/curves.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/mesh/surface_paths.h"
 
 namespace myo {
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-// C¹ step: 0 for t ≤ 0, 1 for t ≥ 1, 3t² − 2t³ between.
-double smoothStep(double t) {
-  t = std::clamp(t, 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
-
-// Piecewise-linear interpolation of y over x (xs increasing), clamped outside.
-double interpolate(const std::vector<std::pair<double, double>>& xy, double x) {
-  if (x <= xy.front().first) return xy.front().second;
-  if (x >= xy.back().first) return xy.back().second;
-  for (size_t k = 1; k < xy.size(); ++k)
-    if (x <= xy[k].first) {
-      const double x0 = xy[k - 1].first, x1 = xy[k].first;
-      const double t = x1 > x0 ? (x - x0) / (x1 - x0) : 0.0;
-      return (1.0 - t) * xy[k - 1].second + t * xy[k].second;
-    }
-  return xy.back().second;
-}
 
 void requireJawLine(const Landmarks& landmarks) {
   if (landmarks.multipie68.size() != 68)
@@ -52,36 +32,6 @@ Vec3 point(const MatX3& V, const Landmarks& l, int multipie) {
 // The pivot's angle (degrees) about the axis of a frame point q: atan2(Δy, Δz), 0 straight ahead
 // (+z), negative below.
 double angleAbout(const Vec3& pf, const Vec3& q) { return std::atan2(q.y() - pf.y(), q.z() - pf.z()) / kDeg; }
-
-// Shortest distances along the mesh's edges (cm) from vertex `source` to every vertex (Dijkstra);
-// +∞ where unreachable.
-std::vector<double> surfaceDistance(const TriMesh& mesh, int source) {
-  const int n = mesh.vertexCount();
-  std::vector<std::vector<std::pair<int, double>>> adj(static_cast<size_t>(n));
-  for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.F(t, k), b = mesh.F(t, (k + 1) % 3);
-      const double l = (mesh.V.row(a) - mesh.V.row(b)).norm();
-      adj[static_cast<size_t>(a)].emplace_back(b, l);
-      adj[static_cast<size_t>(b)].emplace_back(a, l);
-    }
-  std::vector<double> d(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  d[static_cast<size_t>(source)] = 0.0;
-  queue.emplace(0.0, source);
-  while (!queue.empty()) {
-    const auto [dist, v] = queue.top();
-    queue.pop();
-    if (dist > d[static_cast<size_t>(v)]) continue;
-    for (const auto& [w, l] : adj[static_cast<size_t>(v)])
-      if (dist + l < d[static_cast<size_t>(w)]) {
-        d[static_cast<size_t>(w)] = dist + l;
-        queue.emplace(dist + l, w);
-      }
-  }
-  return d;
-}
 
 }  // namespace
 
@@ -135,8 +85,8 @@ VecX jawWeights(const TriMesh& skin, const Landmarks& landmarks, const Vec3& piv
   std::sort(border.begin(), border.end());
 
   const Vec3 stomion = 0.5 * (fp(62) + fp(66));
-  const std::vector<double> toUpper = surfaceDistance(skin, landmarks.multipie68[51]);
-  const std::vector<double> toLower = surfaceDistance(skin, landmarks.multipie68[57]);
+  const std::vector<double> toUpper = surfaceDistances(skin, landmarks.multipie68[51]);
+  const std::vector<double> toLower = surfaceDistances(skin, landmarks.multipie68[57]);
 
   const double h = s.cheekHalfWidthDeg;
   MYO_CHECK(h > 0 && s.posteriorFullDeg > s.posteriorZeroDeg && s.neckFalloff > 0, "jaw weight settings");
@@ -145,8 +95,8 @@ VecX jawWeights(const TriMesh& skin, const Landmarks& landmarks, const Vec3& piv
     const Vec3 q = frame.toFrame(Vec3(P.row(i).transpose()));
     const double phi = angleAbout(pf, q);
     const double posterior = smoothStep((phi - s.posteriorZeroDeg) / (s.posteriorFullDeg - s.posteriorZeroDeg));
-    const double neck = smoothStep((q.y() - (interpolate(border, q.x()) - s.neckFalloff)) / s.neckFalloff);
-    const double below = interpolate(split, q.x()) - phi;  // degrees below the mouth line
+    const double neck = smoothStep((q.y() - (interpolateLinear(border, q.x()) - s.neckFalloff)) / s.neckFalloff);
+    const double below = interpolateLinear(split, q.x()) - phi;  // degrees below the mouth line
     const double lambda = smoothStep((std::abs(q.x()) - blendFrom) / (innerCornerX - blendFrom));
     const bool lower = (q - stomion).norm() < s.lipRegion ? toLower[static_cast<size_t>(i)] < toUpper[static_cast<size_t>(i)]
                                                           : below > 0.0;

@@ -66,7 +66,10 @@ MadeRig makeArkitRig(const SceneInputs& inputs, const RetargetMap& map, BasisCac
   // The jaw of a head with the 68-point jaw line: the map's jaw shapes (jawOpen, …) move it.
   std::optional<JawRig> jaw;
   if (inputs.head.landmarks.multipie68.size() == 68) jaw = jawRig(inputs.head.mesh, inputs.head.landmarks);
-  made.settled = settleArkitRig(skin, map, jaw ? &*jaw : nullptr);
+  // The lids of a head with open eyes: the map's lid muscles (eyeBlink, eyeWide, …) turn them.
+  std::optional<LidRig> lids;
+  if (hasOpenEyes(inputs.head.mesh, inputs.head.landmarks)) lids = lidRig(inputs.head.mesh, inputs.head.landmarks);
+  made.settled = settleArkitRig(skin, map, jaw ? &*jaw : nullptr, lids ? &*lids : nullptr);
   made.settleSeconds = settleClock.seconds();
 
   const Head& head = skin.head();

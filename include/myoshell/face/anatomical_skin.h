@@ -124,6 +124,7 @@ class AnatomicalSkin {
   const DiscreteShell& shell() const { return *shell_; }
   const TissueMap& tissue() const { return tissue_; }
   const std::vector<CoupledMuscle>& muscles() const { return muscles_; }
+  std::vector<std::string> muscleNames() const;  // in the muscles' order
   int muscleIndex(const std::string& name) const;  // InputError naming the unknown muscle
   // K_att + Σ K_c (3n×3n, dyn/cm): the quadratic terms the full-space reference adds to the shell.
   const SparseMat& extraStiffness() const { return Kextra_; }

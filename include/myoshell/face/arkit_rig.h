@@ -8,6 +8,7 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/anatomical_skin.h"
+#include "myoshell/face/eyelids.h"
 #include "myoshell/face/jaw.h"
 #include "myoshell/face/retarget_map.h"
 
@@ -34,8 +35,11 @@ struct ArkitRig {
 // a muscle the skin does not have (read the map with the skin's names to name the file), for jaw
 // values without a `jaw` (a head without the 68-point jaw line) or outside their ranges;
 // NumericalError when a warped solve does not converge ("rig: the warped static solve did not
-// converge (residual R)").
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw = nullptr);
+// converge (residual R)"). With `lids` (a head with open eyes, face/eyelids.h) every shape's lids
+// are turned by its lid muscles' activations and the orbit kept out of the eyeballs, as the playing
+// face places them (AnatomicalFace::placeSkin).
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw = nullptr,
+                        const LidRig* lids = nullptr);
 
 // The jaw pose a map's shape names (its "open", "forward", "lateral" values summed); InputError
 // naming the shape for another name.

@@ -1,0 +1,237 @@
+// The eyelids (face/eyelids.h, docs/eyelids.md): on ICT a blink by orbicularis_oculi_palpebral at
+// a = 1 closes the eye (lid gap < 1 mm, no vertex inside the eyeball proxy) and is compared with
+// ICT's eyeBlink_L, the levator with eyeWide_L; the closure grows with the activation; a sweep of
+// the eye's muscles never leaves skin inside an eyeball; the right eye mirrors the left; the lids
+// move with the head (moved, turned, rescaled); the zero pose leaves the skin bit for bit; a
+// closed-eyed head is refused by name. The ICT tests skip when ../shared/data is absent. Figures are
+// recorded as test properties (`test_face --gtest_filter='Eyelids*' --gtest_output=json`).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/eyelids.h"
+#include "myoshell/face/head.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/face/shape_metric.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/io/muscle_library_file.h"
+#include "myoshell/io/rig_file.h"
+#include "support/basis_cache.h"
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+Head ictHead() {
+  const auto dir = test::sharedDataDir() / "ict";
+  return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
+}
+
+const RigFile& ictRig() {
+  static const RigFile rig = readRig((test::sharedDataDir() / "ict" / "ict_arkit_rig.glb").string());
+  return rig;
+}
+
+// The deepest an orbit vertex lies inside its eyeball proxy's contact sphere (cm; ≤ 0 outside).
+double deepestInside(const LidRig& rig, const MatX3& P) {
+  double worst = -1.0;
+  for (const EyeLids& e : rig.eyes)
+    for (int i : e.orbitVertices) worst = std::max(worst, e.contactRadius - (P.row(i).transpose() - e.centre).norm());
+  return worst;
+}
+
+// The whole face (39 muscles) on ICT without gravity, one model for every test of the suite.
+class EyelidsIct : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    MYO_REQUIRE_SHARED_DATA();
+    if (!face_) {
+      AnatomicalSettings settings;
+      face_ = std::make_shared<const AnatomicalFace>(ictHead(), faceMuscleDefs(), settings, std::vector<DragDef>{},
+                                                     false, test::sharedBasisCache());
+    }
+  }
+  static void TearDownTestSuite() { face_.reset(); }
+  static std::shared_ptr<const AnatomicalFace> face_;
+
+  // The settled, placed shape at these activations: positions (n×3, cm) and what contact did.
+  static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, LidContact* contact = nullptr) {
+    const AnatomicalSkin& skin = face_->skin();
+    SkinLoads loads;
+    loads.activations = VecX::Zero(face_->muscleCount());
+    for (const auto& [name, a] : acts) loads.activations(skin.muscleIndex(name)) = a;
+    loads.gravity = skin.restGravity();
+    const SettledSkin s = skin.settle(loads, skin.settings().warping);
+    EXPECT_TRUE(s.converged);
+    MatX3 out;
+    const LidContact c = face_->placeSkin(s.u, JawPose{}, loads.activations, out);
+    if (contact) *contact = c;
+    return out;
+  }
+  static const MatX3& rest() { return face_->head().mesh.V; }
+  static const LidRig& lids() { return *face_->lidRig(); }
+};
+std::shared_ptr<const AnatomicalFace> EyelidsIct::face_;
+
+TEST_F(EyelidsIct, AFullPalpebralClosesTheEyeOverTheEyeballAndMatchesEyeBlink) {
+  ASSERT_NE(face_->lidRig(), nullptr);
+  LidContact contact;
+  const MatX3 P = pose({{"orbicularis_oculi_palpebral_left", 1.0}}, &contact);
+  const double gap = lidGap(lids(), 1, P), restGap = lidGap(lids(), 1, rest());
+  const ShapeComparison c = compareShapes(P - rest(), ictRig().delta("eyeBlink_L"), rest());
+  RecordProperty("gap_rest_mm", std::to_string(10 * restGap));
+  RecordProperty("gap_mm", std::to_string(10 * gap));
+  RecordProperty("penetration_before_mm", std::to_string(10 * contact.maxPenetrationBefore));
+  RecordProperty("eyeBlink_L_cosine", std::to_string(c.cosine));
+  RecordProperty("eyeBlink_L_ratio", std::to_string(c.magnitudeRatio));
+  EXPECT_GT(restGap, 0.5);                                    // the eye is open at rest (~8 mm)
+  EXPECT_LT(gap, 0.1);                                        // and the lids meet
+  EXPECT_NEAR(lidGap(lids(), 0, P), lidGap(lids(), 0, rest()), 0.01);  // the other eye stays open
+  EXPECT_LE(deepestInside(lids(), P), 1e-12);                 // no vertex inside an eyeball
+  EXPECT_LE(contact.maxPenetrationAfter, 1e-12);
+  EXPECT_GE(c.cosine, 0.8);
+  EXPECT_GE(c.magnitudeRatio, 0.8);
+  EXPECT_LE(c.magnitudeRatio, 1.25);
+}
+
+TEST_F(EyelidsIct, TheLevatorWidensTheEyeAsEyeWide) {
+  const MatX3 P = pose({{"levator_palpebrae_superioris_left", 1.0}});
+  const ShapeComparison c = compareShapes(P - rest(), ictRig().delta("eyeWide_L"), rest());
+  RecordProperty("eyeWide_L_cosine", std::to_string(c.cosine));
+  RecordProperty("eyeWide_L_ratio", std::to_string(c.magnitudeRatio));
+  RecordProperty("gap_mm", std::to_string(10 * lidGap(lids(), 1, P)));
+  EXPECT_GT(lidGap(lids(), 1, P), lidGap(lids(), 1, rest()) + 0.1);  // at least a millimetre wider
+  EXPECT_GE(c.cosine, 0.8);
+  EXPECT_GE(c.magnitudeRatio, 0.8);
+  EXPECT_LE(c.magnitudeRatio, 1.25);
+}
+
+TEST_F(EyelidsIct, TheGapShrinksSteadilyWithTheActivation) {
+  double previous = lidGap(lids(), 1, rest());
+  for (double a : {0.25, 0.5, 0.75, 1.0}) {
+    const double gap = lidGap(lids(), 1, pose({{"orbicularis_oculi_palpebral_left", a}}));
+    EXPECT_LT(gap, previous) << "a = " << a;
+    previous = gap;
+  }
+  // Closing wins over raising: a full blink with the levator on still closes the eye.
+  EXPECT_LT(lidGap(lids(), 1, pose({{"orbicularis_oculi_palpebral_left", 1.0}, {"levator_palpebrae_superioris_left", 1.0}})),
+            0.1);
+}
+
+TEST_F(EyelidsIct, NoSweepOfTheEyesMusclesLeavesSkinInsideAnEyeball) {
+  double before = 0.0;
+  for (double palpebral : {0.0, 0.5, 1.0})
+    for (double levator : {0.0, 1.0})
+      for (double orbital : {0.0, 1.0}) {
+        LidContact contact;
+        const MatX3 P = pose({{"orbicularis_oculi_palpebral_left", palpebral},
+                              {"orbicularis_oculi_palpebral_right", palpebral},
+                              {"levator_palpebrae_superioris_left", levator},
+                              {"levator_palpebrae_superioris_right", levator},
+                              {"orbicularis_oculi_orbital_left", orbital},
+                              {"orbicularis_oculi_orbital_right", orbital},
+                              {"corrugator_supercilii_left", orbital},
+                              {"corrugator_supercilii_right", orbital}},
+                             &contact);
+        before = std::max(before, contact.maxPenetrationBefore);
+        EXPECT_LE(deepestInside(lids(), P), 1e-12) << palpebral << " " << levator << " " << orbital;
+      }
+  RecordProperty("largest_penetration_before_projection_mm", std::to_string(10 * before));
+}
+
+TEST_F(EyelidsIct, TheRightEyesBlinkMirrorsTheLefts) {
+  // ICT is mirror-symmetric about x = 0: vertex i's mirror is the vertex at (−x, y, z).
+  const MatX3& V = rest();
+  std::vector<int> mirror(static_cast<size_t>(V.rows()));
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Eigen::RowVector3d m(-V(i, 0), V(i, 1), V(i, 2));
+    Eigen::Index j = 0;
+    const double d = (V.rowwise() - m).rowwise().squaredNorm().minCoeff(&j);
+    ASSERT_LT(d, 1e-4) << "vertex " << i << " has no mirror image";  // within 0.1 mm
+    mirror[static_cast<size_t>(i)] = static_cast<int>(j);
+  }
+  const MatX3 uL = pose({{"orbicularis_oculi_palpebral_left", 1.0}}) - V;
+  const MatX3 uR = pose({{"orbicularis_oculi_palpebral_right", 1.0}}) - V;
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Eigen::RowVector3d r = uR.row(mirror[static_cast<size_t>(i)]);
+    worst = std::max(worst, (uL.row(i) - Eigen::RowVector3d(-r(0), r(1), r(2))).norm());
+  }
+  const double peak = uL.rowwise().norm().maxCoeff();
+  RecordProperty("mirror_mismatch", std::to_string(worst / peak));
+  EXPECT_LT(worst, 0.05 * peak);
+}
+
+TEST(EyelidsOnIct, TheLidsMoveWithTheHead) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head head = ictHead();
+  const double s = 2.5;  // cm → a head 2.5 times larger (or inch-like units)
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(0.3, 1.0, -0.2).normalized()).toRotationMatrix();
+  const Vec3 t(4.0, -7.0, 1.5);
+  TriMesh moved = head.mesh;
+  for (Eigen::Index i = 0; i < moved.V.rows(); ++i) moved.V.row(i) = (s * R * head.mesh.V.row(i).transpose() + t).transpose();
+  const LidRig a = lidRig(head.mesh, head.landmarks), b = lidRig(moved, head.landmarks);
+  LidPose p;
+  p.close = {0.3, 0.8};
+  p.raise = {0.6, 0.2};
+  MatX3 Pa = head.mesh.V, Pb = moved.V;
+  applyLids(a, p, Pa);
+  applyLids(b, p, Pb);
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < Pa.rows(); ++i)
+    worst = std::max(worst, (s * R * Pa.row(i).transpose() + t - Pb.row(i).transpose()).norm());
+  EXPECT_LT(worst, 1e-9 * s * 30.0);
+  for (size_t e = 0; e < 2; ++e) {
+    EXPECT_EQ(a.eyes[e].lidVertices, b.eyes[e].lidVertices);
+    EXPECT_NEAR(b.eyes[e].radius, s * a.eyes[e].radius, 1e-12);
+  }
+}
+
+TEST(EyelidsOnIct, AZeroPoseLeavesTheSkinBitForBitAndTheEyeballsSitBehindTheLids) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head head = ictHead();
+  const LidRig rig = lidRig(head.mesh, head.landmarks);
+  MatX3 P = head.mesh.V;
+  const LidContact c = applyLids(rig, LidPose{}, P);
+  EXPECT_EQ(c.projected, 0);
+  EXPECT_TRUE((P.array() == head.mesh.V.array()).all());
+  const FaceFrame f = head.frame();
+  for (const EyeLids& e : rig.eyes) {
+    // An adult eyeball is ~2.4 cm across; its centre lies between the eye's corners, behind the lids.
+    EXPECT_NEAR(2.0 * e.radius, 2.4, 0.3) << e.side;
+    EXPECT_LE(e.contactRadius, e.radius);
+    EXPECT_GT(e.contactRadius, 0.6 * e.radius);
+    const Vec3 q = f.toFrame(e.centre);
+    EXPECT_GT(std::abs(q.x()), 0.2) << e.side;
+    EXPECT_LT(std::abs(q.x()), 0.5) << e.side;
+    const Vec3 lid = f.toFrame(Vec3(head.mesh.V.row(e.gapPairs[0][0]).transpose()));
+    EXPECT_GT(lid.z() - q.z(), 0.05) << e.side;  // the lids lie in front of the centre
+    EXPECT_GT(e.lidVertices.size(), 100u);
+    EXPECT_GT(e.upperMargin.size(), 4u);
+    EXPECT_GT(e.lowerMargin.size(), 4u);
+  }
+  EXPECT_LT(rig.eyes[0].centre.x(), 0.0);  // eyes[0] is the subject's right (−x)
+}
+
+TEST(Eyelids, AClosedEyedHeadHasNoLidsAndIsRefusedByName) {
+  const Head head = loadDefaultHead();
+  EXPECT_FALSE(hasOpenEyes(head.mesh, head.landmarks));
+  try {
+    lidRig(head.mesh, head.landmarks);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the eyelids need open eyes (an opening in the mesh between each eye's "
+                                         "corner landmarks); this head's eyes are closed"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace myo
