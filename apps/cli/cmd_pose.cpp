@@ -222,7 +222,7 @@ int runPose(const PoseArgs& a) {
   // The shape: rest + u, or with the jaw the jawed rest + u turned with it (face/jaw.h), then the
   // lids and the eyeball contact (face/eyelids.h).
   MatX3 positions;
-  const LidContact contact = face->placeSkin(settled.u, jaw, act, positions);
+  const ContactReport contact = face->placeSkin(settled.u, jaw, act, positions);
   Eigen::Index peakVertex = 0;
   const double peak = (positions - head.mesh.V).rowwise().norm().maxCoeff(&peakVertex);
   if (!a.out.empty()) {
@@ -273,13 +273,20 @@ int runPose(const PoseArgs& a) {
                       {"eyeball_radius_cm", e.radius},
                       {"contact_radius_cm", e.contactRadius}};
       }
-      lj["max_penetration_before_cm"] = contact.maxPenetrationBefore;
-      lj["max_penetration_after_cm"] = contact.maxPenetrationAfter;
-      lj["projected_vertices"] = contact.projected;
       j["lids"] = lj;
     } else {
       j["lids"] = nullptr;
     }
+    if (const MouthContact* mouth = face->mouthContact()) {
+      j["mouth"] = {{"teeth_shrink", mouth->shrink},
+                    {"tested_vertices", mouth->vertices.size()},
+                    {"lip_pairs", mouth->lipPairs.size()}};
+    } else {
+      j["mouth"] = nullptr;
+    }
+    j["contact"] = {{"max_penetration_before_cm", contact.maxPenetrationBefore},
+                    {"max_penetration_after_cm", contact.maxPenetrationAfter},
+                    {"projected_vertices", contact.projected}};
     j["warped"] = warped;
     j["iterations"] = settled.iterations;
     j["max_displacement_cm"] = peak;

@@ -314,6 +314,13 @@ class ViewerApp {
       moved |= ImGui::SliderFloat("lateral (cm)", &lateral, static_cast<float>(-kJawLateralMaxCm),
                                   static_cast<float>(kJawLateralMaxCm), "%.2f");
       if (moved) session_.setJawSlider({open, forward, lateral});
+      if (ImGui::Button("Blink")) {
+        try {
+          session_.blink();
+        } catch (const InputError& e) {
+          status_ = e.what();
+        }
+      }
     }
     if (ImGui::CollapsingHeader("Skin", ImGuiTreeNodeFlags_DefaultOpen)) {
       bool gravity = session_.gravity();
@@ -427,6 +434,7 @@ class ViewerApp {
     const auto on = [&](size_t i) { return c.args.at(i) == "on"; };
     if (c.verb == "set") session_.setSlider(c.args[0], c.number(1));
     else if (c.verb == "jaw") session_.setJawSlider({c.number(0), c.number(1), c.number(2)});
+    else if (c.verb == "blink") session_.blink();
     else if (c.verb == "link") session_.linked = on(0);
     else if (c.verb == "gravity") session_.setGravity(on(0));
     else if (c.verb == "stiffness") session_.setStiffnessScale(c.number(0));

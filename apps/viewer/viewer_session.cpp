@@ -146,12 +146,32 @@ void ViewerSession::controls(FaceStepper& s) {
     else
       s.setActivation(m, sliders_[static_cast<size_t>(m)]);
   }
+  if (blinking())
+    for (int m : blinkMuscles_) s.setActivation(m, std::max(s.activation(m), blinkLevel()));
   if (hasJaw()) {
     if (playing && scene().hasJaw())
       jaw_ = s.jaw();
     else
       s.setJaw(jaw_);
   }
+}
+
+void ViewerSession::blink() {
+  blinkMuscles_.clear();
+  for (int m = 0; m < muscleCount(); ++m)
+    if (model_->muscleName(m).rfind("orbicularis_oculi_palpebral", 0) == 0) blinkMuscles_.push_back(m);
+  if (blinkMuscles_.empty())
+    throw InputError("blink: the muscle library has no orbicularis_oculi_palpebral muscle (use \"muscles\": "
+                     "{\"library\": \"face\"})");
+  blinkTime_ = 0.0;
+}
+
+double ViewerSession::blinkLevel() const {
+  if (!blinking()) return 0.0;
+  const double t = blinkTime_;
+  if (t < kBlinkClose) return t / kBlinkClose;
+  if (t < kBlinkClose + kBlinkHold) return 1.0;
+  return std::max(0.0, 1.0 - (t - kBlinkClose - kBlinkHold) / kBlinkOpen);
 }
 
 void ViewerSession::advance(double seconds) {
@@ -170,6 +190,10 @@ void ViewerSession::advance(double seconds) {
     } else {
       controls(sim());  // live: the sliders drive the simulator, the playhead stays
       sim().step();
+    }
+    if (blinking()) {
+      blinkTime_ += dt;
+      if (blinkTime_ >= kBlinkClose + kBlinkHold + kBlinkOpen) blinkTime_ = -1.0;
     }
   }
   const double elapsed = wall.seconds();

@@ -60,6 +60,17 @@ class ViewerSession {
   void setJawSlider(const JawPose& pose);
   const JawPose& jawSlider() const { return jaw_; }
 
+  // --- the lids (anatomical model; docs/eyelids.md) ------------------------------------------------
+  // Starts a blink: both orbicularis_oculi_palpebral muscles rise to 1 in kBlinkClose, hold
+  // kBlinkHold and fall back in kBlinkOpen (a spontaneous blink: the lid closes in ~0.1 s and
+  // reopens more slowly, ~0.3 s in all; Doane 1980). While it lasts it lifts each of them to at least
+  // the blink's level, over its slider or track. InputError when the library has no palpebral muscle.
+  void blink();
+  bool blinking() const { return blinkTime_ >= 0.0; }
+  // The blink's level now, in [0, 1] (0 when not blinking).
+  double blinkLevel() const;
+  static constexpr double kBlinkClose = 0.10, kBlinkHold = 0.05, kBlinkOpen = 0.20;
+
   // --- the mouse drag ----------------------------------------------------------------------------
   // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin; the anatomical
   // model grips only the mouse drag's own vertex, the nose tip, for now).
@@ -113,6 +124,8 @@ class ViewerSession {
   bool gravityOn_ = false;
   bool grabbing_ = false;
   double pending_ = 0.0;  // simulated seconds owed to the accumulator
+  double blinkTime_ = -1.0;  // seconds into the current blink, −1 when none
+  std::vector<int> blinkMuscles_;  // the palpebral muscles
   double stepsPerSecond_ = 0.0;
   std::vector<std::string> warnings_;
 

@@ -28,7 +28,10 @@ AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& m
   for (const DragDef& d : drags_) sites.push_back({d.vertex, d.radius});
   skin_ = std::make_shared<const AnatomicalSkin>(head, muscles, settings, sites, cache);
   const Head& h = skin_->head();
-  if (h.landmarks.multipie68.size() == 68) jaw_ = std::make_shared<const JawRig>(myo::jawRig(h.mesh, h.landmarks));
+  if (h.landmarks.multipie68.size() == 68) {
+    jaw_ = std::make_shared<const JawRig>(myo::jawRig(h.mesh, h.landmarks));
+    mouth_ = std::make_shared<const MouthContact>(myo::mouthContact(h.mesh, h.landmarks, *jaw_));
+  }
   if (hasOpenEyes(h.mesh, h.landmarks)) {
     lids_ = std::make_shared<const LidRig>(myo::lidRig(h.mesh, h.landmarks));
     lidDrivers_ = lidDrivers(skin_->muscleNames());
@@ -38,11 +41,14 @@ AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& m
 
 LidPose AnatomicalFace::lidPose(const VecX& activations) const { return lidDrivers_.pose(activations); }
 
-LidContact AnatomicalFace::placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
+ContactReport AnatomicalFace::placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
   const MatX3& rest = skin_->head().mesh.V;
   if (jaw.isZero()) out = rest + u;
   else jawedPositions(*jaw_, jaw, rest, u, out);
-  return lids_ ? applyLids(*lids_, lidPose(activations), out) : LidContact{};
+  ContactReport report;
+  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out));
+  if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out));
+  return report;
 }
 
 const std::string& AnatomicalFace::muscleName(int m) const {
@@ -160,7 +166,7 @@ void AnatomicalSimulator::reset() {
 }
 
 void AnatomicalSimulator::skinPositions(MatX3& out) const {
-  lidContact_ = face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out);
+  contact_ = face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out);
 }
 
 void AnatomicalSimulator::channelDisplacement(int channel, MatX3& out) const {

@@ -21,7 +21,9 @@ JawPose jawPoseOf(const RetargetShape& shape) {
   return pose;
 }
 
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw, const LidRig* lids) {
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw, const LidRig* lids,
+                        const MouthContact* mouth) {
+  if (mouth && !jaw) throw CheckError("settleArkitRig: the mouth's contact needs the jaw");
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
   const LidDrivers lidMuscles = lidDrivers(skin.muscleNames());
@@ -35,11 +37,12 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     const SettledSkin s = skin.settle(loads, warped);
     if (!s.converged || !s.u.allFinite())
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
-    if (pose.isZero() && !lids) return s.u;
+    if (pose.isZero() && !lids && !mouth) return s.u;
     MatX3 moved;
     if (pose.isZero()) moved = restPositions + s.u;
     else jawedPositions(*jaw, pose, restPositions, s.u, moved);
     if (lids) applyLids(*lids, lidMuscles.pose(loads.activations), moved);
+    if (mouth) applyMouthContact(*mouth, *jaw, pose, moved);
     return moved - restPositions;
   };
   const MatX3 rest = settle({}, JawPose{});  // zero with warping off; the warped solve's own rest otherwise

@@ -179,7 +179,7 @@ EyeLids buildEye(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame
     const double fromCentre = (p - lids.centre).norm();
     if (fromCentre < orbit) {
       lids.orbitVertices.push_back(static_cast<int>(i));
-      lids.contactRadius = std::min(lids.contactRadius, fromCentre);
+      lids.contactRadius = std::min(lids.contactRadius, fromCentre * (1.0 - 1e-9));  // the rest stays clear
     }
     const double x = f.along(p);
     if (x <= rest.xLow || x >= rest.xHigh) continue;  // beyond the canthi the lids do not move
@@ -245,8 +245,8 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
   return rig;
 }
 
-LidContact applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions) {
-  LidContact contact;
+ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions) {
+  ContactReport contact;
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
     const double c = pose.close[e], r = pose.raise[e];

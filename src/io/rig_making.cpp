@@ -69,7 +69,9 @@ MadeRig makeArkitRig(const SceneInputs& inputs, const RetargetMap& map, BasisCac
   // The lids of a head with open eyes: the map's lid muscles (eyeBlink, eyeWide, …) turn them.
   std::optional<LidRig> lids;
   if (hasOpenEyes(inputs.head.mesh, inputs.head.landmarks)) lids = lidRig(inputs.head.mesh, inputs.head.landmarks);
-  made.settled = settleArkitRig(skin, map, jaw ? &*jaw : nullptr, lids ? &*lids : nullptr);
+  std::optional<MouthContact> mouth;
+  if (jaw) mouth = mouthContact(inputs.head.mesh, inputs.head.landmarks, *jaw);
+  made.settled = settleArkitRig(skin, map, jaw ? &*jaw : nullptr, lids ? &*lids : nullptr, mouth ? &*mouth : nullptr);
   made.settleSeconds = settleClock.seconds();
 
   const Head& head = skin.head();

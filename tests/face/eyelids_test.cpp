@@ -61,7 +61,7 @@ class EyelidsIct : public ::testing::Test {
   static std::shared_ptr<const AnatomicalFace> face_;
 
   // The settled, placed shape at these activations: positions (n×3, cm) and what contact did.
-  static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, LidContact* contact = nullptr) {
+  static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, ContactReport* contact = nullptr) {
     const AnatomicalSkin& skin = face_->skin();
     SkinLoads loads;
     loads.activations = VecX::Zero(face_->muscleCount());
@@ -70,7 +70,7 @@ class EyelidsIct : public ::testing::Test {
     const SettledSkin s = skin.settle(loads, skin.settings().warping);
     EXPECT_TRUE(s.converged);
     MatX3 out;
-    const LidContact c = face_->placeSkin(s.u, JawPose{}, loads.activations, out);
+    const ContactReport c = face_->placeSkin(s.u, JawPose{}, loads.activations, out);
     if (contact) *contact = c;
     return out;
   }
@@ -81,7 +81,7 @@ std::shared_ptr<const AnatomicalFace> EyelidsIct::face_;
 
 TEST_F(EyelidsIct, AFullPalpebralClosesTheEyeOverTheEyeballAndMatchesEyeBlink) {
   ASSERT_NE(face_->lidRig(), nullptr);
-  LidContact contact;
+  ContactReport contact;
   const MatX3 P = pose({{"orbicularis_oculi_palpebral_left", 1.0}}, &contact);
   const double gap = lidGap(lids(), 1, P), restGap = lidGap(lids(), 1, rest());
   const ShapeComparison c = compareShapes(P - rest(), ictRig().delta("eyeBlink_L"), rest());
@@ -129,7 +129,7 @@ TEST_F(EyelidsIct, NoSweepOfTheEyesMusclesLeavesSkinInsideAnEyeball) {
   for (double palpebral : {0.0, 0.5, 1.0})
     for (double levator : {0.0, 1.0})
       for (double orbital : {0.0, 1.0}) {
-        LidContact contact;
+        ContactReport contact;
         const MatX3 P = pose({{"orbicularis_oculi_palpebral_left", palpebral},
                               {"orbicularis_oculi_palpebral_right", palpebral},
                               {"levator_palpebrae_superioris_left", levator},
@@ -198,7 +198,7 @@ TEST(EyelidsOnIct, AZeroPoseLeavesTheSkinBitForBitAndTheEyeballsSitBehindTheLids
   const Head head = ictHead();
   const LidRig rig = lidRig(head.mesh, head.landmarks);
   MatX3 P = head.mesh.V;
-  const LidContact c = applyLids(rig, LidPose{}, P);
+  const ContactReport c = applyLids(rig, LidPose{}, P);
   EXPECT_EQ(c.projected, 0);
   EXPECT_TRUE((P.array() == head.mesh.V.array()).all());
   const FaceFrame f = head.frame();

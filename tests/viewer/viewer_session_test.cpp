@@ -182,7 +182,7 @@ TEST(ViewerScript, ErrorsNameTheFileLineAndFault) {
     return std::string("no error");
   };
   EXPECT_EQ(message("set zygomaticus_major_left 1\nfrobnicate\n"),
-            "s.txt:2: unknown command 'frobnicate' (known: advance, export, grab, gravity, jaw, key, link, orbit, pause, play, "
+            "s.txt:2: unknown command 'frobnicate' (known: advance, blink, export, grab, gravity, jaw, key, link, orbit, pause, play, "
             "pull, release, reset, save, screenshot, seek, select, set, show, stiffness, view, zoom)");
   EXPECT_EQ(message("# a comment\n\nadvance\n"), "s.txt:3: 'advance' takes 1 argument, got 0");
   EXPECT_EQ(message("set zygomaticus_major_left lots\n"), "s.txt:1: 'set': 'lots' is not a finite number");
@@ -246,6 +246,48 @@ TEST(ViewerSession, TheAnatomicalModelPlaysAndRefusesThesisOnlyControls) {
 // The jaw's sliders (anatomical model): the chin follows the opening, values outside the jaw's
 // ranges are clamped with a warning naming them, keys go on the jaw's tracks and a timeline that
 // plays them moves the sliders; the thesis model refuses them, naming the model.
+TEST(ViewerSession, ABlinkClosesAndReopensThePalpebralMusclesOverSliderAndTrack) {
+  ViewerSession s(parseScene(R"({
+    "name": "viewer_blink",
+    "muscles": {"library": "face", "use": ["orbicularis_oculi_palpebral_left", "orbicularis_oculi_palpebral_right",
+                                             "zygomaticus_major_left"]},
+    "numerics": {"skin_modes": 4},
+    "duration": 1.0, "fps": 20
+  })"),
+                  nullptr);
+  const int left = s.model().muscleIndex("orbicularis_oculi_palpebral_left");
+  const int right = s.model().muscleIndex("orbicularis_oculi_palpebral_right");
+  s.linked = false;
+  s.setSlider(right, 0.3);
+  EXPECT_FALSE(s.blinking());
+  s.blink();
+  ASSERT_TRUE(s.blinking());
+  s.advance(0.05);  // half way down
+  EXPECT_NEAR(s.simulator().activation(left), 0.5, 0.05);
+  EXPECT_NEAR(s.simulator().activation(right), 0.5, 0.05);  // the blink lifts a slider below it
+  s.advance(0.075);  // closed
+  EXPECT_DOUBLE_EQ(s.simulator().activation(left), 1.0);
+  s.advance(0.5);  // over: back to the sliders
+  EXPECT_FALSE(s.blinking());
+  s.advance(0.01);
+  EXPECT_EQ(s.simulator().activation(left), 0.0);
+  EXPECT_EQ(s.simulator().activation(right), 0.3);
+  EXPECT_EQ(s.slider(left), 0.0);  // the blink never moved a slider
+
+  // A library without the palpebral part cannot blink, and says how to get it.
+  ViewerSession thesis(parseScene(R"({"name": "no_lids", "muscles": {"use": ["zygomaticus_major_left"]},
+                                      "numerics": {"skin_modes": 4}, "duration": 0.2, "fps": 20})"),
+                       nullptr);
+  try {
+    thesis.blink();
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "blink: the muscle library has no orbicularis_oculi_palpebral muscle (use \"muscles\": {\"library\": "
+              "\"face\"})");
+  }
+}
+
 TEST(ViewerSession, TheJawSlidersOpenTheMouthKeyAndFollowTheTimeline) {
   ViewerSession s(parseScene(R"({
     "name": "viewer_jaw",

@@ -18,6 +18,7 @@
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/eyelids.h"
+#include "myoshell/face/mouth_contact.h"
 #include "myoshell/face/face_system.h"
 
 namespace myo {
@@ -47,15 +48,18 @@ class AnatomicalFace : public FaceSystem {
   // The eyelids (face/eyelids.h) of a head with open eyes and the 68 landmarks; null otherwise (a
   // closed-eye head: the lid muscles then act through the physics alone).
   const LidRig* lidRig() const { return lids_ ? lids_.get() : nullptr; }
+  // The lips' contact with the teeth and each other (face/mouth_contact.h); null without a jaw.
+  const MouthContact* mouthContact() const { return mouth_ ? mouth_.get() : nullptr; }
   // The lids' pose at these activations: close from orbicularis_oculi_palpebral_<side>, raise from
   // levator_palpebrae_superioris_<side> (0 for a muscle the library does not have).
   LidPose lidPose(const VecX& activations) const;
   // The skin's positions (n×3, cm) for the residual u (the physics' displacement, in the rest
   // frame): the jawed rest + u turned with the jaw (jawedPositions; rest + u bit for bit at a zero
   // jaw), then on a head with lids the lids turned by these activations and every orbit vertex kept
-  // out of its eyeball proxy (applyLids), whose report it returns. Every user of a settled or
+  // out of its eyeball proxy (applyLids), then on a head with a jaw the lips kept out of the teeth
+  // and of each other (applyMouthContact). Returns what the contact projections did. Every user of a settled or
   // stepped shape places it through here (the simulator, pose, rigs, Python).
-  LidContact placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const;
+  ContactReport placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const;
 
   FaceModelKind kind() const override { return FaceModelKind::Anatomical; }
   const Head& head() const override { return skin_->head(); }
@@ -78,6 +82,7 @@ class AnatomicalFace : public FaceSystem {
   std::vector<DragDef> drags_;
   std::shared_ptr<const JawRig> jaw_;
   std::shared_ptr<const LidRig> lids_;
+  std::shared_ptr<const MouthContact> mouth_;
   LidDrivers lidDrivers_;
   bool gravity_ = true;
   double buildSeconds_ = 0.0;
@@ -115,8 +120,8 @@ class AnatomicalSimulator : public FaceStepper {
   // Then the lids (applyLids: turned by the lid muscles' activations, every orbit vertex projected
   // out of its eyeball proxy) on a head with open eyes.
   void skinPositions(MatX3& out) const override;
-  // What the eyeball contact did in the last skinPositions (zeros on a head without lids).
-  const LidContact& lastLidContact() const { return lidContact_; }
+  // What the contact projections (eyeballs, teeth, lips) did in the last skinPositions.
+  const ContactReport& lastContactReport() const { return contact_; }
   void channelDisplacement(int channel, MatX3& out) const override;  // channel 0: the skin
   // rest + level·U_m; a muscle with a mandible origin (isMandibleMuscle) then moves with the jaw
   // (weight 1). Display only: the couplings act on the residual in the rest frame.
@@ -135,7 +140,7 @@ class AnatomicalSimulator : public FaceStepper {
   Eigen::Quaterniond pose_ = Eigen::Quaterniond::Identity();
   bool posed_ = false;          // a head pose other than upright was set
   JawPose jaw_;
-  mutable LidContact lidContact_;
+  mutable ContactReport contact_;
   double runawayLimit_ = 0.0;   // cm: the head's bounding-box diagonal
   StepTimings timings_;
   long long steps_ = 0;

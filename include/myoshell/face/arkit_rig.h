@@ -9,6 +9,7 @@
 #include "myoshell/core/types.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/eyelids.h"
+#include "myoshell/face/mouth_contact.h"
 #include "myoshell/face/jaw.h"
 #include "myoshell/face/retarget_map.h"
 
@@ -37,9 +38,10 @@ struct ArkitRig {
 // NumericalError when a warped solve does not converge ("rig: the warped static solve did not
 // converge (residual R)"). With `lids` (a head with open eyes, face/eyelids.h) every shape's lids
 // are turned by its lid muscles' activations and the orbit kept out of the eyeballs, as the playing
-// face places them (AnatomicalFace::placeSkin).
+// face places them (AnatomicalFace::placeSkin); with `mouth` (needs `jaw`) the lips are kept out of
+// the teeth and of each other (face/mouth_contact.h).
 ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw = nullptr,
-                        const LidRig* lids = nullptr);
+                        const LidRig* lids = nullptr, const MouthContact* mouth = nullptr);
 
 // The jaw pose a map's shape names (its "open", "forward", "lateral" values summed); InputError
 // naming the shape for another name.

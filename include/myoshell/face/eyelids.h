@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/face/contact_report.h"
 #include "myoshell/face/landmarks.h"
 #include "myoshell/mesh/tri_mesh.h"
 
@@ -104,17 +105,10 @@ bool hasOpenEyes(const TriMesh& skin, const Landmarks& landmarks);
 // no 68 points or an eye is closed (no opening between its corners).
 LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings& settings = {});
 
-// What contact did to one set of positions.
-struct LidContact {
-  double maxPenetrationBefore = 0.0;  // cm: the deepest vertex inside a proxy before projection
-  double maxPenetrationAfter = 0.0;   // cm: after it (0 up to round-off)
-  int projected = 0;                  // vertices moved out
-};
-
 // Turns the lid vertices of `positions` (n×3, the skin's jawed rest + residual) about their eye's
 // centre by θ_i (above), then projects every orbit vertex out of its proxy. The turn is skipped for
 // a zero pose; the projection always runs (at rest it moves nothing).
-LidContact applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions);
+ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions);
 
 // The lid gap of eye `eye` (0 right, 1 left) in `positions`: the mean distance of its two mid-lid
 // landmark pairs, cm.

@@ -1,0 +1,110 @@
+// What placing a shape costs with the lids and the contact projections (face/eyelids.h,
+// face/mouth_contact.h) against placing it without them, on ICT's whole face: the rest + u copy
+// alone (every shape pays it), + the jaw, + the lids turned and the eyeballs, + the teeth and the
+// lips. The shape is a settled blink with the mouth's ring pressed and the jaw at 10°, so every
+// projection has work. Placement runs at output, not in the step: this is the price per written
+// frame. docs/PERFORMANCE.md ("Contact") has the figures.
+//
+//   MYOSHELL_DATA=../shared/data build/bin/bench_contact --benchmark_repetitions=9 \
+//     --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/io/basis_cache_file.h"
+#include "myoshell/io/head_files.h"
+
+namespace {
+
+using namespace myo;
+namespace fs = std::filesystem;
+
+struct Scene {
+  std::unique_ptr<AnatomicalFace> face;
+  MatX3 u;
+  VecX activations;
+  JawPose jaw;
+};
+
+const Scene* scene() {
+  static std::unique_ptr<Scene> s;
+  static bool tried = false;
+  if (tried) return s.get();
+  tried = true;
+  const char* data = std::getenv("MYOSHELL_DATA");
+  const fs::path dir = fs::path(data ? data : "../shared/data") / "ict";
+  if (!fs::exists(dir / "head_skin.obj")) return nullptr;
+  const Head head = loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
+  FileBasisCache cache(fs::temp_directory_path() / "myoshell_bench_contact_cache");
+  s = std::make_unique<Scene>();
+  s->face = std::make_unique<AnatomicalFace>(head, faceMuscleDefs(), AnatomicalSettings{}, std::vector<DragDef>{}, false,
+                                             &cache);
+  const AnatomicalSkin& skin = s->face->skin();
+  SkinLoads loads;
+  loads.activations = VecX::Zero(s->face->muscleCount());
+  for (const char* m : {"orbicularis_oculi_palpebral_left", "orbicularis_oculi_palpebral_right", "orbicularis_oris_upper",
+                        "orbicularis_oris_lower"})
+    loads.activations(skin.muscleIndex(m)) = 1.0;
+  loads.gravity = skin.restGravity();
+  s->u = skin.settle(loads, false).u;
+  s->activations = loads.activations;
+  s->jaw.openDeg = 10.0;
+  return s.get();
+}
+
+void copyOnly(benchmark::State& state) {
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  MatX3 out;
+  for (auto _ : state) {
+    out = s->face->head().mesh.V + s->u;
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+
+void withJaw(benchmark::State& state) {
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  MatX3 out;
+  for (auto _ : state) {
+    jawedPositions(*s->face->jawRig(), s->jaw, s->face->head().mesh.V, s->u, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+
+void withJawAndLids(benchmark::State& state) {
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  MatX3 out;
+  const LidPose lids = s->face->lidPose(s->activations);
+  for (auto _ : state) {
+    jawedPositions(*s->face->jawRig(), s->jaw, s->face->head().mesh.V, s->u, out);
+    benchmark::DoNotOptimize(applyLids(*s->face->lidRig(), lids, out));
+  }
+}
+
+void placeSkin(benchmark::State& state) {  // jaw, lids and eyeballs, teeth and lips: what every user calls
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  MatX3 out;
+  ContactReport r;
+  for (auto _ : state) {
+    r = s->face->placeSkin(s->u, s->jaw, s->activations, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["projected"] = r.projected;
+  state.counters["before_mm"] = 10 * r.maxPenetrationBefore;
+}
+
+BENCHMARK(copyOnly)->Unit(benchmark::kMicrosecond);
+BENCHMARK(withJaw)->Unit(benchmark::kMicrosecond);
+BENCHMARK(withJawAndLids)->Unit(benchmark::kMicrosecond);
+BENCHMARK(placeSkin)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

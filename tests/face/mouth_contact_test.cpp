@@ -1,0 +1,154 @@
+// The lips' contact (face/mouth_contact.h, docs/mouth_contact.md): on ICT a sweep of the jaw (0–30°)
+// with every mouth muscle alone and all together at a = 1 leaves no lip vertex inside the teeth
+// proxies or the other lip after projection; the rest and the jaw's rigid motion touch nothing; a
+// lip pushed into the teeth lands on the arch; the projection moves with the head (moved, turned,
+// rescaled). The ICT tests skip when ../shared/data is absent. Figures are recorded as test
+// properties (`test_face --gtest_filter='MouthContact*' --gtest_output=json:F`).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "myoshell/face/anatomical_face.h"
+#include "myoshell/face/head.h"
+#include "myoshell/face/jaw.h"
+#include "myoshell/face/mouth_contact.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/io/head_files.h"
+#include "support/basis_cache.h"
+#include "support/test_data.h"
+
+namespace myo {
+namespace {
+
+Head ictHead() {
+  const auto dir = test::sharedDataDir() / "ict";
+  return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
+}
+
+bool isMouthMuscle(const std::string& name) {
+  for (const char* part : {"oris", "zygomaticus", "risorius", "buccinator", "depressor_anguli", "depressor_labii",
+                           "mentalis", "platysma", "levator_labii_superioris_left", "levator_labii_superioris_right"})
+    if (name.find(part) != std::string::npos) return true;
+  return false;
+}
+
+class MouthContactIct : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    MYO_REQUIRE_SHARED_DATA();
+    if (!face_)
+      face_ = std::make_shared<const AnatomicalFace>(ictHead(), faceMuscleDefs(), AnatomicalSettings{},
+                                                     std::vector<DragDef>{}, false, test::sharedBasisCache());
+  }
+  static void TearDownTestSuite() { face_.reset(); }
+  static std::shared_ptr<const AnatomicalFace> face_;
+};
+std::shared_ptr<const AnatomicalFace> MouthContactIct::face_;
+
+TEST_F(MouthContactIct, NoSweepOfTheJawAndTheMouthMusclesLeavesALipInTheTeethOrTheOtherLip) {
+  const AnatomicalSkin& skin = face_->skin();
+  ASSERT_NE(face_->mouthContact(), nullptr);
+  std::vector<std::vector<int>> cases = {{}};  // at rest, each mouth muscle alone, then all of them
+  std::vector<int> all;
+  for (int m = 0; m < face_->muscleCount(); ++m)
+    if (isMouthMuscle(face_->muscleName(m))) cases.push_back({m}), all.push_back(m);
+  cases.push_back(all);
+  ASSERT_GE(cases.size(), 20u);
+  double before = 0.0, after = 0.0;
+  int touched = 0;
+  for (double open : {0.0, 10.0, 20.0, 30.0})
+    for (const std::vector<int>& active : cases) {
+      SkinLoads loads;
+      loads.activations = VecX::Zero(face_->muscleCount());
+      for (int m : active) loads.activations(m) = 1.0;
+      loads.gravity = skin.restGravity();
+      const SettledSkin s = skin.settle(loads, skin.settings().warping);
+      ASSERT_TRUE(s.converged);
+      JawPose jaw;
+      jaw.openDeg = open;
+      MatX3 P;
+      const ContactReport r = face_->placeSkin(s.u, jaw, loads.activations, P);
+      before = std::max(before, r.maxPenetrationBefore);
+      after = std::max(after, r.maxPenetrationAfter);
+      touched += r.projected > 0;
+      EXPECT_LE(mouthPenetration(*face_->mouthContact(), *face_->jawRig(), jaw, P), 0.05)
+          << open << "° with " << active.size() << " muscles";  // ≤ 0.5 mm: the bound
+    }
+  RecordProperty("largest_penetration_before_mm", std::to_string(10 * before));
+  RecordProperty("largest_penetration_after_mm", std::to_string(10 * after));
+  RecordProperty("poses_with_contact", std::to_string(touched) + " of " + std::to_string(4 * cases.size()));
+  EXPECT_GT(before, 0.0);  // the sweep does press the lips into something
+  EXPECT_LE(after, 0.05);
+}
+
+TEST(MouthContactOnIct, TheRestAndTheJawsRigidMotionTouchNothing) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head head = ictHead();
+  const JawRig jaw = jawRig(head.mesh, head.landmarks);
+  const MouthContact mouth = mouthContact(head.mesh, head.landmarks, jaw);
+  RecordProperty("teeth_shrink", std::to_string(mouth.shrink));
+  RecordProperty("lip_pairs", std::to_string(mouth.lipPairs.size()));
+  EXPECT_GT(mouth.shrink, 0.9);  // the arch placed from the landmarks lies behind ICT's lips
+  EXPECT_GT(mouth.lipPairs.size(), 50u);
+  for (double open : {0.0, 15.0, 30.0}) {
+    JawPose pose;
+    pose.openDeg = open;
+    MatX3 P = jawedRest(jaw, pose, head.mesh.V);
+    const MatX3 before = P;
+    const ContactReport r = applyMouthContact(mouth, jaw, pose, P);
+    EXPECT_EQ(r.projected, 0) << open << "°";
+    EXPECT_TRUE((P.array() == before.array()).all()) << open << "°";
+  }
+}
+
+// The lips pushed 3 mm straight back into the mouth, with the jaw at 12°.
+MatX3 lipsPushedBack(const Head& head, const JawRig& jaw, const MouthContact& mouth, const JawPose& pose) {
+  MatX3 u = MatX3::Zero(head.mesh.V.rows(), 3);
+  // 3 mm on ICT: a fixed fraction of the face frame, so the same push on a rescaled head.
+  for (int i : mouth.vertices) u.row(i) = -0.034 * head.frame().scale * head.frame().axes.col(2).transpose();
+  MatX3 P;
+  jawedPositions(jaw, pose, head.mesh.V, u, P);
+  return P;
+}
+
+TEST(MouthContactOnIct, ALipPushedIntoTheTeethLandsOnTheArchAndMovesWithTheHead) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head head = ictHead();
+  const JawRig jaw = jawRig(head.mesh, head.landmarks);
+  const MouthContact mouth = mouthContact(head.mesh, head.landmarks, jaw);
+  JawPose pose;
+  pose.openDeg = 12.0;
+  MatX3 P = lipsPushedBack(head, jaw, mouth, pose);
+  const double deep = mouthPenetration(mouth, jaw, pose, P);
+  const ContactReport r = applyMouthContact(mouth, jaw, pose, P);
+  EXPECT_GT(deep, 0.05);
+  EXPECT_NEAR(r.maxPenetrationBefore, deep, 1e-12);
+  EXPECT_LT(r.maxPenetrationAfter, 1e-9);
+  EXPECT_GT(r.projected, 10);
+
+  // The same on the head moved, turned and rescaled: the projected positions move with it.
+  const double s = 1.7;
+  const Mat3 R = Eigen::AngleAxisd(-0.5, Vec3(1.0, 0.4, 0.2).normalized()).toRotationMatrix();
+  const Vec3 t(-3.0, 2.0, 5.0);
+  Head moved = head;
+  for (Eigen::Index i = 0; i < moved.mesh.V.rows(); ++i)
+    moved.mesh.V.row(i) = (s * R * head.mesh.V.row(i).transpose() + t).transpose();
+  const JawRig jaw2 = jawRig(moved.mesh, moved.landmarks);
+  const MouthContact mouth2 = mouthContact(moved.mesh, moved.landmarks, jaw2);
+  JawPose pose2 = pose;
+  MatX3 Q = lipsPushedBack(moved, jaw2, mouth2, pose2);
+  applyMouthContact(mouth2, jaw2, pose2, Q);
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    worst = std::max(worst, (s * R * P.row(i).transpose() + t - Q.row(i).transpose()).norm());
+  EXPECT_LT(worst, 1e-8 * s * 30.0);
+  EXPECT_EQ(mouth.vertices, mouth2.vertices);
+  EXPECT_EQ(mouth.lipPairs, mouth2.lipPairs);
+}
+
+}  // namespace
+}  // namespace myo
