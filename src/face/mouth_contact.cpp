@@ -21,6 +21,16 @@ double archRadius(const MouthContact& m, const Vec3& q) {
   return std::sqrt(x * x + z * z);
 }
 
+// How far a local point lies outside the proxies at rest (cm; 0 inside): along the ray from the
+// arch's axis and beyond their top or bottom.
+double archClearance(const MouthContact& m, const Vec3& q) {
+  const double s = archRadius(m, q);
+  const Vec3 axis(0.0, q.y(), m.zCentre);
+  const double radial = s > 1.0 ? (q - axis).norm() * (1.0 - 1.0 / s) : 0.0;
+  const double vertical = std::max({0.0, q.y() - m.upperTop, m.lowerBottom - q.y()});
+  return std::hypot(radial, vertical);
+}
+
 enum class Proxy { None, Upper, Lower };
 Proxy proxyAt(const MouthContact& m, const Vec3& q) {
   if (q.y() >= m.yOcclusal && q.y() <= m.upperTop) return Proxy::Upper;
@@ -89,12 +99,15 @@ MouthContact mouthContact(const TriMesh& skin, const Landmarks& landmarks, const
   m.upperTop = m.yOcclusal + s.upperHeight * unit;
   m.lowerBottom = m.yOcclusal - s.lowerHeight * unit;
 
-  // The tested vertices, and the shrink that leaves every one of them outside at rest.
+  // The tested vertices: near the stomion and within `clearance` of the proxies at rest (a vertex
+  // farther out would need a residual that large to reach the teeth); and the shrink that leaves
+  // every one of them outside at rest.
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     const Vec3 p = V.row(i).transpose();
     if ((p - stomion).norm() >= s.reach * unit) continue;
-    m.vertices.push_back(static_cast<int>(i));
     const Vec3 q = local(m.frame, p);
+    if (archClearance(m, q) > s.clearance * unit) continue;
+    m.vertices.push_back(static_cast<int>(i));
     if (proxyAt(m, q) != Proxy::None) m.shrink = std::min(m.shrink, archRadius(m, q) * (1.0 - 1e-9));
   }
   m.a *= m.shrink;  // about the ellipse's centre: its front recedes by (1 − k)·b

@@ -43,7 +43,8 @@ struct MouthContactSettings {
   double archDepth = 0.45;     // ≈ 4 cm: incisors to the last molars
   double upperHeight = 0.25;   // ≈ 2.2 cm: the upper crowns and the maxilla's alveolar process
   double lowerHeight = 0.25;   // the lower crowns and the mandible's alveolar part
-  double reach = 0.5;          // vertices within this of the stomion are tested against the teeth
+  double reach = 0.5;          // vertices within this of the stomion are tested against the teeth,
+  double clearance = 0.2;      // ≈ 1.8 cm: those within this of the proxies at rest
   double lipRegion = 0.35;     // the lips: within this of the stomion
   double pairReach = 0.04;     // ≈ 3.6 mm: a lower-lip vertex this near the upper lip gets a pair
 };
