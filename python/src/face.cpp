@@ -221,6 +221,8 @@ gravity: False builds the face without any gravity load.)doc")
       .def_property_readonly("vertex_count", [](const FaceHandle& f) { return f.face->head().mesh.vertexCount(); })
       .def_property_readonly("dt", [](const FaceHandle& f) { return f.face->dt(); }, "The time step, s")
       .def_property_readonly("has_jaw", [](const FaceHandle& f) { return f.face->jawRig() != nullptr; })
+      .def_property_readonly("has_lids", [](const FaceHandle& f) { return f.face->lidRig() != nullptr; },
+                             "Whether the head's eyes are open, so the lid muscles turn the lids (docs/eyelids.md)")
       .def_property_readonly("basis_from_cache", [](const FaceHandle& f) { return f.face->skin().basisFromCache(); },
                              "Whether the skin's basis came from the cache folder")
       .def_property_readonly("build_seconds", [](const FaceHandle& f) { return f.face->buildSeconds(); })

@@ -93,3 +93,4 @@ def test_module_pose_builds_the_same_face(face, cache_dir):
     assert np.array_equal(myoshell.pose(used, cache=cache_dir, head_pose=(0, 45, 0)),
                           face.pose(used, head_pose=(0, 45, 0)))
     assert myoshell.Face(cache=cache_dir).basis_from_cache
+

@@ -22,6 +22,22 @@ def test_pose_equals_cli(face, cli, cache_dir, tmp_path):
     assert mine.read_bytes() == out.read_bytes()
 
 
+def test_a_blink_pose_equals_cli_with_the_lids_placed(cli, cache_dir, tmp_path):
+    """The lids and the contact are placed in Python as by the command (docs/eyelids.md)."""
+    scene = tmp_path / "face.json"
+    scene.write_text(json.dumps({"name": "face", "model": "anatomical", "duration": 0.1, "fps": 10,
+                                 "muscles": {"library": "face"}}))
+    out = tmp_path / "blink.obj"
+    report = json.loads(cli("pose", "--scene", scene, "--set", "orbicularis_oculi_palpebral_left=1",
+                            "--json", "--out", out, "--cache", cache_dir).stdout)
+    face = myoshell.Face(library="face", cache=str(cache_dir))
+    assert face.has_lids == (report["lids"] is not None)
+    python = face.pose({"orbicularis_oculi_palpebral_left": 1.0})
+    assert np.array_equal(read_obj_vertices(out), python)
+    if face.has_lids:  # the eye the blink closed, as the command measured it
+        assert report["lids"]["left"]["gap_cm"] < 0.1 < report["lids"]["left"]["gap_rest_cm"]
+
+
 SCENE = {
     "name": "hold",
     "model": "anatomical",
