@@ -16,15 +16,15 @@
 #include "myoshell/face/shape_metric.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "support/ict.h"
 #include "support/test_data.h"
 
 namespace myo {
 namespace {
 
-Head ictHead() {
-  const auto dir = test::sharedDataDir() / "ict";
-  return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
-}
+using test::ictHead;
+using test::ictRig;
+
 
 class AnatomicalIct : public ::testing::Test {
  protected:

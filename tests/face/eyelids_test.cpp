@@ -23,20 +23,15 @@
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/rig_file.h"
 #include "support/basis_cache.h"
+#include "support/ict.h"
 #include "support/test_data.h"
 
 namespace myo {
 namespace {
 
-Head ictHead() {
-  const auto dir = test::sharedDataDir() / "ict";
-  return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
-}
+using test::ictHead;
+using test::ictRig;
 
-const RigFile& ictRig() {
-  static const RigFile rig = readRig((test::sharedDataDir() / "ict" / "ict_arkit_rig.glb").string());
-  return rig;
-}
 
 // The deepest an orbit vertex lies inside its eyeball proxy's contact sphere (cm; ≤ 0 outside).
 double deepestInside(const LidRig& rig, const MatX3& P) {

@@ -18,20 +18,15 @@
 #include "myoshell/face/shape_metric.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/rig_file.h"
+#include "support/ict.h"
 #include "support/test_data.h"
 
 namespace myo {
 namespace {
 
-Head ictHead() {
-  const auto dir = test::sharedDataDir() / "ict";
-  return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
-}
+using test::ictHead;
+using test::ictRig;
 
-const RigFile& ictRig() {
-  static const RigFile rig = readRig((test::sharedDataDir() / "ict" / "ict_arkit_rig.glb").string());
-  return rig;
-}
 
 // The axis measured on ICT's teeth (../shared/data/README.md): 25.3° about x through (y, z) =
 // (−0.55, 1.82) cm.

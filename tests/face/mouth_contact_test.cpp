@@ -19,15 +19,15 @@
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/io/head_files.h"
 #include "support/basis_cache.h"
+#include "support/ict.h"
 #include "support/test_data.h"
 
 namespace myo {
 namespace {
 
-Head ictHead() {
-  const auto dir = test::sharedDataDir() / "ict";
-  return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
-}
+using test::ictHead;
+using test::ictRig;
+
 
 bool isMouthMuscle(const std::string& name) {
   for (const char* part : {"oris", "zygomaticus", "risorius", "buccinator", "depressor_anguli", "depressor_labii",
