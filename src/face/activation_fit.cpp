@@ -12,6 +12,8 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/eyelids.h"
+#include "myoshell/face/jaw.h"
+#include "myoshell/face/mouth_contact.h"
 
 namespace myo {
 
@@ -183,15 +185,19 @@ double conditionNumber(const MatX& A) {
   return s(0) / smin;
 }
 
-// The lids (eyelids.h) of the skin's head when it has open eyes and lid muscles: a shape is placed
-// as every user of the face places it (AnatomicalFace::placeSkin, the jaw at rest).
+// A shape is placed as every user of the face places it (AnatomicalFace::placeSkin, the jaw at
+// rest): the lids (eyelids.h) of a head with open eyes and lid muscles, the mouth's contact
+// (mouth_contact.h) of a head with a jaw.
 struct FitLids {
   std::optional<LidRig> rig;
   LidDrivers drivers;
+  std::optional<JawRig> jaw;
+  std::optional<MouthContact> mouth;
   MatX3 placed(const MatX3& rest, const MatX3& u, const VecX& activations) const {
-    if (!rig) return u;
+    if (!rig && !mouth) return u;
     MatX3 p = rest + u;
-    applyLids(*rig, drivers.pose(activations), p);
+    if (rig) applyLids(*rig, drivers.pose(activations), p);
+    if (mouth) applyMouthContact(*mouth, *jaw, JawPose{}, p);
     return p - rest;
   }
 };
@@ -201,6 +207,10 @@ FitLids fitLids(const AnatomicalSkin& skin) {
   const Head& head = skin.head();
   lids.drivers = lidDrivers(skin.muscleNames());
   if (lids.drivers.any() && hasOpenEyes(head.mesh, head.landmarks)) lids.rig = lidRig(head.mesh, head.landmarks);
+  if (head.landmarks.multipie68.size() == 68) {
+    lids.jaw = jawRig(head.mesh, head.landmarks);
+    lids.mouth = mouthContact(head.mesh, head.landmarks, *lids.jaw);
+  }
   return lids;
 }
 
