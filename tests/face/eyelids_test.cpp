@@ -220,7 +220,7 @@ TEST(EyelidsOnIct, AZeroPoseLeavesTheSkinBitForBitAndTheEyeballsSitBehindTheLids
 }
 
 TEST(Eyelids, AClosedEyedHeadHasNoLidsAndIsRefusedByName) {
-  const Head head = loadDefaultHead();
+  const Head head = loadDefaultHead(defaultHeadOptions(FaceModelKind::Thesis));  // the thesis model's: eyes closed
   EXPECT_FALSE(hasOpenEyes(head.mesh, head.landmarks));
   try {
     lidRig(head.mesh, head.landmarks);
