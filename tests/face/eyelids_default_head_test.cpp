@@ -27,6 +27,7 @@
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
 #include "support/basis_cache.h"
+#include "support/lid_poses.h"
 
 namespace myo {
 namespace {
@@ -216,27 +217,14 @@ class EyelidsDefaultHead : public ::testing::Test {
 
   // The settled, placed shape at these activations (n×3, cm) and what contact did.
   static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, LidContact* contact = nullptr) {
-    const AnatomicalSkin& skin = face_->skin();
-    SkinLoads loads;
-    loads.activations = VecX::Zero(face_->muscleCount());
-    for (const auto& [name, a] : acts) loads.activations(skin.muscleIndex(name)) = a;
-    loads.gravity = skin.restGravity();
-    const SettledSkin s = skin.settle(loads, skin.settings().warping);
-    EXPECT_TRUE(s.converged);
-    MatX3 out;
-    const LidContact c = face_->placeSkin(s.u, JawPose{}, loads.activations, out);
-    if (contact) *contact = c;
-    return out;
+    bool converged = false;
+    MatX3 P = test::settledPlacedShape(*face_, acts, &converged, contact);
+    EXPECT_TRUE(converged);
+    return P;
   }
   static const MatX3& rest() { return face_->head().mesh.V; }
   static const LidRig& lids() { return *face_->lidRig(); }
-  // The deepest an orbit vertex lies inside its eyeball's contact sphere (cm; ≤ 0 outside).
-  static double deepestInside(const MatX3& P) {
-    double worst = -1.0;
-    for (const EyeLids& e : lids().eyes)
-      for (int i : e.orbitVertices) worst = std::max(worst, e.contactRadius - (P.row(i).transpose() - e.centre).norm());
-    return worst;
-  }
+  static double deepestInside(const MatX3& P) { return test::deepestInsideEyeball(lids(), P); }
 };
 std::shared_ptr<const AnatomicalFace> EyelidsDefaultHead::face_;
 
@@ -326,21 +314,11 @@ TEST_F(EyelidsDefaultHead, NoSweepOfTheEyesMusclesLeavesSkinInsideAnEyeball) {
 TEST_F(EyelidsDefaultHead, TheRightEyesBlinkMirrorsTheLefts) {
   // The built-in head is mirror-symmetric about x = 0: vertex i's mirror is the vertex at (−x, y, z).
   const MatX3& V = rest();
-  std::vector<int> mirror(static_cast<size_t>(V.rows()));
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const Eigen::RowVector3d m(-V(i, 0), V(i, 1), V(i, 2));
-    Eigen::Index j = 0;
-    const double d = (V.rowwise() - m).rowwise().squaredNorm().minCoeff(&j);
-    ASSERT_LT(d, 1e-8) << "vertex " << i << " has no mirror image";  // within 1 µm
-    mirror[static_cast<size_t>(i)] = static_cast<int>(j);
-  }
+  const test::MirrorMap mirror = test::mirrorMap(V);
+  ASSERT_LT(mirror.worstDistance, 1e-4);  // within 1 µm
   const MatX3 uL = pose({{"orbicularis_oculi_palpebral_left", 1.0}}) - V;
   const MatX3 uR = pose({{"orbicularis_oculi_palpebral_right", 1.0}}) - V;
-  double worst = 0.0;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const Eigen::RowVector3d r = uR.row(mirror[static_cast<size_t>(i)]);
-    worst = std::max(worst, (uL.row(i) - Eigen::RowVector3d(-r(0), r(1), r(2))).norm());
-  }
+  const double worst = test::mirrorMismatch(mirror, uL, uR);
   const double peak = uL.rowwise().norm().maxCoeff();
   RecordProperty("peak_mm", std::to_string(10 * peak));
   RecordProperty("mirror_mismatch", std::to_string(worst / peak));
