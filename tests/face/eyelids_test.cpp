@@ -115,22 +115,12 @@ TEST_F(EyelidsIct, TheGapShrinksSteadilyWithTheActivation) {
 
 TEST_F(EyelidsIct, NoSweepOfTheEyesMusclesLeavesSkinInsideAnEyeball) {
   double before = 0.0;
-  for (double palpebral : {0.0, 0.5, 1.0})
-    for (double levator : {0.0, 1.0})
-      for (double orbital : {0.0, 1.0}) {
-        LidContact contact;
-        const MatX3 P = pose({{"orbicularis_oculi_palpebral_left", palpebral},
-                              {"orbicularis_oculi_palpebral_right", palpebral},
-                              {"levator_palpebrae_superioris_left", levator},
-                              {"levator_palpebrae_superioris_right", levator},
-                              {"orbicularis_oculi_orbital_left", orbital},
-                              {"orbicularis_oculi_orbital_right", orbital},
-                              {"corrugator_supercilii_left", orbital},
-                              {"corrugator_supercilii_right", orbital}},
-                             &contact);
-        before = std::max(before, contact.maxPenetrationBefore);
-        EXPECT_LE(deepestInside(lids(), P), 1e-12) << palpebral << " " << levator << " " << orbital;
-      }
+  for (const auto& acts : test::eyeMuscleSweep()) {
+    LidContact contact;
+    const MatX3 P = pose(acts, &contact);
+    before = std::max(before, contact.maxPenetrationBefore);
+    EXPECT_LE(deepestInside(lids(), P), 1e-12) << acts[0].second << " " << acts[2].second << " " << acts[4].second;
+  }
   RecordProperty("largest_penetration_before_projection_mm", std::to_string(10 * before));
 }
 

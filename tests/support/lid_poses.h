@@ -33,6 +33,24 @@ inline MatX3 settledPlacedShape(const AnatomicalFace& face, const std::vector<st
   return out;
 }
 
+// The eye's muscles swept for contact: palpebral 0 / 0.5 / 1 × levator 0 / 1 × the orbital part and
+// the corrugator together 0 / 1, both sides alike (12 sets of activations).
+inline std::vector<std::vector<std::pair<std::string, double>>> eyeMuscleSweep() {
+  std::vector<std::vector<std::pair<std::string, double>>> sweep;
+  for (double palpebral : {0.0, 0.5, 1.0})
+    for (double levator : {0.0, 1.0})
+      for (double orbital : {0.0, 1.0})
+        sweep.push_back({{"orbicularis_oculi_palpebral_left", palpebral},
+                         {"orbicularis_oculi_palpebral_right", palpebral},
+                         {"levator_palpebrae_superioris_left", levator},
+                         {"levator_palpebrae_superioris_right", levator},
+                         {"orbicularis_oculi_orbital_left", orbital},
+                         {"orbicularis_oculi_orbital_right", orbital},
+                         {"corrugator_supercilii_left", orbital},
+                         {"corrugator_supercilii_right", orbital}});
+  return sweep;
+}
+
 // The deepest an orbit vertex of P (n×3, cm) lies inside its eyeball's contact sphere (cm; ≤ 0 outside).
 inline double deepestInsideEyeball(const LidRig& rig, const MatX3& P) {
   double worst = -1.0;
