@@ -188,7 +188,7 @@ SceneDesc rowScene(const BenchOptions& opt, const BenchRow& row, const std::stri
     // Drags name default-head vertex ids: move each to the ICT vertex nearest the same point of
     // the face frame (so the drag still grabs the right cheek).
     if (!scene.drags.empty()) {
-      const Head from = loadDefaultHead();
+      const Head from = loadDefaultHead(defaultHeadOptions(scene.modelKind));
       const Head to = loadHead(scene.head.obj, scene.head.landmarks, scene.head.gravityPins, scene.head.units);
       const FaceFrame ff = from.frame(), tf = to.frame();
       for (DragDesc& d : scene.drags) {

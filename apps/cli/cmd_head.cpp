@@ -1,7 +1,9 @@
 // `myoshell head [default|OBJ|DIR] [--landmarks FILE] [--pins FILE] [--units m|mm|cm] [--json]
 // [--render PNG]`:
-// loads a head, reports its counts, landmarks, face frame and gravity pins, and renders a picture
-// with the landmarks (and optionally the pins) marked.
+// loads a head, reports its counts, boundary loops, whether its eyes are open (and so whether the
+// anatomical model gives it lids), landmarks, face frame and gravity pins, and renders a picture
+// with the landmarks (and optionally the pins) marked. The built-in head is shown as the anatomical
+// model uses it (eyes open); --closed-eyes shows the thesis model's.
 //
 // The picture comes from the render layer (orthographic camera preset about the face frame, fitted
 // to the head; smooth two-sided shading, z-buffer, 2×2 supersampling; PNG via stb). Views: front,
@@ -19,6 +21,8 @@
 #include "command.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/face/eyelids.h"
+#include "myoshell/face/face_system.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/head_checks.h"
 #include "myoshell/io/head_files.h"
@@ -95,6 +99,7 @@ struct HeadArgs {
   bool noLandmarks = false;
   int levels = 2;
   bool closedMouth = false;
+  bool closedEyes = false;
   std::string writeObj;
   std::string writeLandmarks;
 };
@@ -102,7 +107,7 @@ struct HeadArgs {
 Head loadFromArgs(const HeadArgs& a) {
   const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, a.pins, a.units);
   if (!files.builtIn()) return loadHead(files.obj, files.landmarks, files.pins, files.unit);
-  DefaultHeadOptions o;
+  DefaultHeadOptions o = defaultHeadOptions(a.closedEyes ? FaceModelKind::Thesis : FaceModelKind::Anatomical);
   o.subdivisionLevels = a.levels;
   o.openMouth = !a.closedMouth;
   return loadDefaultHead(o);
@@ -118,6 +123,9 @@ int runHead(const HeadArgs& a) {
   const auto loops = boundaryLoops(m.F, m.vertexCount());
   const FaceFrame f = head.frame();
   const Vec3 lo = m.V.colwise().minCoeff(), hi = m.V.colwise().maxCoeff();
+  const bool eyesOpen = hasOpenEyes(m, head.landmarks);  // the anatomical model gives it lids
+  // The built-in head is each model's own: which one this is.
+  const std::string usedBy = head.name != "default" ? "" : a.closedEyes ? "thesis" : "anatomical";
 
   nlohmann::ordered_json j;
   j["name"] = head.name;
@@ -128,6 +136,8 @@ int runHead(const HeadArgs& a) {
   j["edges"] = edges.edges.size();
   j["boundary_loops"] = nlohmann::ordered_json::array();
   for (const auto& l : loops) j["boundary_loops"].push_back(l.size());
+  j["eyes"] = eyesOpen ? "open" : "closed";
+  if (!usedBy.empty()) j["model"] = usedBy;
   j["bbox_cm"] = {{"min", vec(lo)}, {"max", vec(hi)}};
   j["landmarks"]["file"] = head.landmarks.sourcePath;
   j["landmarks"]["multipie68"] = head.landmarks.multipie68.size();
@@ -177,6 +187,8 @@ int runHead(const HeadArgs& a) {
     for (const auto& l : loops) fmt::print(" {}", l.size());
     fmt::print(")");
   }
+  fmt::print("\neyes: {}", eyesOpen ? "open (the anatomical model gives it lids)" : "closed (no lids)");
+  if (!usedBy.empty()) fmt::print("; the {} model's built-in head", usedBy);
   fmt::print("\nlandmarks: {} Multi-PIE points, {} named, all {} required names resolved ({})\n",
              head.landmarks.multipie68.size(), head.landmarks.named.size(), kRequiredLandmarks.size(),
              head.landmarks.sourcePath);
@@ -208,6 +220,8 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--levels", args->levels, "default head: subdivision levels (default 2)")
       ->check(CLI::Range(0, 4));
   sub->add_flag("--closed-mouth", args->closedMouth, "default head: keep the mouth closed");
+  sub->add_flag("--closed-eyes", args->closedEyes,
+                "default head: keep the eyes closed (the thesis model's head; the anatomical model's has them open)");
   sub->add_option("--write-obj", args->writeObj, "write the head as OBJ (landmarks in comments)");
   sub->add_option("--write-landmarks", args->writeLandmarks, "write the head's landmark file");
   return [args] { return runHead(*args); };

@@ -79,7 +79,7 @@ std::shared_ptr<FaceHandle> buildFace(std::shared_ptr<const HeadHandle> head, co
   auto handle = std::make_shared<FaceHandle>();
   if (!head) {
     auto builtIn = std::make_shared<HeadHandle>();
-    builtIn->head = loadDefaultHead();
+    builtIn->head = loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical));
     head = builtIn;
   }
   handle->head = head;

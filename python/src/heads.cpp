@@ -25,7 +25,9 @@ std::shared_ptr<HeadHandle> loadHeadHandle(const std::string& head, const std::s
   handle->obj = files.obj;
   handle->unit = files.unit;
   py::gil_scoped_release unlocked;
-  handle->head = files.builtIn() ? loadDefaultHead() : loadHead(files.obj, files.landmarks, files.pins, files.unit);
+  // Python's Face is the anatomical model: the built-in head as that model uses it (open eyes).
+  handle->head = files.builtIn() ? loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical))
+                                 : loadHead(files.obj, files.landmarks, files.pins, files.unit);
   return handle;
 }
 

@@ -51,6 +51,7 @@ Head loadDefaultHead(const DefaultHeadOptions& options) {
   head.name = "default";
   TriMesh mesh = defaultHeadSourceMesh();
   if (options.openMouth) openMediapipeMouth(mesh);
+  if (options.openEyes) openMediapipeEyes(mesh);
   mesh = loopSubdivide(mesh, options.subdivisionLevels);
   mesh.sourcePath = "<default head>";
   head.landmarks = parseLandmarks(defaultHeadLandmarkJson(), mesh.vertexCount(),

@@ -164,25 +164,31 @@ TriMesh parseGeometryPipelineMetadata(const std::uint8_t* data, std::size_t size
   throw InputError("GeometryPipelineMetadata has no canonical_mesh (field 1)", name);
 }
 
-int openMediapipeMouth(TriMesh& mesh) {
-  std::set<int> upper(kMediapipeInnerLipUpper.begin(), kMediapipeInnerLipUpper.end());
-  std::set<int> lower(kMediapipeInnerLipLower.begin(), kMediapipeInnerLipLower.end());
-  const int corners[2] = {kMediapipeInnerLipUpper.front(), kMediapipeInnerLipUpper.back()};
+namespace {
+
+// Removes every triangle whose three vertices lie on the two lines and which has a vertex on each
+// line besides their shared end points (the strip between two lines that meet at their ends).
+// Corner UVs follow the kept triangles. Returns the number removed.
+template <size_t N>
+int removeBetweenLines(TriMesh& mesh, const std::array<int, N>& lineA, const std::array<int, N>& lineB) {
+  std::set<int> a(lineA.begin(), lineA.end());
+  std::set<int> b(lineB.begin(), lineB.end());
+  const int corners[2] = {lineA.front(), lineA.back()};
   auto isCorner = [&](int v) { return v == corners[0] || v == corners[1]; };
   std::vector<int> keep;
   keep.reserve(static_cast<size_t>(mesh.triangleCount()));
   for (int t = 0; t < mesh.triangleCount(); ++t) {
-    bool allOnLips = true, hasUpper = false, hasLower = false;
+    bool allOnLines = true, hasA = false, hasB = false;
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.F(t, k);
-      const bool u = upper.count(v) > 0, l = lower.count(v) > 0;
-      allOnLips = allOnLips && (u || l);
+      const bool onA = a.count(v) > 0, onB = b.count(v) > 0;
+      allOnLines = allOnLines && (onA || onB);
       if (!isCorner(v)) {
-        hasUpper = hasUpper || u;
-        hasLower = hasLower || l;
+        hasA = hasA || onA;
+        hasB = hasB || onB;
       }
     }
-    if (!(allOnLips && hasUpper && hasLower)) keep.push_back(t);
+    if (!(allOnLines && hasA && hasB)) keep.push_back(t);
   }
   const int removed = mesh.triangleCount() - static_cast<int>(keep.size());
   MatX3i F(static_cast<int>(keep.size()), 3);
@@ -199,6 +205,17 @@ int openMediapipeMouth(TriMesh& mesh) {
   mesh.sourcePolygon.clear();
   mesh.polygons.clear();
   return removed;
+}
+
+}  // namespace
+
+int openMediapipeMouth(TriMesh& mesh) {
+  return removeBetweenLines(mesh, kMediapipeInnerLipUpper, kMediapipeInnerLipLower);
+}
+
+int openMediapipeEyes(TriMesh& mesh) {
+  return removeBetweenLines(mesh, kMediapipeRightEyeUpper, kMediapipeRightEyeLower) +
+         removeBetweenLines(mesh, kMediapipeLeftEyeUpper, kMediapipeLeftEyeLower);
 }
 
 }  // namespace myo

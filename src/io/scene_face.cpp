@@ -69,7 +69,7 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
   auto resolve = [&](const std::string& p) { return resolveAgainstScene(scene, p); };
   SceneInputs in;
   in.head = scene.head.obj.empty()
-                ? loadDefaultHead()
+                ? loadDefaultHead(defaultHeadOptions(scene.modelKind))
                 : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),
                            scene.head.gravityPins.empty() ? "" : resolve(scene.head.gravityPins), scene.head.units);
   const Head& head = in.head;

@@ -88,7 +88,7 @@ TEST_F(SceneAttachment, AVertexOutsideTheHeadIsAnErrorNamingTheFileAndPlace) {
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), (dir_ / "data" / "att.json").string() +
-                                         ":2:20: key 'overrides[0].vertices[1]': vertex 7152 is outside [0, 7152) of the head");
+                                         ":2:20: key 'overrides[0].vertices[1]': vertex 7152 is outside [0, 6990) of the head");
   }
   try {
     face(R"({"skin": {"attachment": "data/none.json"}})");

@@ -55,9 +55,15 @@ TEST(SceneJaw, ThePlayerAppliesTheJawEveryStep) {
   EXPECT_DOUBLE_EQ(jaw.forwardCm, 0.3);
   EXPECT_DOUBLE_EQ(jaw.lateralCm, -0.2);
   EXPECT_GT(jaw.openDeg, 19.0);  // the last applied step's time, just before 0.1 s
-  MatX3 expected;
-  jawedPositions(*anatomical->jawRig(), jaw, face->head().mesh.V, s.displacement, expected);
+  // The jawed rest + the turned residual, then the built-in head's lids (open eyes; none of the
+  // scene's muscles drives them, so only the eyeballs' contact can act): AnatomicalFace::placeSkin.
+  MatX3 jawed, expected;
+  jawedPositions(*anatomical->jawRig(), jaw, face->head().mesh.V, s.displacement, jawed);
+  VecX activations(face->muscleCount());
+  for (int m = 0; m < face->muscleCount(); ++m) activations(m) = player.simulator().activation(m);
+  anatomical->placeSkin(s.displacement, jaw, activations, expected);
   EXPECT_TRUE(s.positions == expected);
+  EXPECT_LT((s.positions - jawed).cwiseAbs().maxCoeff(), 0.01);  // the contact moves the skin by < 0.1 mm
   EXPECT_GT((s.positions - face->head().mesh.V).rowwise().norm().maxCoeff(), 2.0);  // the chin moved
 }
 

@@ -38,19 +38,37 @@ TEST(HeadCommand, DefaultHeadFromAnyFolder) {
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["name"], "default");
-  EXPECT_EQ(j["vertices"], 7152);
-  EXPECT_EQ(j["triangles"], 14080);
-  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({144, 80}));
+  // The anatomical model's built-in head: mouth and eyes open.
+  EXPECT_EQ(j["model"], "anatomical");
+  EXPECT_EQ(j["eyes"], "open");
+  EXPECT_EQ(j["vertices"], 6990);
+  EXPECT_EQ(j["triangles"], 13632);
+  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({144, 80, 64, 64}));
   EXPECT_EQ(j["landmarks"]["multipie68"], 68);
   EXPECT_EQ(j["landmarks"]["required"]["nose_tip"], 4);
   EXPECT_EQ(j["landmarks"]["required"]["mouth_corner_right"], 61);
   EXPECT_EQ(j["gravity_pins"]["count"], 146);
-  EXPECT_NEAR(j["frame"]["scale"].get<double>(), 8.88, 0.01);
+  EXPECT_NEAR(j["frame"]["scale"].get<double>(), 8.89, 0.01);
   // A PNG was written in the working folder.
   std::ifstream png(dir / "face.png", std::ios::binary);
   std::string sig(8, '\0');
   png.read(sig.data(), 8);
   EXPECT_EQ(sig, std::string("\x89PNG\r\n\x1a\n", 8));
+}
+
+TEST(HeadCommand, ClosedEyesGiveTheThesisModelsHead) {
+  const fs::path dir = scratch("closed_eyes");
+  const test::CliResult r = runIn(dir, "head --closed-eyes --json", false);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "thesis");
+  EXPECT_EQ(j["eyes"], "closed");
+  EXPECT_EQ(j["vertices"], 7152);
+  EXPECT_EQ(j["triangles"], 14080);
+  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({144, 80}));
+  EXPECT_NEAR(j["frame"]["scale"].get<double>(), 8.88, 0.01);
+  const test::CliResult text = runIn(dir, "head --closed-eyes", false);
+  EXPECT_NE(text.out.find("eyes: closed (no lids); the thesis model's built-in head"), std::string::npos) << text.out;
 }
 
 TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
@@ -83,8 +101,9 @@ TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["vertices"], 468);
-  EXPECT_EQ(j["triangles"], 880);
-  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({36, 20}));
+  EXPECT_EQ(j["triangles"], 852);  // 898 less the 18 between the lips and the 28 over the eyes
+  EXPECT_EQ(j["boundary_loops"], nlohmann::json::array({36, 20, 16, 16}));
+  EXPECT_EQ(j["eyes"], "open");  // the written head has the lids' openings too
   EXPECT_EQ(j["landmarks"]["required"]["chin_menton"], 152);
 }
 

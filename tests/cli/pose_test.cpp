@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -118,9 +119,35 @@ TEST(Pose, ZygomaticusLeftIsLinearAgreesWithItsJsonAndKeepsTheHeadsUnits) {
   EXPECT_EQ(j["activations"][kZygomaticusLeft].get<double>(), 1.0);
   EXPECT_EQ(j["activations"]["zygomaticus_major_right"].get<double>(), 0.0);
 
-  // Linear in the activation: a = 0.5 gives half the displacement.
-  const MatX3 u05 = readObj((dir / "a05.obj").string()).V - head.mesh.V;
-  EXPECT_LE((u05 - 0.5 * u1).cwiseAbs().maxCoeff(), 1e-9 * u1.cwiseAbs().maxCoeff());
+  // Linear in the activation: a = 0.5 gives half the displacement, except where the built-in head's
+  // eyeballs push skin back out (open eyes, docs/eyelids.md): at a = 1 the zygomaticus lifts a few
+  // lower-lid vertices into the left eyeball, and the contact puts them on its sphere.
+  const TriMesh a05 = readObj((dir / "a05.obj").string());
+  const MatX3 u05 = a05.V - head.mesh.V;
+  ASSERT_TRUE(j.contains("lids"));
+  auto onAnEyeball = [&](int i) {
+    for (const char* side : {"right", "left"}) {
+      const auto& eye = j["lids"][side];
+      const Vec3 c(eye["eyeball_centre_cm"][0].get<double>(), eye["eyeball_centre_cm"][1].get<double>(),
+                   eye["eyeball_centre_cm"][2].get<double>());
+      const double r = eye["contact_radius_cm"].get<double>();
+      for (const MatX3* V : {&a1.V, &a05.V})
+        if (std::abs((V->row(i).transpose() - c).norm() - r) < 1e-9) return true;
+    }
+    return false;
+  };
+  double worst = 0.0;
+  int projected = 0;
+  for (int i = 0; i < n; ++i) {
+    if (onAnEyeball(i)) {
+      ++projected;
+      continue;
+    }
+    worst = std::max(worst, (u05.row(i) - 0.5 * u1.row(i)).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LE(worst, 1e-9 * u1.cwiseAbs().maxCoeff());
+  EXPECT_GE(projected, j["contact"]["projected_vertices"].get<int>());
+  EXPECT_LT(projected, 30);  // a few lid vertices, not the face
 
   // In metres: the same head, written back in metres, the same shape (×0.01) and motion. The motion
   // agrees to 5.4e-6 (max) and 3.1e-6 (Frobenius), not to round-off: the head read in metres is the

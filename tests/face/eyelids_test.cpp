@@ -24,6 +24,7 @@
 #include "myoshell/io/rig_file.h"
 #include "support/basis_cache.h"
 #include "support/ict.h"
+#include "support/lid_poses.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -34,12 +35,7 @@ using test::ictRig;
 
 
 // The deepest an orbit vertex lies inside its eyeball proxy's contact sphere (cm; ≤ 0 outside).
-double deepestInside(const LidRig& rig, const MatX3& P) {
-  double worst = -1.0;
-  for (const EyeLids& e : rig.eyes)
-    for (int i : e.orbitVertices) worst = std::max(worst, e.contactRadius - (P.row(i).transpose() - e.centre).norm());
-  return worst;
-}
+double deepestInside(const LidRig& rig, const MatX3& P) { return test::deepestInsideEyeball(rig, P); }
 
 // The whole face (39 muscles) on ICT without gravity, one model for every test of the suite.
 class EyelidsIct : public ::testing::Test {
@@ -57,17 +53,10 @@ class EyelidsIct : public ::testing::Test {
 
   // The settled, placed shape at these activations: positions (n×3, cm) and what contact did.
   static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, ContactReport* contact = nullptr) {
-    const AnatomicalSkin& skin = face_->skin();
-    SkinLoads loads;
-    loads.activations = VecX::Zero(face_->muscleCount());
-    for (const auto& [name, a] : acts) loads.activations(skin.muscleIndex(name)) = a;
-    loads.gravity = skin.restGravity();
-    const SettledSkin s = skin.settle(loads, skin.settings().warping);
-    EXPECT_TRUE(s.converged);
-    MatX3 out;
-    const ContactReport c = face_->placeSkin(s.u, JawPose{}, loads.activations, out);
-    if (contact) *contact = c;
-    return out;
+    bool converged = false;
+    MatX3 P = test::settledPlacedShape(*face_, acts, &converged, contact);
+    EXPECT_TRUE(converged);
+    return P;
   }
   static const MatX3& rest() { return face_->head().mesh.V; }
   static const LidRig& lids() { return *face_->lidRig(); }
@@ -121,43 +110,23 @@ TEST_F(EyelidsIct, TheGapShrinksSteadilyWithTheActivation) {
 
 TEST_F(EyelidsIct, NoSweepOfTheEyesMusclesLeavesSkinInsideAnEyeball) {
   double before = 0.0;
-  for (double palpebral : {0.0, 0.5, 1.0})
-    for (double levator : {0.0, 1.0})
-      for (double orbital : {0.0, 1.0}) {
-        ContactReport contact;
-        const MatX3 P = pose({{"orbicularis_oculi_palpebral_left", palpebral},
-                              {"orbicularis_oculi_palpebral_right", palpebral},
-                              {"levator_palpebrae_superioris_left", levator},
-                              {"levator_palpebrae_superioris_right", levator},
-                              {"orbicularis_oculi_orbital_left", orbital},
-                              {"orbicularis_oculi_orbital_right", orbital},
-                              {"corrugator_supercilii_left", orbital},
-                              {"corrugator_supercilii_right", orbital}},
-                             &contact);
-        before = std::max(before, contact.maxPenetrationBefore);
-        EXPECT_LE(deepestInside(lids(), P), 1e-12) << palpebral << " " << levator << " " << orbital;
-      }
+  for (const auto& acts : test::eyeMuscleSweep()) {
+    ContactReport contact;
+    const MatX3 P = pose(acts, &contact);
+    before = std::max(before, contact.maxPenetrationBefore);
+    EXPECT_LE(deepestInside(lids(), P), 1e-12) << acts[0].second << " " << acts[2].second << " " << acts[4].second;
+  }
   RecordProperty("largest_penetration_before_projection_mm", std::to_string(10 * before));
 }
 
 TEST_F(EyelidsIct, TheRightEyesBlinkMirrorsTheLefts) {
   // ICT is mirror-symmetric about x = 0: vertex i's mirror is the vertex at (−x, y, z).
   const MatX3& V = rest();
-  std::vector<int> mirror(static_cast<size_t>(V.rows()));
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const Eigen::RowVector3d m(-V(i, 0), V(i, 1), V(i, 2));
-    Eigen::Index j = 0;
-    const double d = (V.rowwise() - m).rowwise().squaredNorm().minCoeff(&j);
-    ASSERT_LT(d, 1e-4) << "vertex " << i << " has no mirror image";  // within 0.1 mm
-    mirror[static_cast<size_t>(i)] = static_cast<int>(j);
-  }
+  const test::MirrorMap mirror = test::mirrorMap(V);
+  ASSERT_LT(mirror.worstDistance, 1e-2);  // every vertex has a mirror image within 0.1 mm
   const MatX3 uL = pose({{"orbicularis_oculi_palpebral_left", 1.0}}) - V;
   const MatX3 uR = pose({{"orbicularis_oculi_palpebral_right", 1.0}}) - V;
-  double worst = 0.0;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const Eigen::RowVector3d r = uR.row(mirror[static_cast<size_t>(i)]);
-    worst = std::max(worst, (uL.row(i) - Eigen::RowVector3d(-r(0), r(1), r(2))).norm());
-  }
+  const double worst = test::mirrorMismatch(mirror, uL, uR);
   const double peak = uL.rowwise().norm().maxCoeff();
   RecordProperty("mirror_mismatch", std::to_string(worst / peak));
   EXPECT_LT(worst, 0.05 * peak);
@@ -215,7 +184,7 @@ TEST(EyelidsOnIct, AZeroPoseLeavesTheSkinBitForBitAndTheEyeballsSitBehindTheLids
 }
 
 TEST(Eyelids, AClosedEyedHeadHasNoLidsAndIsRefusedByName) {
-  const Head head = loadDefaultHead();
+  const Head head = loadDefaultHead(defaultHeadOptions(FaceModelKind::Thesis));  // the thesis model's: eyes closed
   EXPECT_FALSE(hasOpenEyes(head.mesh, head.landmarks));
   try {
     lidRig(head.mesh, head.landmarks);

@@ -2,6 +2,7 @@
 
 #include <set>
 
+#include "myoshell/face/face_system.h"
 #include "myoshell/face/head.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/face/mediapipe_mesh.h"
@@ -40,7 +41,9 @@ TEST(DefaultHead, MouthOpeningRemovesTheEighteenLipTriangles) {
 }
 
 TEST(DefaultHead, BuildsFromEmbeddedDataAtThesisSize) {
-  const Head head = loadDefaultHead();
+  // The thesis model's built-in head (eyes closed); the anatomical model's, with open eyes:
+  // eyelids_default_head_test.cpp.
+  const Head head = loadDefaultHead(defaultHeadOptions(FaceModelKind::Thesis));
   const TriMesh& m = head.mesh;
   // 468 + 1348 edges → 1816; + 5336 edges → 7152 vertices, 14080 triangles.
   EXPECT_EQ(m.vertexCount(), 7152);

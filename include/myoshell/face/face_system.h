@@ -20,6 +20,10 @@ namespace myo {
 enum class FaceModelKind { Thesis, Anatomical };
 const char* toString(FaceModelKind kind);  // "thesis", "anatomical"
 
+// The built-in head each model uses: the anatomical model's has open eyes (its lids turn about the
+// eyeballs, eyelids.h); the thesis model's keeps them closed, the head its figures were made on.
+DefaultHeadOptions defaultHeadOptions(FaceModelKind kind);
+
 // A drag force (the thesis's F_ext_s1, Fig. 24–25): a force on the skin vertices within `radius` of
 // `vertex`. The thesis gives it its own channel with its own pinned set; the anatomical model adds
 // its static responses to the one skin's basis (AnatomicalSkin::addDrag).

@@ -2,8 +2,10 @@
 //
 // Two kinds (docs/heads.md):
 // - the default head, built into the library: MediaPipe's canonical face mesh (Apache-2.0,
-//   assets/default_head/NOTICE), mouth opened along the inner lip lines, eyes kept closed, refined
-//   by two levels of Loop subdivision with the boundary as a crease; ids 0–467 are MediaPipe's;
+//   assets/default_head/NOTICE), mouth opened along the inner lip lines, eyes opened along the lid
+//   margins (the anatomical model's lids need them; the thesis model keeps them closed:
+//   defaultHeadOptions in face_system.h), refined by two levels of Loop subdivision with the boundary
+//   as a crease; ids 0–467 are MediaPipe's;
 // - any OBJ head with a landmark file (landmarks.h), e.g. ICT-FaceKit's in ../shared/data/ict.
 #pragma once
 
@@ -34,12 +36,18 @@ struct Head {
 };
 
 struct DefaultHeadOptions {
-  int subdivisionLevels = 2;  // 0 gives the 468-vertex mesh with the mouth opened
+  int subdivisionLevels = 2;  // 0 gives the 468-vertex mesh with the mouth (and eyes) opened
   bool openMouth = true;      // delete the triangles between the inner lip lines
+  // Delete the triangles between each eye's lid margins (openMediapipeEyes), so the lids can part
+  // and close (face/eyelids.h). False gives the closed-eyed head the thesis model's figures were
+  // made on, bit for bit.
+  bool openEyes = true;
 };
 
-// The default head from the data embedded at build time (no file access). About 7.2k vertices,
-// two boundary loops (outer rim, mouth). Pins: defaultGravityPins.
+// The default head from the data embedded at build time (no file access). About 7k vertices; four
+// boundary loops (outer rim, mouth, the two eyes), two with closed eyes. Pins: defaultGravityPins.
+// Vertex ids 0–467 are MediaPipe's whatever the options; the ids of the subdivision's edge points
+// (468 on) depend on them.
 Head loadDefaultHead(const DefaultHeadOptions& options = {});
 
 // The canonical mesh as embedded (468 vertices, 898 triangles, cm), before any processing.

@@ -1,4 +1,4 @@
-// MediaPipe's canonical face mesh (Apache-2.0): decoding its protobuf, and opening its mouth.
+// MediaPipe's canonical face mesh (Apache-2.0): decoding its protobuf, and opening its mouth and eyes.
 //
 // The mesh comes from `geometry_pipeline_metadata_landmarks.binarypb` of the npm package
 // @mediapipe/face_mesh@0.4.1657299874 (scripts/fetch_default_head), a serialized
@@ -41,5 +41,23 @@ inline constexpr std::array<int, 11> kMediapipeInnerLipLower = {78,  95,  88,  1
 // on the inner lip lines and which has a vertex on each line besides the corners (the 18 triangles
 // between the lips of the canonical mesh). Vertices are kept. Returns the number removed.
 int openMediapipeMouth(TriMesh& mesh);
+
+// The lid margins of the 468-point topology, each from the eye's outer corner to its inner corner:
+// MediaPipe's eye contours (face_mesh_connections' FACEMESH_RIGHT_EYE / FACEMESH_LEFT_EYE, the
+// `rightEyeUpper0`/`rightEyeLower0` keypoint contours of npm @tensorflow-models/face-landmarks-detection).
+// "Right" is the subject's right (−x); 33/133 and 263/362 are the default head's eye corner landmarks.
+// On the canonical mesh the lines do not coincide: the fissure is 6.8 mm high at its middle (159–145),
+// closed over by a strip of triangles (docs/heads.md).
+inline constexpr std::array<int, 9> kMediapipeRightEyeUpper = {33, 246, 161, 160, 159, 158, 157, 173, 133};
+inline constexpr std::array<int, 9> kMediapipeRightEyeLower = {33, 7, 163, 144, 145, 153, 154, 155, 133};
+inline constexpr std::array<int, 9> kMediapipeLeftEyeUpper = {263, 466, 388, 387, 386, 385, 384, 398, 362};
+inline constexpr std::array<int, 9> kMediapipeLeftEyeLower = {263, 249, 390, 373, 374, 380, 381, 382, 362};
+
+// Opens both eyes of a 468-point MediaPipe mesh by the mouth's rule applied to each eye's lid
+// margins: removes every triangle whose three vertices lie on the eye's two margins and which has a
+// vertex on each margin besides the corners (the 14 triangles over each fissure of the canonical
+// mesh, 28 in all). Each eye becomes a boundary loop of both margins (16 edges). Vertices are kept.
+// Returns the number removed.
+int openMediapipeEyes(TriMesh& mesh);
 
 }  // namespace myo
