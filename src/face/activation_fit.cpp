@@ -11,9 +11,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/mouth_contact.h"
+#include "myoshell/face/skin_placement.h"
 
 namespace myo {
 
@@ -185,38 +183,18 @@ double conditionNumber(const MatX& A) {
   return s(0) / smin;
 }
 
-// A shape is placed as every user of the face places it (AnatomicalFace::placeSkin, the jaw at
-// rest): the lids (eyelids.h) of a head with open eyes and lid muscles, the mouth's contact
-// (mouth_contact.h) of a head with a jaw.
-struct FitLids {
-  std::optional<LidRig> rig;
-  LidDrivers drivers;
-  std::optional<JawRig> jaw;
-  std::optional<MouthContact> mouth;
-  MatX3 placed(const MatX3& rest, const MatX3& u, const VecX& activations) const {
-    if (!rig && !mouth) return u;
-    MatX3 p = rest + u;
-    if (rig) applyLids(*rig, drivers.pose(activations), p);
-    if (mouth) applyMouthContact(*mouth, *jaw, JawPose{}, p);
-    return p - rest;
-  }
-};
-
-FitLids fitLids(const AnatomicalSkin& skin) {
-  FitLids lids;
-  const Head& head = skin.head();
-  lids.drivers = lidDrivers(skin.muscleNames());
-  if (lids.drivers.any() && hasOpenEyes(head.mesh, head.landmarks)) lids.rig = lidRig(head.mesh, head.landmarks);
-  if (head.landmarks.multipie68.size() == 68) {
-    lids.jaw = jawRig(head.mesh, head.landmarks);
-    lids.mouth = mouthContact(head.mesh, head.landmarks, *lids.jaw);
-  }
-  return lids;
+// The shape u placed as every user of the face places it (SkinPlacement::place, the jaw at rest),
+// as a displacement from the rest.
+MatX3 placed(const SkinPlacement& placement, const MatX3& rest, const MatX3& u, const VecX& activations) {
+  MatX3 p;
+  placement.place(u, JawPose{}, activations, p);
+  return p - rest;
 }
 
 }  // namespace
 
-ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings) {
+ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings,
+                             const SkinPlacement* placement) {
   const Stopwatch clock;
   settings.validate();
   const MatX3& rest = skin.head().mesh.V;
@@ -267,7 +245,8 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
   // A lid muscle's column is its placed shape at a = 1 (its physics and the lid fully turned): a
   // secant of the lid's rotation, so the bounded least squares stays linear; the fitted shape is
   // then placed exactly (below), and the figures measure that.
-  const FitLids lids = fitLids(skin);
+  std::optional<SkinPlacement> ownPlacement;
+  if (!placement) placement = &ownPlacement.emplace(skin.head(), skin.muscleNames());
   auto allActivations = [&](const VecX& act) {
     VecX full = VecX::Zero(mAll);
     for (Eigen::Index j = 0; j < m; ++j) full(fit.fitted[static_cast<size_t>(j)]) = act(j);
@@ -275,8 +254,8 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
   };
   std::vector<MatX3> fitCols = cols;
   for (Eigen::Index j = 0; j < m; ++j)
-    if (lids.drivers.drives(fit.fitted[static_cast<size_t>(j)]))
-      fitCols[static_cast<size_t>(j)] = lids.placed(rest, cols[static_cast<size_t>(j)], allActivations(VecX::Unit(m, j)));
+    if (placement->turnsALid(fit.fitted[static_cast<size_t>(j)]))
+      fitCols[static_cast<size_t>(j)] = placed(*placement, rest, cols[static_cast<size_t>(j)], allActivations(VecX::Unit(m, j)));
   const MatX A = columnMatrix(fitCols, rows);
   const MatX H = A.transpose() * A;
   const MatX3 restRows = gatherPoints(rest, rows);
@@ -308,7 +287,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
 
   MatX3 u = MatX3::Zero(n, 3);
   for (Eigen::Index j = 0; j < m; ++j) u += a(j) * cols[static_cast<size_t>(j)];
-  u = lids.placed(rest, u, allActivations(a));
+  u = placed(*placement, rest, u, allActivations(a));
 
   // Gauss–Newton on the warped static solve, the alignment kept: r(a) = u_w(a)|rows − e.
   if (skin.settings().warping && settings.refineSteps > 0) {
@@ -323,7 +302,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
       const SettledSkin s = skin.settle(loads, true);
       if (!s.converged || !s.u.allFinite())
         throw NumericalError("fit: the warped static solve did not converge (residual " + std::to_string(s.residual) + ")");
-      return lids.placed(rest, s.u - u0, allActivations(act));
+      return placed(*placement, rest, MatX3(s.u - u0), allActivations(act));
     };
     auto objective = [&](const MatX3& uu, const VecX& act) {
       return (gatherRows(uu, rows) - eRows).squaredNorm() + settings.lambda * eNorm2 * act.sum();

@@ -27,28 +27,8 @@ AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& m
   std::vector<DragSite> sites;
   for (const DragDef& d : drags_) sites.push_back({d.vertex, d.radius});
   skin_ = std::make_shared<const AnatomicalSkin>(head, muscles, settings, sites, cache);
-  const Head& h = skin_->head();
-  if (h.landmarks.multipie68.size() == 68) {
-    jaw_ = std::make_shared<const JawRig>(myo::jawRig(h.mesh, h.landmarks));
-    mouth_ = std::make_shared<const MouthContact>(myo::mouthContact(h.mesh, h.landmarks, *jaw_));
-  }
-  if (hasOpenEyes(h.mesh, h.landmarks)) {
-    lids_ = std::make_shared<const LidRig>(myo::lidRig(h.mesh, h.landmarks));
-    lidDrivers_ = lidDrivers(skin_->muscleNames());
-  }
+  placement_ = std::make_shared<const SkinPlacement>(skin_->head(), skin_->muscleNames());
   buildSeconds_ = clock.seconds();
-}
-
-LidPose AnatomicalFace::lidPose(const VecX& activations) const { return lidDrivers_.pose(activations); }
-
-ContactReport AnatomicalFace::placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
-  const MatX3& rest = skin_->head().mesh.V;
-  if (jaw.isZero()) out = rest + u;
-  else jawedPositions(*jaw_, jaw, rest, u, out);
-  ContactReport report;
-  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out));
-  if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out));
-  return report;
 }
 
 const std::string& AnatomicalFace::muscleName(int m) const {
@@ -166,7 +146,7 @@ void AnatomicalSimulator::reset() {
 }
 
 void AnatomicalSimulator::skinPositions(MatX3& out) const {
-  contact_ = face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out);
+  face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out);
 }
 
 void AnatomicalSimulator::channelDisplacement(int channel, MatX3& out) const {

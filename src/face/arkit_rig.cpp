@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <optional>
 #include <vector>
 
 #include "myoshell/core/errors.h"
@@ -21,13 +22,12 @@ JawPose jawPoseOf(const RetargetShape& shape) {
   return pose;
 }
 
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw, const LidRig* lids,
-                        const MouthContact* mouth) {
-  if (mouth && !jaw) throw CheckError("settleArkitRig: the mouth's contact needs the jaw");
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const SkinPlacement* placement) {
+  std::optional<SkinPlacement> ownPlacement;
+  if (!placement) placement = &ownPlacement.emplace(skin.head(), skin.muscleNames());
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
-  const LidDrivers lidMuscles = lidDrivers(skin.muscleNames());
-  // The muscles' settled displacement, carried by the jaw when the pose is not zero.
+  // The muscles' settled displacement, placed (the jaw in `pose`, the lids, the contact).
   auto settle = [&](const NamedValues& activations, const JawPose& pose) -> MatX3 {
     SkinLoads loads;
     loads.gravity = skin.restGravity();  // no gravity load: the rig's shapes are the muscles' alone
@@ -37,12 +37,9 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     const SettledSkin s = skin.settle(loads, warped);
     if (!s.converged || !s.u.allFinite())
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
-    if (pose.isZero() && !lids && !mouth) return s.u;
+    if (placement->isPlain()) return s.u;
     MatX3 moved;
-    if (pose.isZero()) moved = restPositions + s.u;
-    else jawedPositions(*jaw, pose, restPositions, s.u, moved);
-    if (lids) applyLids(*lids, lidMuscles.pose(loads.activations), moved);
-    if (mouth) applyMouthContact(*mouth, *jaw, pose, moved);
+    placement->place(s.u, pose, loads.activations, moved);
     return moved - restPositions;
   };
   const MatX3 rest = settle({}, JawPose{});  // zero with warping off; the warped solve's own rest otherwise
@@ -56,7 +53,7 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     const RetargetShape* base = s->correctiveOf.empty() ? s : map.find(s->correctiveOf);
     poses[k] = jawPoseOf(*base);  // a corrective rides on its base's jaw
     if (poses[k].isZero()) continue;
-    if (!jaw)
+    if (!placement->jaw())
       throw InputError("shape " + s->name + " sets jaw values, and the head has no jaw (its landmarks have no 68-point jaw line)");
     validateJawPose(poses[k], "shape " + s->name + ": jaw");
   }

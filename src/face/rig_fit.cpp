@@ -144,8 +144,9 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   // The jaw, when the head has the 68-point jaw line (face/jaw.h): jaw shapes fit its degree of
   // freedom first, then the muscles on what the jaw leaves.
   const MatX3& rest = skin.head().mesh.V;
-  std::optional<JawRig> jaw;
-  if (skin.head().landmarks.multipie68.size() == 68) jaw = jawRig(skin.head().mesh, skin.head().landmarks);
+  // Every fit places its shape with one placement (face/skin_placement.h), built here once.
+  const SkinPlacement placement(skin.head(), skin.muscleNames());
+  const JawRig* jaw = placement.jaw();
 
   // The shapes the rig has, in ARKit order; a corrective (mouthClose) is fitted on its base's target.
   std::vector<RigShapeFit> shapes;
@@ -174,7 +175,7 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
       const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
       FitTarget t;
       t.displacement = s.target - jawMotion;
-      ActivationFit f = fitActivations(skin, t, settings);
+      ActivationFit f = fitActivations(skin, t, settings, &placement);
       if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
       return f;
     };
@@ -193,7 +194,7 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
     } else {
       FitTarget target;
       target.displacement = s.target;
-      s.fit = fitActivations(skin, target, settings);
+      s.fit = fitActivations(skin, target, settings, &placement);
     }
     return pose;
   };

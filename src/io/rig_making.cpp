@@ -63,15 +63,10 @@ MadeRig makeArkitRig(const SceneInputs& inputs, const RetargetMap& map, BasisCac
   const AnatomicalSkin skin(inputs.head, inputs.muscles, inputs.anatomical, {}, cache);
   made.buildSeconds = buildClock.seconds();
   const Stopwatch settleClock;
-  // The jaw of a head with the 68-point jaw line: the map's jaw shapes (jawOpen, …) move it.
-  std::optional<JawRig> jaw;
-  if (inputs.head.landmarks.multipie68.size() == 68) jaw = jawRig(inputs.head.mesh, inputs.head.landmarks);
-  // The lids of a head with open eyes: the map's lid muscles (eyeBlink, eyeWide, …) turn them.
-  std::optional<LidRig> lids;
-  if (hasOpenEyes(inputs.head.mesh, inputs.head.landmarks)) lids = lidRig(inputs.head.mesh, inputs.head.landmarks);
-  std::optional<MouthContact> mouth;
-  if (jaw) mouth = mouthContact(inputs.head.mesh, inputs.head.landmarks, *jaw);
-  made.settled = settleArkitRig(skin, map, jaw ? &*jaw : nullptr, lids ? &*lids : nullptr, mouth ? &*mouth : nullptr);
+  // Placed as the playing face places them: the map's jaw shapes (jawOpen, …) move the jaw of a head
+  // with the 68-point jaw line, its lid muscles (eyeBlink, eyeWide, …) turn the lids of a head with
+  // open eyes, the contact keeps the skin out of eyeballs, teeth and the other lip.
+  made.settled = settleArkitRig(skin, map);
   made.settleSeconds = settleClock.seconds();
 
   const Head& head = skin.head();

@@ -203,30 +203,15 @@ TEST(DefaultHeadEyes, TheThesisHeadIsTheClosedEyedHeadBitForBit) {
   EXPECT_EQ(readSceneInputs(scene).head.mesh.vertexCount(), 6990);
 }
 
-// The whole face (39 muscles) on the built-in head without gravity, one model for the suite.
-class EyelidsDefaultHead : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (!face_)
-      face_ = std::make_shared<const AnatomicalFace>(loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical)),
-                                                     faceMuscleDefs(), AnatomicalSettings{}, std::vector<DragDef>{},
-                                                     false, test::sharedBasisCache());
-  }
-  static void TearDownTestSuite() { face_.reset(); }
-  static std::shared_ptr<const AnatomicalFace> face_;
+// The anatomical model's built-in head (eyes open).
+Head anatomicalDefaultHead() { return loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical)); }
 
-  // The settled, placed shape at these activations (n×3, cm) and what contact did.
-  static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, ContactReport* contact = nullptr) {
-    bool converged = false;
-    MatX3 P = test::settledPlacedShape(*face_, acts, &converged, contact);
-    EXPECT_TRUE(converged);
-    return P;
-  }
-  static const MatX3& rest() { return face_->head().mesh.V; }
-  static const LidRig& lids() { return *face_->lidRig(); }
+// The whole face (39 muscles) on the built-in head without gravity, one model for the suite.
+class EyelidsDefaultHead : public test::WholeFaceSuite<anatomicalDefaultHead> {
+ protected:
+  void SetUp() override { build(); }
   static double deepestInside(const MatX3& P) { return test::deepestInsideEyeball(lids(), P); }
 };
-std::shared_ptr<const AnatomicalFace> EyelidsDefaultHead::face_;
 
 TEST_F(EyelidsDefaultHead, TheEyeballsSitBehindTheLids) {
   ASSERT_NE(face_->lidRig(), nullptr);

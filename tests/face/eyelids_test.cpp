@@ -38,30 +38,13 @@ using test::ictRig;
 double deepestInside(const LidRig& rig, const MatX3& P) { return test::deepestInsideEyeball(rig, P); }
 
 // The whole face (39 muscles) on ICT without gravity, one model for every test of the suite.
-class EyelidsIct : public ::testing::Test {
+class EyelidsIct : public test::WholeFaceSuite<test::ictHead> {
  protected:
   void SetUp() override {
     MYO_REQUIRE_SHARED_DATA();
-    if (!face_) {
-      AnatomicalSettings settings;
-      face_ = std::make_shared<const AnatomicalFace>(ictHead(), faceMuscleDefs(), settings, std::vector<DragDef>{},
-                                                     false, test::sharedBasisCache());
-    }
+    build();
   }
-  static void TearDownTestSuite() { face_.reset(); }
-  static std::shared_ptr<const AnatomicalFace> face_;
-
-  // The settled, placed shape at these activations: positions (n×3, cm) and what contact did.
-  static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, ContactReport* contact = nullptr) {
-    bool converged = false;
-    MatX3 P = test::settledPlacedShape(*face_, acts, &converged, contact);
-    EXPECT_TRUE(converged);
-    return P;
-  }
-  static const MatX3& rest() { return face_->head().mesh.V; }
-  static const LidRig& lids() { return *face_->lidRig(); }
 };
-std::shared_ptr<const AnatomicalFace> EyelidsIct::face_;
 
 TEST_F(EyelidsIct, AFullPalpebralClosesTheEyeOverTheEyeballAndMatchesEyeBlink) {
   ASSERT_NE(face_->lidRig(), nullptr);

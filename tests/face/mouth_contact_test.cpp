@@ -19,6 +19,7 @@
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/io/head_files.h"
 #include "support/basis_cache.h"
+#include "support/lid_poses.h"
 #include "support/ict.h"
 #include "support/test_data.h"
 
@@ -36,18 +37,13 @@ bool isMouthMuscle(const std::string& name) {
   return false;
 }
 
-class MouthContactIct : public ::testing::Test {
+class MouthContactIct : public test::WholeFaceSuite<test::ictHead> {
  protected:
   void SetUp() override {
     MYO_REQUIRE_SHARED_DATA();
-    if (!face_)
-      face_ = std::make_shared<const AnatomicalFace>(ictHead(), faceMuscleDefs(), AnatomicalSettings{},
-                                                     std::vector<DragDef>{}, false, test::sharedBasisCache());
+    build();
   }
-  static void TearDownTestSuite() { face_.reset(); }
-  static std::shared_ptr<const AnatomicalFace> face_;
 };
-std::shared_ptr<const AnatomicalFace> MouthContactIct::face_;
 
 TEST_F(MouthContactIct, NoSweepOfTheJawAndTheMouthMusclesLeavesALipInTheTeethOrTheOtherLip) {
   const AnatomicalSkin& skin = face_->skin();

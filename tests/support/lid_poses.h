@@ -9,8 +9,14 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include <memory>
+
 #include "myoshell/face/anatomical_face.h"
 #include "myoshell/face/eyelids.h"
+#include "myoshell/face/muscle_def.h"
+#include "support/basis_cache.h"
 
 namespace myo::test {
 
@@ -87,5 +93,30 @@ inline double mirrorMismatch(const MirrorMap& m, const MatX3& uL, const MatX3& u
   }
   return worst;
 }
+
+// A suite's one whole-face model (every muscle of faceMuscleDefs(), gravity off) on the head
+// `makeHead` returns, built once for all its tests (bases through the shared cache; the suite runs in
+// one process: tests/CMakeLists.txt, ONE_PROCESS), and the placed shapes the tests measure. A suite
+// derives from it and calls build() from its SetUp (after skipping when its data is absent).
+template <Head (*makeHead)()>
+class WholeFaceSuite : public ::testing::Test {
+ protected:
+  static void build() {
+    if (!face_)
+      face_ = std::make_shared<const AnatomicalFace>(makeHead(), faceMuscleDefs(), AnatomicalSettings{},
+                                                     std::vector<DragDef>{}, false, sharedBasisCache());
+  }
+  static void TearDownTestSuite() { face_.reset(); }
+  // The settled, placed shape at these activations (settledPlacedShape), the settle asserted converged.
+  static MatX3 pose(const std::vector<std::pair<std::string, double>>& acts, ContactReport* contact = nullptr) {
+    bool converged = false;
+    MatX3 P = settledPlacedShape(*face_, acts, &converged, contact);
+    EXPECT_TRUE(converged);
+    return P;
+  }
+  static const MatX3& rest() { return face_->head().mesh.V; }
+  static const LidRig& lids() { return *face_->lidRig(); }
+  static inline std::shared_ptr<const AnatomicalFace> face_;
+};
 
 }  // namespace myo::test

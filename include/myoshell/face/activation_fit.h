@@ -21,6 +21,7 @@
 #include "myoshell/core/types.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/shape_metric.h"
+#include "myoshell/face/skin_placement.h"
 
 namespace myo {
 
@@ -88,7 +89,10 @@ struct ActivationFit {
 
 // Throws InputError (unknown muscle, shapes, marker vertex out of range, non-finite target),
 // NumericalError (the warped solve fails).
-ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings = {});
+// Shapes are placed by `placement` (face/skin_placement.h: the lids and the contact, the jaw at
+// rest), built from the skin's head and muscles when null; pass one to fit many shapes.
+ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings = {},
+                             const SkinPlacement* placement = nullptr);
 
 // The linear columns: u_m (n×3, cm) of each listed muscle at a = 1, gravity off (rest gravity).
 std::vector<MatX3> activationColumns(const AnatomicalSkin& skin, const std::vector<int>& muscles);

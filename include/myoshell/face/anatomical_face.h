@@ -17,8 +17,7 @@
 
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/mouth_contact.h"
+#include "myoshell/face/skin_placement.h"
 #include "myoshell/face/face_system.h"
 
 namespace myo {
@@ -44,22 +43,23 @@ class AnatomicalFace : public FaceSystem {
   bool gravityEnabled() const { return gravity_; }
   // The jaw (face/jaw.h) of the head: its pivot, axes and weight map; null when the head's landmarks
   // have no 68 points (no jaw line), and then every nonzero jaw pose is refused.
-  const JawRig* jawRig() const { return jaw_ ? jaw_.get() : nullptr; }
+  const JawRig* jawRig() const { return placement_->jaw(); }
   // The eyelids (face/eyelids.h) of a head with open eyes and the 68 landmarks; null otherwise (a
   // closed-eye head: the lid muscles then act through the physics alone).
-  const LidRig* lidRig() const { return lids_ ? lids_.get() : nullptr; }
+  const LidRig* lidRig() const { return placement_->lids(); }
   // The lips' contact with the teeth and each other (face/mouth_contact.h); null without a jaw.
-  const MouthContact* mouthContact() const { return mouth_ ? mouth_.get() : nullptr; }
+  const MouthContact* mouthContact() const { return placement_->mouth(); }
   // The lids' pose at these activations: close from orbicularis_oculi_palpebral_<side>, raise from
   // levator_palpebrae_superioris_<side> (0 for a muscle the library does not have).
-  LidPose lidPose(const VecX& activations) const;
-  // The skin's positions (n×3, cm) for the residual u (the physics' displacement, in the rest
-  // frame): the jawed rest + u turned with the jaw (jawedPositions; rest + u bit for bit at a zero
-  // jaw), then on a head with lids the lids turned by these activations and every orbit vertex kept
-  // out of its eyeball proxy (applyLids), then on a head with a jaw the lips kept out of the teeth
-  // and of each other (applyMouthContact). Returns what the contact projections did. Every user of a settled or
-  // stepped shape places it through here (the simulator, pose, rigs, Python).
-  ContactReport placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const;
+  LidPose lidPose(const VecX& activations) const { return placement_->lidPose(activations); }
+  // How this face places a shape (face/skin_placement.h): the jaw, the lids, the contact.
+  const SkinPlacement& placement() const { return *placement_; }
+  // The skin's positions (n×3, cm) for the residual u: SkinPlacement::place. Every user of a settled
+  // or stepped shape places it through here or through the same SkinPlacement (the simulator, pose,
+  // fits, rigs, Python).
+  ContactReport placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
+    return placement_->place(u, jaw, activations, out);
+  }
 
   FaceModelKind kind() const override { return FaceModelKind::Anatomical; }
   const Head& head() const override { return skin_->head(); }
@@ -80,10 +80,7 @@ class AnatomicalFace : public FaceSystem {
  private:
   std::shared_ptr<const AnatomicalSkin> skin_;
   std::vector<DragDef> drags_;
-  std::shared_ptr<const JawRig> jaw_;
-  std::shared_ptr<const LidRig> lids_;
-  std::shared_ptr<const MouthContact> mouth_;
-  LidDrivers lidDrivers_;
+  std::shared_ptr<const SkinPlacement> placement_;
   bool gravity_ = true;
   double buildSeconds_ = 0.0;
 };
@@ -116,12 +113,9 @@ class AnatomicalSimulator : public FaceStepper {
   long long stepCount() const override { return steps_; }
 
   const MatX3& skinDisplacement() const override { return stepper_->displacement(); }
-  // jawedPositions(rig, jaw, rest, u): rest + u exactly when the jaw is at 0.
-  // Then the lids (applyLids: turned by the lid muscles' activations, every orbit vertex projected
-  // out of its eyeball proxy) on a head with open eyes.
+  // The face's placeSkin of the stepped residual at this jaw and these activations (the jaw, the
+  // lids, the contact; rest + u exactly at a zero jaw where no contact projects).
   void skinPositions(MatX3& out) const override;
-  // What the contact projections (eyeballs, teeth, lips) did in the last skinPositions.
-  const ContactReport& lastContactReport() const { return contact_; }
   void channelDisplacement(int channel, MatX3& out) const override;  // channel 0: the skin
   // rest + level·U_m; a muscle with a mandible origin (isMandibleMuscle) then moves with the jaw
   // (weight 1). Display only: the couplings act on the residual in the rest frame.
@@ -140,7 +134,6 @@ class AnatomicalSimulator : public FaceStepper {
   Eigen::Quaterniond pose_ = Eigen::Quaterniond::Identity();
   bool posed_ = false;          // a head pose other than upright was set
   JawPose jaw_;
-  mutable ContactReport contact_;
   double runawayLimit_ = 0.0;   // cm: the head's bounding-box diagonal
   StepTimings timings_;
   long long steps_ = 0;

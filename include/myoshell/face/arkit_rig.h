@@ -8,8 +8,7 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/mouth_contact.h"
+#include "myoshell/face/skin_placement.h"
 #include "myoshell/face/jaw.h"
 #include "myoshell/face/retarget_map.h"
 
@@ -30,18 +29,15 @@ struct ArkitRig {
 };
 
 // Settles every reachable shape of `map` without gravity load (the shapes are the muscles' alone),
-// warped when the skin's settings say so. A shape with jaw values (open in degrees, forward and
-// lateral in cm: rig_fit.h) is its muscles' settled displacement carried by the jaw in that pose
-// (jawedPositions, face/jaw.h) minus the rest; a corrective rides on its base's jaw. InputError for
-// a muscle the skin does not have (read the map with the skin's names to name the file), for jaw
-// values without a `jaw` (a head without the 68-point jaw line) or outside their ranges;
-// NumericalError when a warped solve does not converge ("rig: the warped static solve did not
-// converge (residual R)"). With `lids` (a head with open eyes, face/eyelids.h) every shape's lids
-// are turned by its lid muscles' activations and the orbit kept out of the eyeballs, as the playing
-// face places them (AnatomicalFace::placeSkin); with `mouth` (needs `jaw`) the lips are kept out of
-// the teeth and of each other (face/mouth_contact.h).
-ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const JawRig* jaw = nullptr,
-                        const LidRig* lids = nullptr, const MouthContact* mouth = nullptr);
+// warped when the skin's settings say so, and places it with `placement` (face/skin_placement.h:
+// built from the skin's head and muscles when null), as the playing face places it: a shape with jaw
+// values (open in degrees, forward and lateral in cm: rig_fit.h) is carried by the jaw in that pose,
+// its lids turned by its lid muscles, the eyeballs', teeth's and lips' contact projected; minus the
+// rest. A corrective rides on its base's jaw. InputError for a muscle the skin does not have (read
+// the map with the skin's names to name the file), for jaw values on a head without a jaw (no
+// 68-point jaw line) or outside their ranges; NumericalError when a warped solve does not converge
+// ("rig: the warped static solve did not converge (residual R)").
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const SkinPlacement* placement = nullptr);
 
 // The jaw pose a map's shape names (its "open", "forward", "lateral" values summed); InputError
 // naming the shape for another name.
