@@ -55,9 +55,9 @@ TEST(PerformanceMap, ActionUnitsGoThroughTheFacsMap) {
   EXPECT_DOUBLE_EQ(activationOf(m, "buccinator_left", 2), 0.25);
   EXPECT_DOUBLE_EQ(activationOf(m, "procerus", 2), 0.4 * 0.5);  // AU9's weight on the procerus
   EXPECT_DOUBLE_EQ(activationOf(m, "corrugator_supercilii_left", 2), 0.0);
-  // AU26 (jaw drop) opens the jaw: 20° at full intensity (assets/facs/au_map.json).
+  // AU26 (jaw drop) opens the jaw: 12° at full intensity, the hinge opening (assets/facs/au_map.json).
   ASSERT_EQ(m.jaw.size(), 5u);
-  EXPECT_DOUBLE_EQ(m.jaw[2].x(), 0.7 * 20.0);
+  EXPECT_DOUBLE_EQ(m.jaw[2].x(), 0.7 * 12.0);
   EXPECT_DOUBLE_EQ(m.jaw[2].y(), 0.0);
   // AU45 (blink) closes the lids through the palpebral part of orbicularis oculi.
   EXPECT_DOUBLE_EQ(activationOf(m, "orbicularis_oculi_palpebral_left", 2), 0.3);
@@ -124,7 +124,7 @@ TEST(PerformanceMap, ArkitJawShapesMoveTheJawTowardsTheirSide) {
                                         {{"jawOpen", {0.5}}, {"jawLeft", {0.4}}, {"jawRight", {0.1}}, {"jawForward", {1.0}}});
   const MappedPerformance m = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off());
   ASSERT_EQ(m.jaw.size(), 5u);
-  EXPECT_DOUBLE_EQ(m.jaw[0].x(), 0.5 * 20.0);          // AU26
+  EXPECT_DOUBLE_EQ(m.jaw[0].x(), 0.5 * 12.0);          // AU26
   EXPECT_DOUBLE_EQ(m.jaw[0].y(), 0.8);                 // AU29
   EXPECT_NEAR(m.jaw[0].z(), (0.4 - 0.1) * 1.0, 1e-15);  // AU30 left minus right
   EXPECT_TRUE(m.unmapped.empty());

@@ -4,6 +4,7 @@
 // corner puller) and the inner brows with AU1 (inner brow raiser) less AU4 (brow lowerer).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,8 @@
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/face/arkit_names.h"
+#include "myoshell/face/eyelids.h"
+#include "myoshell/face/face_system.h"
 #include "myoshell/io/performance_file.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
@@ -42,6 +45,12 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
 struct DriveCorrelations {
   double mouthCornersWithAu12 = 0.0;
   double innerBrowsWithAu1MinusAu4 = 0.0;
+  // The eyes (a head with open eyes): the lid gap (both eyes' mean) against AU45 (blink); the mean
+  // gap over the blink frames (AU45 ≥ 0.5) over the mean gap where AU45 ≤ 0.1; the gap at the frame
+  // where AU45 peaks over the gap at rest.
+  double lidGapWithAu45 = 0.0;
+  double lidGapBlinkingOverNot = 1.0;
+  double lidGapAtBlinkPeakOverRest = 1.0;
 };
 
 // The demo performance without its jaw's action units (AU25 lips part, AU26 jaw drop), written
@@ -99,14 +108,34 @@ DriveCorrelations drive(const fs::path& csv, const std::string& headArgument, co
   DriveCorrelations c;
   c.mouthCornersWithAu12 = pearson(corners, std::vector<double>(au12.begin(), au12.begin() + corners.size()));
   c.innerBrowsWithAu1MinusAu4 = pearson(brows, au14);
+  if (hasOpenEyes(head.mesh, head.landmarks)) {
+    const LidRig lids = lidRig(head.mesh, head.landmarks);
+    const std::vector<double>& au45 = perf.find("AU45")->values;
+    std::vector<double> gaps;
+    for (size_t f = 0; f < corners.size(); ++f)
+      gaps.push_back(0.5 * (lidGap(lids, 0, pc.samples[f]) + lidGap(lids, 1, pc.samples[f])));
+    const size_t peak = std::max_element(au45.begin(), au45.begin() + gaps.size()) - au45.begin();
+    const double restGap = 0.5 * (lidGap(lids, 0, head.mesh.V) + lidGap(lids, 1, head.mesh.V));
+    c.lidGapWithAu45 = pearson(gaps, std::vector<double>(au45.begin(), au45.begin() + gaps.size()));
+    c.lidGapAtBlinkPeakOverRest = gaps[peak] / restGap;
+    double blinking = 0, open = 0;
+    int nBlinking = 0, nOpen = 0;
+    for (size_t f = 0; f < gaps.size(); ++f) {
+      if (au45[f] >= 0.5) blinking += gaps[f], ++nBlinking;
+      if (au45[f] <= 0.1) open += gaps[f], ++nOpen;
+    }
+    EXPECT_GT(nBlinking, 0);
+    EXPECT_GT(nOpen, 0);
+    c.lidGapBlinkingOverNot = (blinking / std::max(nBlinking, 1)) / (open / std::max(nOpen, 1));
+  }
   return c;
 }
 
-// The whole performance: the inner brows follow AU1 − AU4, and the mouth corners' height follows
-// AU12 at ≥ 0.5 (the issue's figure for takes kept aside; 0.65–0.70 measured): the jaw, driven by
-// AU25/AU26 (which rise with AU12 in this take: the person smiles with parted lips), lowers the
-// corners while the zygomatici raise them (docs/performance_input.md, "Measured"). Without the jaw's
-// units the corners follow AU12 at ≥ 0.7.
+// The whole performance: the inner brows follow AU1 − AU4 and the mouth corners' height follows AU12
+// (the issue asks ≥ 0.6 and ≥ 0.7 on this take), although the jaw, driven by AU25/AU26 (which rise
+// with AU12 in this take: the person smiles with parted lips), lowers the corners while the
+// zygomatici raise them (docs/performance_input.md, "Measured"). Without the jaw's units the corners
+// follow AU12 at ≥ 0.7 too. On a head with open eyes the lids close where AU45 (blink) peaks.
 void checkDemo(const std::string& headArgument, const Head& head, const std::string& tag) {
   const fs::path dir = fs::temp_directory_path() / ("myo_drive_" + tag + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -114,7 +143,19 @@ void checkDemo(const std::string& headArgument, const Head& head, const std::str
   ::testing::Test::RecordProperty("full_mouth_corners_au12", std::to_string(full.mouthCornersWithAu12));
   ::testing::Test::RecordProperty("full_inner_brows_au1_au4", std::to_string(full.innerBrowsWithAu1MinusAu4));
   EXPECT_GE(full.innerBrowsWithAu1MinusAu4, 0.6);
-  EXPECT_GE(full.mouthCornersWithAu12, 0.5);
+  EXPECT_GE(full.mouthCornersWithAu12, 0.7);
+  if (hasOpenEyes(head.mesh, head.landmarks)) {
+    ::testing::Test::RecordProperty("lid_gap_au45", std::to_string(full.lidGapWithAu45));
+    ::testing::Test::RecordProperty("lid_gap_at_blink_peak_over_rest", std::to_string(full.lidGapAtBlinkPeakOverRest));
+    ::testing::Test::RecordProperty("lid_gap_blinking_over_not", std::to_string(full.lidGapBlinkingOverNot));
+    // The gap also follows AU7 (lid tightener, at half weight on the same palpebral part; its mean
+    // in this take is 0.48) and AU5, so its correlation with AU45 alone is moderate (−0.5 to −0.65).
+    EXPECT_LE(full.lidGapWithAu45, -0.4);
+    EXPECT_LE(full.lidGapBlinkingOverNot, 0.5);
+    EXPECT_LE(full.lidGapAtBlinkPeakOverRest, 0.4);
+  } else {
+    ADD_FAILURE() << tag << ": the head should have open eyes";
+  }
   const DriveCorrelations muscles = drive(demoWithoutJaw(dir), headArgument, head, dir / "no_jaw");
   ::testing::Test::RecordProperty("no_jaw_mouth_corners_au12", std::to_string(muscles.mouthCornersWithAu12));
   ::testing::Test::RecordProperty("no_jaw_inner_brows_au1_au4", std::to_string(muscles.innerBrowsWithAu1MinusAu4));
@@ -125,7 +166,7 @@ void checkDemo(const std::string& headArgument, const Head& head, const std::str
 
 TEST(DriveCli, DemoPerformanceOnTheBuiltInHead) {
   MYO_REQUIRE_SHARED_DATA();
-  checkDemo("default", loadDefaultHead(), "default");
+  checkDemo("default", loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical)), "default");
 }
 
 TEST(DriveCli, DemoPerformanceOnTheIctHead) {

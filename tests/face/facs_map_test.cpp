@@ -96,7 +96,8 @@ TEST(FacsMap, EveryAuDrivesMusclesOrTheJawAndTheLidsAusDriveTheLids) {
     EXPECT_DOUBLE_EQ(weight(7, "orbicularis_oculi_palpebral_" + side), 0.5);
   }
   // The jaw's AUs open, thrust and shift it (docs/facs.md).
-  EXPECT_DOUBLE_EQ(builtinFacsMap().find(26)->jawOpenDeg, 20.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(25)->jawOpenDeg, 2.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(26)->jawOpenDeg, 12.0);
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(27)->jawOpenDeg, 35.0);
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(29)->jawForwardCm, 0.8);
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(30)->jawLateralCm, 1.0);
