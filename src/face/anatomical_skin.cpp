@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -111,7 +112,7 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
 
   ritz_.modes.modeCount = std::min(settings_.skinModes, 3 * n);
   buildReleaseColumns();
-  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, the across columns
+  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, the extra release columns
   // of the release, diagonalise; then per drag its x, y, z patterns and diagonalise (as addDrag).
   // Bump when the sequence changes.
   constexpr int kSequenceVersion = 2;
@@ -133,9 +134,9 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   h.pod(static_cast<int64_t>(drags_.size()));  // gravity's patterns are M·ê_a (the masses are in)
   for (const Drag& d : drags_)
     h.pod(static_cast<int64_t>(d.vertices.size())).bytes(d.vertices.data(), sizeof(int) * d.vertices.size());
-  h.pod(static_cast<int64_t>(acrossColumns_));
-  for (int j = 0; j < acrossColumns_; ++j) {
-    const VecX col = releaseColumns_.col(releaseColumns_.cols() - acrossColumns_ + j);
+  h.pod(static_cast<int64_t>(extraReleaseColumns_));
+  for (int j = 0; j < extraReleaseColumns_; ++j) {
+    const VecX col = releaseColumns_.col(releaseColumns_.cols() - extraReleaseColumns_ + j);
     h.bytes(col.data(), sizeof(double) * static_cast<size_t>(col.size()));
   }
   key_ = h.key();
@@ -145,10 +146,10 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   // reads only the smaller one; the held one is read (or rebuilt) when something needs it.
   const bool released = releaseColumns_.cols() > 0;
   if (released) {
-    constexpr int kReleaseVersion = 1;  // bump when releaseRelaxedMuscles changes what it computes
+    constexpr int kReleaseVersion = 2;  // bump when releaseRelaxedMuscles changes what it computes
     KeyHasher r;
     r.str("myoshell.anatomical_skin_released").pod(kReleaseVersion).pod(key_.words[0]).pod(key_.words[1]);
-    r.pod(settings_.relaxedMuscleModulus).pod(static_cast<int>(settings_.releaseAcross));
+    r.pod(settings_.relaxedMuscleModulus).pod(static_cast<int>(settings_.releaseAcross)).pod(static_cast<int>(settings_.releaseRingHalves));
     releasedKey_ = r.key();
   }
   if (cache && released)
@@ -185,15 +186,15 @@ bool AnatomicalSkin::fitsSkin(const ModalBasis& b) const {
 }
 
 // The held basis from scratch, in the build sequence the key names: muscle loads, gravity x, y, z,
-// the across columns, diagonalise; then per build-time drag its x, y, z and diagonalise.
+// the extra release columns, diagonalise; then per build-time drag its x, y, z and diagonalise.
 ModalBasis AnatomicalSkin::buildHeldBasis() const {
   Stopwatch clock;
   builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_);
   std::vector<MatX3> loads = couplingLoads_;
   for (int a = 0; a < 3; ++a) loads.push_back(gravityPattern(a));  // gravity along x, y, z: M·ê_a
-  // The across columns' responses, so that the release stays exact in the basis (Woodbury).
-  for (int j = 0; j < acrossColumns_; ++j)
-    loads.push_back(rows3(VecX(releaseColumns_.col(releaseColumns_.cols() - acrossColumns_ + j))));
+  // The extra release columns' responses, so that the release stays exact in the basis (Woodbury).
+  for (int j = 0; j < extraReleaseColumns_; ++j)
+    loads.push_back(rows3(VecX(releaseColumns_.col(releaseColumns_.cols() - extraReleaseColumns_ + j))));
   builder_->addLoads(loads);
   builder_->diagonalize();
   for (const Drag& d : drags_) {
@@ -280,6 +281,34 @@ MatX3 AnatomicalSkin::dragPattern(const std::vector<int>& vertices, int axis) co
   return f;
 }
 
+namespace {
+
+// The pieces a relaxed muscle is released in (spring indices): a ring's two halves when `splitRings`
+// (by the station of the muscle node nearest each spring's point: a ring's path runs from anchor to
+// anchor, so its first and second halves are the mouth parts' right and left quadrants, which
+// interlace at the philtrum, and the eye rings' upper and lower arcs, which meet at the medial
+// palpebral ligament and the lateral raphe); the whole muscle otherwise.
+std::vector<std::vector<size_t>> releasePieces(const CoupledMuscle& cm, bool splitRings) {
+  if (!splitRings || !cm.muscle.def.isRing()) {
+    std::vector<size_t> all(cm.springs.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    return {all};
+  }
+  const int stations = cm.muscle.def.stations;
+  std::vector<std::vector<size_t>> halves(2);
+  for (size_t i = 0; i < cm.springs.size(); ++i) {
+    const CoupledMuscle::Spring& spring = cm.springs[i];
+    const size_t nearest = static_cast<size_t>(
+        std::max_element(spring.weights.begin(), spring.weights.end()) - spring.weights.begin());
+    const int station = cm.muscle.stationOf(spring.nodes[nearest]);
+    halves[2 * station < stations ? 0 : 1].push_back(i);
+  }
+  return halves;
+}
+
+}  // namespace
+
+
 // Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin" and
 // "Released across"). Muscle m moves with coordinates p in the shapes Q̃_m (at its springs), the
 // first its own shape U_m/√s_m (s_m = Σ k_i |w_i|², w = U at the springs), the others its motion
@@ -293,7 +322,7 @@ void AnatomicalSkin::buildReleaseColumns() {
   const int n = head_.mesh.vertexCount();
   const auto M = static_cast<Eigen::Index>(muscles_.size());
   release_.resize(0);
-  acrossColumns_ = 0;
+  extraReleaseColumns_ = 0;
   shapeEnergy_ = VecX::Zero(M);
   std::vector<Triplet> pulls;  // c_m = K_c,m w, column m
   for (Eigen::Index m = 0; m < M; ++m) {
@@ -313,63 +342,82 @@ void AnatomicalSkin::buildReleaseColumns() {
   }
   const double scale = head_.frame().scale;
   release_.resize(M);
-  std::vector<Triplet> axial, across;  // columns: the shapes (0..M−1), then the across ones
-  std::vector<double> rho(static_cast<size_t>(M)), rhoAcross;
+  // Columns: the muscles' first shapes (0..M−1), then the extra ones (other halves, across).
+  std::vector<Triplet> axial, extra;
+  std::vector<double> rho(static_cast<size_t>(M)), rhoExtra;
   for (Eigen::Index m = 0; m < M; ++m) {
     const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
     const MuscleDef& def = cm.muscle.def;
-    const size_t ns = cm.springs.size();
-    std::vector<Vec3> w(ns);
-    double s = 0.0;
-    for (size_t i = 0; i < ns; ++i) {
-      w[i] = cm.springs[i].muscleDisplacement(cm.fullShape);
-      s += cm.springs[i].stiffness * w[i].squaredNorm();
-    }
-    // κ_m = E_p A σ² L: the belly's axial stiffness E_p A / L times the squared shortening σL at q = 1.
+    const std::vector<std::vector<size_t>> pieces = releasePieces(cm, settings_.releaseRingHalves);
+    // κ = E_p A σ² L for the whole belly; a piece of it has its share of the length.
     const double area = 0.25 * std::numbers::pi * (def.width * scale) * (def.thickness * scale);
     const double sigma = def.isRing() ? def.ring.shortening : settings_.coupling.shortening;
-    const double kappa = settings_.relaxedMuscleModulus * area * sigma * sigma * cm.muscle.restLength;
-    release_(m) = 1.0 / (kappa + s);
-    rho[static_cast<size_t>(m)] = s / (s + kappa);
-    const double root = std::sqrt(s);
-    for (size_t i = 0; i < ns; ++i)
-      for (int c = 0; c < 3; ++c)
-        axial.emplace_back(3 * cm.springs[i].skin + c, m, cm.springs[i].stiffness * w[i](c) / root);
-    if (!settings_.releaseAcross || !(s > 0)) continue;
-    // Across: v_a = |w| ê_a − (S(v_a, w)/s) w, then S-orthonormal through the eigenvectors of their Gram.
-    std::vector<std::array<Vec3, 3>> v(ns);
-    for (size_t i = 0; i < ns; ++i)
-      for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] = w[i].norm() * Vec3::Unit(a);
-    Vec3 vw = Vec3::Zero();
-    for (size_t i = 0; i < ns; ++i)
-      for (int a = 0; a < 3; ++a) vw(a) += cm.springs[i].stiffness * v[i][static_cast<size_t>(a)].dot(w[i]);
-    for (size_t i = 0; i < ns; ++i)
-      for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] -= (vw(a) / s) * w[i];
-    Mat3 G = Mat3::Zero();
-    for (size_t i = 0; i < ns; ++i)
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b)
-          G(a, b) += cm.springs[i].stiffness * v[i][static_cast<size_t>(a)].dot(v[i][static_cast<size_t>(b)]);
-    const Eigen::SelfAdjointEigenSolver<Mat3> eig(G);
-    for (int j = 0; j < 3; ++j) {
-      const double g = eig.eigenvalues()(j);
-      if (!(g > 1e-6 * s)) continue;  // already spanned by the shape (a straight muscle's axis)
-      const Vec3 e = eig.eigenvectors().col(j) / std::sqrt(g);
-      const Eigen::Index col = acrossColumns_++;
+    const double kappaWhole = settings_.relaxedMuscleModulus * area * sigma * sigma * cm.muscle.restLength;
+    const double kappa = kappaWhole / static_cast<double>(pieces.size());
+    release_(m) = 1.0 / (kappaWhole + shapeEnergy_(m));
+    for (size_t piece = 0; piece < pieces.size(); ++piece) {
+      const std::vector<size_t>& springs = pieces[piece];
+      const size_t ns = springs.size();
+      std::vector<Vec3> w(ns);
+      std::vector<double> k(ns);
+      std::vector<int> skinVertex(ns);
+      double s = 0.0;
       for (size_t i = 0; i < ns; ++i) {
-        const Vec3 vi = v[i][0] * e(0) + v[i][1] * e(1) + v[i][2] * e(2);
-        for (int c = 0; c < 3; ++c) across.emplace_back(3 * cm.springs[i].skin + c, col, cm.springs[i].stiffness * vi(c));
+        const CoupledMuscle::Spring& spring = cm.springs[springs[i]];
+        w[i] = spring.muscleDisplacement(cm.fullShape);
+        k[i] = spring.stiffness;
+        skinVertex[i] = spring.skin;
+        s += k[i] * w[i].squaredNorm();
       }
-      rhoAcross.push_back(s / (s + kappa));
+      if (!(s > 0)) {
+        if (piece == 0) rho[static_cast<size_t>(m)] = 0.0;
+        continue;
+      }
+      const double root = std::sqrt(s);
+      // The piece's shape: muscle m's own column for the first piece, an extra column for the other.
+      const bool first = piece == 0;
+      const Eigen::Index shapeCol = first ? m : extraReleaseColumns_++;
+      for (size_t i = 0; i < ns; ++i)
+        for (int c = 0; c < 3; ++c) (first ? axial : extra).emplace_back(3 * skinVertex[i] + c, shapeCol, k[i] * w[i](c) / root);
+      if (first)
+        rho[static_cast<size_t>(m)] = s / (s + kappa);
+      else
+        rhoExtra.push_back(s / (s + kappa));
+      if (!settings_.releaseAcross) continue;
+      // Across: v_a = |w| ê_a − (S(v_a, w)/s) w, then S-orthonormal through the eigenvectors of their Gram.
+      std::vector<std::array<Vec3, 3>> v(ns);
+      for (size_t i = 0; i < ns; ++i)
+        for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] = w[i].norm() * Vec3::Unit(a);
+      Vec3 vw = Vec3::Zero();
+      for (size_t i = 0; i < ns; ++i)
+        for (int a = 0; a < 3; ++a) vw(a) += k[i] * v[i][static_cast<size_t>(a)].dot(w[i]);
+      for (size_t i = 0; i < ns; ++i)
+        for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] -= (vw(a) / s) * w[i];
+      Mat3 G = Mat3::Zero();
+      for (size_t i = 0; i < ns; ++i)
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) G(a, b) += k[i] * v[i][static_cast<size_t>(a)].dot(v[i][static_cast<size_t>(b)]);
+      const Eigen::SelfAdjointEigenSolver<Mat3> eig(G);
+      for (int j = 0; j < 3; ++j) {
+        const double g = eig.eigenvalues()(j);
+        if (!(g > 1e-6 * s)) continue;  // already spanned by the shape (a straight muscle's axis)
+        const Vec3 e = eig.eigenvectors().col(j) / std::sqrt(g);
+        const Eigen::Index col = extraReleaseColumns_++;
+        for (size_t i = 0; i < ns; ++i) {
+          const Vec3 vi = v[i][0] * e(0) + v[i][1] * e(1) + v[i][2] * e(2);
+          for (int c = 0; c < 3; ++c) extra.emplace_back(3 * skinVertex[i] + c, col, k[i] * vi(c));
+        }
+        rhoExtra.push_back(s / (s + kappa));
+      }
     }
   }
-  for (Triplet& t : across) t = Triplet(t.row(), t.col() + static_cast<int>(M), t.value());
-  axial.insert(axial.end(), across.begin(), across.end());
-  releaseColumns_.resize(3 * n, M + acrossColumns_);
+  for (Triplet& t : extra) t = Triplet(t.row(), t.col() + static_cast<int>(M), t.value());
+  axial.insert(axial.end(), extra.begin(), extra.end());
+  releaseColumns_.resize(3 * n, M + extraReleaseColumns_);
   releaseColumns_.setFromTriplets(axial.begin(), axial.end());
-  releaseRho_.resize(M + acrossColumns_);
+  releaseRho_.resize(M + extraReleaseColumns_);
   for (Eigen::Index j = 0; j < M; ++j) releaseRho_(j) = rho[static_cast<size_t>(j)];
-  for (int j = 0; j < acrossColumns_; ++j) releaseRho_(M + j) = rhoAcross[static_cast<size_t>(j)];
+  for (int j = 0; j < extraReleaseColumns_; ++j) releaseRho_(M + j) = rhoExtra[static_cast<size_t>(j)];
 }
 
 // The release in the basis (the held basis spans K̂⁻¹C̃, so by the Woodbury identity every static
@@ -399,7 +447,7 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   auto solveKr = [&](const MatX& rhs) -> MatX { return Z * ((Z.transpose() * rhs).array().colwise() / lam.array()).matrix(); };
   MatX T;  // the final basis in the held one's coordinates
   VecX lambda;
-  if (acrossColumns_ == 0) {
+  if (extraReleaseColumns_ == 0) {
     T = Z;
     lambda = lam;
   } else {

@@ -75,6 +75,11 @@ struct AnatomicalSettings {
   // the same passive stiffness per unit of coupling energy (docs/anatomical_model.md, "Released
   // across"). false: only along the shape, the model of the first release.
   bool releaseAcross = true;
+  // Release a ring muscle in its two halves, each with its own coordinates (along and across) and
+  // half the belly: the mouth's upper and lower parts into their right and left quadrants, the eye's
+  // rings into their upper and lower arcs between the canthi (docs/anatomical_model.md, "A ring is
+  // released in halves"). false: one release for the whole ring, which ties the two mouth corners.
+  bool releaseRingHalves = true;
   // The fibres insert into the dermis: at a = 1 the skin over the insertion moves with the muscle end.
   StrengthRule strength = StrengthRule::SkinFollows;
   void validate() const;            // InputError naming the field
@@ -212,7 +217,9 @@ class AnatomicalSkin {
   VecX strength_;                      // α_m: muscleLoads_[m] = α_m c_m
   SparseMat releaseColumns_;           // C̃ = [C̃_m], 3n × R: the M shapes' columns first, then the across ones
   VecX releaseRho_;                    // ρ per column: s_m/(s_m + κ_m)
-  int acrossColumns_ = 0;              // columns beyond the muscles' shapes (0: nothing to cut back)
+  // Columns beyond the muscles' first shapes (0: nothing to cut back): a split ring's other half's
+  // shape, then every across column. Their static responses join the held basis as loads.
+  int extraReleaseColumns_ = 0;
   mutable std::vector<MatX3> heldCouplingResponses_;  // K̂⁻¹C̃_j, for linearFullResponse
   struct Drag {
     std::vector<int> vertices;
