@@ -125,16 +125,26 @@ inline void warp(double wx, double wy, double wz, double lx, double ly, double l
   u[2] = lz + c.a * cz + c.b * ccz;
 }
 
-// The read's kernel over the interleaved basis (row-major, rows × d), compiled for AVX-512, AVX2 + FMA
-// and the x86-64 baseline and chosen when the program starts (GCC function multi-versioning,
-// MYO_KERNEL): one portable binary uses the machine's widest vectors. The clones may differ in the
-// last bits (FMA contraction), never on one machine between runs. A clone is a call through the
-// loader's table, never inlined: a whole loop is cloned, not its per-row body (cloning the
-// projection's per-vertex rows made the thesis's step 2.7× slower; docs/PERFORMANCE.md).
+// The kernels over the interleaved basis (row-major, rows × d) — the anatomical read and the thesis's
+// float read and projection — compiled for AVX-512, AVX2 + FMA and the x86-64 baseline and chosen
+// when the program starts (GCC function multi-versioning, MYO_KERNEL): one portable binary uses the
+// machine's widest vectors. The clones may differ in the last bits (FMA contraction), never on one
+// machine between runs. A clone is a call through the loader's table, never inlined: a whole loop
+// is cloned, not its per-row body (cloning the projection's per-vertex rows made the thesis's step
+// 2.7× slower; cloning the whole passes made it 1.5× faster; docs/PERFORMANCE.md, "History").
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define MYO_KERNEL __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define MYO_KERNEL
+#endif
+// What a clone calls must be inlined into it to be compiled for its target: forced, not left to
+// the inliner's size limits (a call out of a clone runs the baseline build).
+#if defined(__GNUC__)
+#define MYO_INLINE inline __attribute__((always_inline))
+#define MYO_FLATTEN __attribute__((flatten))
+#else
+#define MYO_INLINE inline
+#define MYO_FLATTEN
 #endif
 
 // y = B q, one row at a time with independent partial sums: for d ≈ 70 Eigen's row-major
@@ -155,6 +165,85 @@ inline void rowDotsImpl(const S* __restrict b, Eigen::Index rows, Eigen::Index d
 }
 MYO_KERNEL void rowDots(const double* b, Eigen::Index rows, Eigen::Index d, const double* x, double* y) {
   rowDotsImpl<double, 8>(b, rows, d, x, y);
+}
+
+// The thesis's float kernels, each a whole pass over a channel's vertices cloned as one function
+// (one dispatch per call; the per-vertex body inlines and vectorises inside each clone).
+//
+// The read: Y = B q over the interleaved rows (stride 6: Φ_i then Ψ_i), then u_i = R̃(w_i) Φ_i q
+// with w_i = Ψ_i q (or u = Φq when not warped). u is f × 3, row-major. A vertex's R = stride rows
+// are taken together, eight partial sums per row, so each load of q serves R rows. q is padded with
+// zeros to dPad (a multiple of 8, q[d..dPad) = 0), so a row's last chunk runs over into the next
+// row's first values times zero: the kernel runs whole chunks without a scalar tail. The last
+// vertex (or few, for d < 8), which would run past the basis, is read from a copy in `tail` (R·d + 8
+// floats of workspace).
+template <int R>
+MYO_INLINE void vertexDots(const float* __restrict b, Eigen::Index d, Eigen::Index dPad, const float* __restrict x,
+                       float* __restrict y) {
+  float a[R][8] = {};
+  for (Eigen::Index j = 0; j < dPad; j += 8)
+    for (int r = 0; r < R; ++r)
+      for (int k = 0; k < 8; ++k) a[r][k] += b[r * d + j + k] * x[j + k];
+  for (int r = 0; r < R; ++r) {
+    for (int width = 4; width >= 1; width /= 2)  // pairwise: the same tree in every clone
+      for (int k = 0; k < width; ++k) a[r][k] += a[r][k + width];
+    y[r] = a[r][0];
+  }
+}
+
+template <int R>
+MYO_INLINE void readFloatImpl(const float* b, Eigen::Index f, Eigen::Index d, bool warped, const float* q,
+                          float* y, double* u, float* tail) {
+  const Eigen::Index dPad = (d + 7) / 8 * 8;
+  Eigen::Index direct = f;  // vertices whose last chunk stays inside the basis
+  while (direct > 0 && R * d * (direct - 1) + (R - 1) * d + dPad > R * d * f) --direct;
+  for (Eigen::Index i = 0; i < direct; ++i) vertexDots<R>(b + R * d * i, d, dPad, q, y + R * i);
+  for (Eigen::Index i = direct; i < f; ++i) {
+    std::copy(b + R * d * i, b + R * d * (i + 1), tail);
+    std::fill(tail + R * d, tail + R * d + 8, 0.0f);
+    vertexDots<R>(tail, d, dPad, q, y + R * i);
+  }
+  if (!warped) {
+    for (Eigen::Index i = 0; i < 3 * f; ++i) u[i] = double(y[i]);
+    return;
+  }
+  for (Eigen::Index i = 0; i < f; ++i, y += R, u += 3) warp(y[3], y[4], y[5], y[0], y[1], y[2], u);
+}
+
+MYO_KERNEL MYO_FLATTEN void readFloat(const float* b, Eigen::Index f, Eigen::Index d, int stride, bool warped,
+                          const float* q, float* y, double* u, float* tail) {
+  if (stride == 6) readFloatImpl<6>(b, f, d, warped, q, y, u, tail);
+  else readFloatImpl<3>(b, f, d, warped, q, y, u, tail);
+}
+
+// The projection: f̃ = Σ_i Φ_iᵀ (R_iᵀ F_i) over the rows of F (f × 3, row-major) that are not zero,
+// R_i from w_i = Ψ_i q of the last read (y). Reads only the Φ rows of the loaded vertices, sparse
+// (a muscle's ROI) or dense (gravity, a drag) alike. Summed in float over blocks of kBlock loaded
+// vertices (a loop over modes that vectorises; a: d floats of workspace), the block sums in double.
+MYO_KERNEL MYO_FLATTEN void projectFloat(const float* b, Eigen::Index f, Eigen::Index d, int stride, bool warped,
+                             const double* F, const float* y, float* a, double* ft) {
+  constexpr int kBlock = 64;
+  for (Eigen::Index j = 0; j < d; ++j) ft[j] = 0.0, a[j] = 0.0f;
+  int inBlock = 0;
+  for (Eigen::Index i = 0; i < f; ++i, F += 3) {
+    double gx = F[0], gy = F[1], gz = F[2];
+    if (gx == 0.0 && gy == 0.0 && gz == 0.0) continue;
+    if (warped) {
+      const float* w = y + stride * i + 3;
+      rotateBack(w[0], w[1], w[2], F[0], F[1], F[2], gx, gy, gz);
+    }
+    const float sx = float(gx), sy = float(gy), sz = float(gz);
+    const float* __restrict px = b + stride * i * d;
+    const float* __restrict py = px + d;
+    const float* __restrict pz = py + d;
+    float* __restrict acc = a;
+    for (Eigen::Index j = 0; j < d; ++j) acc[j] += px[j] * sx + py[j] * sy + pz[j] * sz;
+    if (++inBlock == kBlock) {
+      for (Eigen::Index j = 0; j < d; ++j) ft[j] += double(a[j]), a[j] = 0.0f;
+      inBlock = 0;
+    }
+  }
+  for (Eigen::Index j = 0; j < d; ++j) ft[j] += double(a[j]);
 }
 
 }  // namespace
@@ -199,7 +288,7 @@ struct ModalWarpingIntegrator::Kernel {
   int stride = 6;
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Bf;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Bd;
-  Eigen::VectorXf qf, Yf, accf, Gf;
+  Eigen::VectorXf qf, Yf, accf, tailf;  // qf padded with zeros to a multiple of 8
   Eigen::VectorXd Yd, accd, Gd;
 
   template <class Mat, class Vec>
@@ -312,9 +401,9 @@ ModalWarpingIntegrator::ModalWarpingIntegrator(std::shared_ptr<const ModalBasis>
   kernel_->stride = settings_.warping ? 6 : 3;
   if (settings_.precision == ModalPrecision::Float) {
     Kernel::fill(kernel_->Bf, kernel_->Yf, b, kernel_->stride);
-    kernel_->qf = Eigen::VectorXf::Zero(d);
+    kernel_->qf = Eigen::VectorXf::Zero((d + 7) / 8 * 8);
+    kernel_->tailf = Eigen::VectorXf::Zero(kernel_->stride * d + 8);
     kernel_->accf = Eigen::VectorXf::Zero(d);
-    kernel_->Gf = Eigen::VectorXf::Zero(kernel_->Bf.rows());
   } else {
     Kernel::fill(kernel_->Bd, kernel_->Yd, b, kernel_->stride);
     kernel_->accd = Eigen::VectorXd::Zero(d);
@@ -383,9 +472,9 @@ void ModalWarpingIntegrator::updateDisplacement() const {
   Kernel& k = *kernel_;
   stale_ = false;
   if (k.precision == ModalPrecision::Float) {
-    k.qf = q_.cast<float>();
-    k.Yf.noalias() = k.Bf * k.qf;
-    Kernel::output(k.Yf, k.stride, settings_.warping, u_);
+    k.qf.head(q_.size()) = q_.cast<float>();  // the rest stays zero (readFloat's padding)
+    readFloat(k.Bf.data(), u_.rows(), k.Bf.cols(), k.stride, settings_.warping, k.qf.data(), k.Yf.data(), u_.data(),
+              k.tailf.data());
   } else if (!settings_.warping) {
     rowDots(k.Bd.data(), k.Bd.rows(), k.Bd.cols(), q_.data(), u_.data());  // the interleaved Φ rows are u's layout: no copy
   } else {
@@ -398,19 +487,16 @@ void ModalWarpingIntegrator::step(const MatX3& freeForce) {
   checkForce(*basis_, freeForce);
   Kernel& k = *kernel_;
   // 1–3: f̃ = Φᵀ R(Ψq)ᵀ F with w = Ψq cached from the last displacement update (same q).
-  // Count loaded rows (cheap, f×3 doubles): sparse loads (a muscle's ROI) take the gather loop,
-  // dense loads (gravity) one streaming matvec.
-  Eigen::Index loaded = 0;
-  for (Eigen::Index i = 0; i < freeForce.rows(); ++i)
-    loaded += (freeForce(i, 0) != 0.0) | (freeForce(i, 1) != 0.0) | (freeForce(i, 2) != 0.0);
-  const bool dense = 4 * loaded > freeForce.rows();
   if (k.precision == ModalPrecision::Float) {
-    if (dense)
-      Kernel::projectDense(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.Gf, k.accf, ftilde_);
-    else
-      Kernel::project(k.Bf, k.Yf, k.stride, settings_.warping, freeForce, k.accf, ftilde_);
+    projectFloat(k.Bf.data(), freeForce.rows(), k.Bf.cols(), k.stride, settings_.warping, freeForce.data(),
+                 k.Yf.data(), k.accf.data(), ftilde_.data());
   } else {
-    if (dense)
+    // Count loaded rows (cheap, f×3 doubles): sparse loads (a muscle's ROI) take the gather loop,
+    // dense loads (gravity) one streaming matvec.
+    Eigen::Index loaded = 0;
+    for (Eigen::Index i = 0; i < freeForce.rows(); ++i)
+      loaded += (freeForce(i, 0) != 0.0) | (freeForce(i, 1) != 0.0) | (freeForce(i, 2) != 0.0);
+    if (4 * loaded > freeForce.rows())
       Kernel::projectDense(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.Gd, k.accd, ftilde_);
     else
       Kernel::project(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.accd, ftilde_);
