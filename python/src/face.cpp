@@ -120,12 +120,14 @@ py::array_t<double> pose(const FaceHandle& f, const py::object& activations, con
   loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
   // Upright it is exactly the rest gravity (no load); turned, gravityForPose; off, the rest gravity.
   loads.gravity = gravity && !pyr.isZero() ? gravityForPose(head.frame(), pyr, skin.settings().gravity) : skin.restGravity();
+  loads.jaw = jp;
+  loads.contact = skin.settings().contact;  // the contact penalty, as pose and the playing face
   MatX3 positions;
   {
     py::gil_scoped_release unlocked;
     const SettledSkin settled = skin.settle(loads, skin.settings().warping);
     if (!settled.converged || !settled.u.allFinite())
-      throw NumericalError(fmt::format("pose: the warped static solve did not converge (residual {:.3g} after {} "
+      throw NumericalError(fmt::format("pose: the static solve did not converge (residual {:.3g} after {} "
                                        "iterations)",
                                        settled.residual, settled.iterations));
     face.placeSkin(settled.u, jp, loads.activations, positions);

@@ -4,7 +4,8 @@
 
 namespace myo {
 
-SkinPlacement::SkinPlacement(const Head& head, const std::vector<std::string>& muscleNames) : rest_(head.mesh.V) {
+SkinPlacement::SkinPlacement(const Head& head, const std::vector<std::string>& muscleNames, bool contact)
+    : rest_(head.mesh.V), contact_(contact) {
   if (head.landmarks.multipie68.size() == 68) {
     jaw_ = jawRig(head.mesh, head.landmarks);
     mouth_ = mouthContact(head.mesh, head.landmarks, *jaw_);
@@ -20,8 +21,8 @@ ContactReport SkinPlacement::place(const MatX3& u, const JawPose& jaw, const Vec
   if (jaw.isZero()) out = rest_ + u;
   else jawedPositions(*jaw_, jaw, rest_, u, out);
   ContactReport report;
-  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out));
-  if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out));
+  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out, contact_));
+  if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out, contact_));
   return report;
 }
 
