@@ -45,7 +45,11 @@ class SkinPlacement {
   // vertex kept out of its eyeball proxy (applyLids), then the lips kept out of the teeth and of
   // each other (applyMouthContact). Returns what the contact projections did. InputError-free: a
   // nonzero jaw on a head without one is a CheckError (callers validate the pose first).
-  ContactReport place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const;
+  ContactReport place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
+    return place(u, jaw, activations, out, contact_);
+  }
+  // The same with the projection on or off whatever the switch says (`project`).
+  ContactReport place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out, bool project) const;
 
  private:
   MatX3 rest_;
