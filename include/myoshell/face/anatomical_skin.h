@@ -275,7 +275,11 @@ class AnatomicalSkin {
 // Time stepping of one AnatomicalSkin: each muscle's activation level follows its target with a
 // critically damped second-order response at the muscle's natural frequency (its one mode), the
 // skin with the per-mode exact stepper of modal_warping. Gravity reading (b). step() allocates
-// nothing.
+// nothing, but for the lids' fissure curves when a lid is driven and the contact penalty is on.
+//
+// Contact (loads.contact, linear modes): the penalty (contact_penalty.h) at q_n, taken linearly
+// implicitly, one d×d solve on steps where something touches; it reads the contact candidates' rows
+// of Φ every step (docs/mouth_contact.md, "Penalty forces"). Warped: no penalty in the step.
 //
 // Linear modes (warping off, the default): the loads are fixed patterns scaled by the levels,
 // g − g_rest and the drag forces, so the modal force ΦᵀF is the product of their reduced patterns
@@ -285,7 +289,8 @@ class AnatomicalSkin {
 class AnatomicalStepper {
  public:
   explicit AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin);
-  // Advances one dt under the loads (activation targets, gravity, drag forces).
+  // Advances one dt under the loads (activation targets, gravity, drag forces, the jaw and the
+  // contact switch for the penalty).
   void step(const SkinLoads& loads);
   // n×3, cm. Linear modes: the first read after a step computes u = Φq (one pass over the basis).
   const MatX3& displacement() const { return integrator_.freeDisplacement(); }
