@@ -3,7 +3,10 @@
 // alone (every shape pays it), + the jaw, + the lids turned and the eyeballs, + the teeth and the
 // lips. The shape is a settled blink with the mouth's ring pressed and the jaw at 10°, so every
 // projection has work. Placement runs at output, not in the step: this is the price per written
-// frame. docs/PERFORMANCE.md ("Contact") has the figures.
+// frame. docs/PERFORMANCE.md ("Contact") has the figures. The penalty forces (face/contact_penalty.h)
+// run in the step: penaltyForce (the reduced force at the pressed shape's q), penaltyForceAndStiffness
+// (with the Gauss–Newton K_c the step's implicit solve needs), and one AnatomicalStepper step with
+// the contact on against off, in that pressed state (docs/mouth_contact.md, "Penalty forces").
 //
 //   MYOSHELL_DATA=../shared/data build/bin/bench_contact --benchmark_repetitions=9 \
 //     --benchmark_report_aggregates_only=true
@@ -26,6 +29,7 @@ namespace fs = std::filesystem;
 struct Scene {
   std::unique_ptr<AnatomicalFace> face;
   MatX3 u;
+  VecX q;
   VecX activations;
   JawPose jaw;
 };
@@ -50,7 +54,9 @@ const Scene* scene() {
                         "orbicularis_oris_lower"})
     loads.activations(skin.muscleIndex(m)) = 1.0;
   loads.gravity = skin.restGravity();
-  s->u = skin.settle(loads, false).u;
+  const SettledSkin settled = skin.settle(loads, false);
+  s->u = settled.u;
+  s->q = settled.q;
   s->activations = loads.activations;
   s->jaw.openDeg = 10.0;
   return s.get();
@@ -100,6 +106,55 @@ void placeSkin(benchmark::State& state) {  // jaw, lids and eyeballs, teeth and 
   state.counters["before_mm"] = 10 * r.maxPenetrationBefore;
 }
 
+void penaltyForce(benchmark::State& state) {
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  const ContactPenalty& pen = *s->face->skin().contactPenalty();
+  ContactPenalty::Workspace ws = pen.workspace();
+  const LidPose lids = s->face->lidPose(s->activations);
+  VecX f = VecX::Zero(s->q.size());
+  for (auto _ : state) {
+    f.setZero();
+    benchmark::DoNotOptimize(pen.evaluate(s->q, s->jaw, lids, ws, &f));
+  }
+  state.counters["active_rows"] = static_cast<double>(ws.active.size());
+  state.counters["candidates"] = static_cast<double>(pen.candidates().size());
+}
+
+void penaltyForceAndStiffness(benchmark::State& state) {
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  const ContactPenalty& pen = *s->face->skin().contactPenalty();
+  ContactPenalty::Workspace ws = pen.workspace();
+  const LidPose lids = s->face->lidPose(s->activations);
+  VecX f = VecX::Zero(s->q.size());
+  MatX K = MatX::Zero(s->q.size(), s->q.size());
+  for (auto _ : state) {
+    f.setZero();
+    K.setZero();
+    benchmark::DoNotOptimize(pen.evaluate(s->q, s->jaw, lids, ws, &f, &K));
+  }
+}
+
+// One step of the pressed, blinking face after 0.5 s of steps (the contact active), contact on or off.
+void stepPressed(benchmark::State& state) {
+  const Scene* s = scene();
+  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  const AnatomicalSkin& skin = s->face->skin();
+  AnatomicalStepper stepper(s->face->skinPtr());
+  SkinLoads loads;
+  loads.activations = s->activations;
+  loads.gravity = skin.restGravity();
+  loads.jaw = s->jaw;
+  loads.contact = state.range(0) != 0;
+  for (int k = 0; k < 120; ++k) stepper.step(loads);
+  for (auto _ : state) stepper.step(loads);
+  state.counters["contact"] = static_cast<double>(state.range(0));
+}
+
+BENCHMARK(penaltyForce)->Unit(benchmark::kMicrosecond);
+BENCHMARK(penaltyForceAndStiffness)->Unit(benchmark::kMicrosecond);
+BENCHMARK(stepPressed)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(copyOnly)->Unit(benchmark::kMicrosecond);
 BENCHMARK(withJaw)->Unit(benchmark::kMicrosecond);
 BENCHMARK(withJawAndLids)->Unit(benchmark::kMicrosecond);

@@ -1,6 +1,6 @@
 // `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--scene S]
 // [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--jaw OPEN[,FORWARD[,LATERAL]]]
-// [--out SHAPE.obj] [--cache DIR] [--json]`:
+// [--contact on|off] [--out SHAPE.obj] [--cache DIR] [--json]`:
 // the settled shape of the anatomical face under fixed activations and gravity — the static
 // equilibrium of its reduced system (AnatomicalSkin::settle; docs/anatomical_model.md), linear or
 // warped as the model's settings say — written in the head's own vertex order and units: a head read
@@ -12,6 +12,8 @@
 // its own head (key `head`), and a second head would leave its drag vertices meaningless.
 // --jaw opens the jaw (degrees), protrudes and shifts it (cm; face/jaw.h, docs/jaw.md): the settled
 // displacement is the residual, relative to the jawed rest, and turns with the blended jaw rotation.
+// --contact off settles and places without contact (no penalty forces, no projection out of the
+// eyeballs and teeth; docs/mouth_contact.md): the shape that passes through, exactly linear in the loads.
 // A thesis scene is refused: its face is a sum of channels stepped in time, with no static solve here.
 // Every argument is checked before the model is built (~10 s): bad input costs no wait.
 #include <fmt/core.h>
@@ -50,6 +52,7 @@ struct PoseArgs {
   std::string gravity;            // "on", "off", or "" (on; a scene's own switch with --scene)
   std::string headPose = "0,0,0";
   std::string jaw;                // OPEN[,FORWARD[,LATERAL]], "" = closed
+  std::string contact;            // "on", "off", or "" (on; a scene's own switch with --scene)
   std::string out;
   std::string cacheDir;           // --cache; "" = the default (resources.h)
   bool json = false;
@@ -182,11 +185,14 @@ int runPose(const PoseArgs& a) {
   // Arguments first, then the scene and the head (read and checked), then the model (~10 s).
   if (!a.gravity.empty() && a.gravity != "on" && a.gravity != "off")
     throw InputError("--gravity: '" + a.gravity + "' is neither on nor off");
+  if (!a.contact.empty() && a.contact != "on" && a.contact != "off")
+    throw InputError("--contact: '" + a.contact + "' is neither on nor off");
   const Vec3 headPose = parseHeadPose(a.headPose);
   const JawPose jaw = parseJaw(a.jaw);
   const std::vector<Setting> sets = parseSets(a.sets);
   checkOutputPath(a.out);
-  const SceneDesc scene = poseScene(a);
+  SceneDesc scene = poseScene(a);
+  if (!a.contact.empty()) scene.anatomical.contact = a.contact == "on";
   const SceneInputs inputs = readSceneInputs(scene);
   const VecX act = activations(sets, inputs.muscles);
   if (!jaw.isZero() && inputs.head.landmarks.multipie68.size() != 68)
@@ -212,10 +218,12 @@ int runPose(const PoseArgs& a) {
                                                 : skin.restGravity();
   const Stopwatch settleClock;
   const bool warped = skin.settings().warping;
+  loads.jaw = jaw;
+  loads.contact = skin.settings().contact;  // the penalty forces (when the head has proxies)
   const SettledSkin settled = skin.settle(loads, warped);
   const double settleSeconds = settleClock.seconds();
   if (!settled.converged || !settled.u.allFinite())
-    throw NumericalError(fmt::format("pose: the warped static solve did not converge (residual {:.3g} after {} "
+    throw NumericalError(fmt::format("pose: the static solve did not converge (residual {:.3g} after {} "
                                      "iterations)",
                                      settled.residual, settled.iterations));
 
@@ -286,7 +294,11 @@ int runPose(const PoseArgs& a) {
     }
     j["contact"] = {{"max_penetration_before_cm", contact.maxPenetrationBefore},
                     {"max_penetration_after_cm", contact.maxPenetrationAfter},
-                    {"projected_vertices", contact.projected}};
+                    {"projected_vertices", contact.projected},
+                    {"enabled", skin.settings().contact},
+                    {"penalty_iterations", settled.contactIterations},
+                    {"stiffness_per_mass_s2", skin.settings().contactStiffness},
+                    {"basis_patterns", skin.contactPatternCount()}};
     j["warped"] = warped;
     j["iterations"] = settled.iterations;
     j["max_displacement_cm"] = peak;
@@ -327,6 +339,8 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sub->add_option("--gravity", args->gravity, "on or off (default on; with --scene, the scene's)");
+  sub->add_option("--contact", args->contact, "on or off: the lids and lips kept out of the eyeballs, teeth and each "
+                                              "other by penalty forces and projection (default on; with --scene, the scene's)");
   sub->add_option("--head-pose", args->headPose, "P,Y,R: pitch, yaw, roll in degrees about the face frame's x, y, "
                                                   "z (face-down: 90,0,0; default upright)");
   sub->add_option("--jaw", args->jaw, "OPEN_DEG[,FORWARD_CM[,LATERAL_CM]]: the jaw's opening (degrees, [0, 40]), "

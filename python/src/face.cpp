@@ -104,7 +104,7 @@ void warnIfNotKept(const FaceHandle& face) {
 // `myoshell pose`: the static equilibrium under the activations, gravity (turned with the head pose)
 // and the jaw; rest + u, or the jawed rest + u turned with the jaw.
 py::array_t<double> pose(const FaceHandle& f, const py::object& activations, const py::object& gravityOn, const py::object& headPose,
-           const py::object& jaw) {
+           const py::object& jaw, const py::object& contactOn) {
   const AnatomicalFace& face = *f.face;
   const AnatomicalSkin& skin = face.skin();
   const Head& head = skin.head();
@@ -120,15 +120,18 @@ py::array_t<double> pose(const FaceHandle& f, const py::object& activations, con
   loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
   // Upright it is exactly the rest gravity (no load); turned, gravityForPose; off, the rest gravity.
   loads.gravity = gravity && !pyr.isZero() ? gravityForPose(head.frame(), pyr, skin.settings().gravity) : skin.restGravity();
+  loads.jaw = jp;
+  // The contact penalty and projection, as pose and the playing face (contact=False: neither).
+  loads.contact = contactOn.is_none() ? skin.settings().contact : contactOn.cast<bool>();
   MatX3 positions;
   {
     py::gil_scoped_release unlocked;
     const SettledSkin settled = skin.settle(loads, skin.settings().warping);
     if (!settled.converged || !settled.u.allFinite())
-      throw NumericalError(fmt::format("pose: the warped static solve did not converge (residual {:.3g} after {} "
+      throw NumericalError(fmt::format("pose: the static solve did not converge (residual {:.3g} after {} "
                                        "iterations)",
                                        settled.residual, settled.iterations));
-    face.placeSkin(settled.u, jp, loads.activations, positions);
+    face.placement().place(settled.u, jp, loads.activations, positions, loads.contact);
   }
   return toNumpy(positions);
 }
@@ -231,13 +234,16 @@ gravity: False builds the face without any gravity load.)doc")
       .def("triangles", [](const FaceHandle& f) { return toNumpy(f.face->head().mesh.F); },
            "The triangles: int32 array (m, 3) of vertex indices.")
       .def("pose", &pose, py::arg("activations") = py::none(), py::arg("gravity") = py::none(),
-           py::arg("head_pose") = py::none(), py::arg("jaw") = py::none(), R"doc(
+           py::arg("head_pose") = py::none(), py::arg("jaw") = py::none(), py::arg("contact") = py::none(), R"doc(
 The settled shape (static equilibrium) under fixed activations, as `myoshell pose`:
 activations: dict muscle name -> activation in [0, 1] (others 0).
 gravity: True/False (default: as the face was built).
 head_pose: (pitch, yaw, roll) in degrees about the face frame's x, y, z (face-down: (90, 0, 0)).
 jaw: (open_deg, forward_cm, lateral_cm): opening [0, 40] degrees, protrusion [-0.5, 1.5] cm,
   lateral shift [-1.5, 1.5] cm (+ the subject's left).
+contact: True/False (default: as the face was built, on): the lids and lips kept out of the eyeballs,
+  teeth and each other by penalty forces and projection; False gives the shape without contact
+  (exactly linear in the activations), as `myoshell pose --contact off`.
 Returns the positions: float64 array (n, 3), cm. InputError for an unknown muscle or a value out of
 range (the command line's messages); SimulationError when the warped solve does not converge.)doc")
       .def("fit", &fit, py::arg("positions") = py::none(), py::kw_only(), py::arg("markers") = py::none(),

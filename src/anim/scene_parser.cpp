@@ -361,6 +361,14 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     else r.fail("precision", "must be \"float\" or \"double\" (got \"" + precision + "\")");
     r.finish();
   }
+  onlyFor(anatomical, scene, root, "contact");
+  if (root.has("contact")) {
+    // The lids and lips kept out of the eyeballs, the teeth and each other (docs/mouth_contact.md).
+    const std::string contact = root.string("contact", "on");
+    if (contact == "on") an.contact = true;
+    else if (contact == "off") an.contact = false;
+    else root.fail("contact", "must be \"on\" or \"off\" (got \"" + contact + "\")");
+  }
   onlyFor(anatomical, scene, root, "performance");
   if (root.has("performance")) {
     // The performance sets the scene's length and frame rate: a second one would contradict it.
@@ -516,6 +524,7 @@ std::string sceneToJson(const SceneDesc& scene) {
     if (!scene.skinAttachment.empty()) j["skin"]["attachment"] = scene.skinAttachment;
     j["muscle_material"] = materialJson(an.coupling.muscle);
     j["gravity"] = {{"enabled", s.gravity}, {"acceleration", an.gravity}};
+    j["contact"] = an.contact ? "on" : "off";
     json drags = json::array();
     for (const DragDesc& d : scene.drags) {
       json dj = {{"name", d.name}, {"radius", d.radius}};

@@ -245,8 +245,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
   // A lid muscle's column is its placed shape at a = 1 (its physics and the lid fully turned): a
   // secant of the lid's rotation, so the bounded least squares stays linear; the fitted shape is
   // then placed exactly (below), and the figures measure that.
-  std::optional<SkinPlacement> ownPlacement;
-  if (!placement) placement = &ownPlacement.emplace(skin.head(), skin.muscleNames());
+  if (!placement) placement = &skin.placement();
   auto allActivations = [&](const VecX& act) {
     VecX full = VecX::Zero(mAll);
     for (Eigen::Index j = 0; j < m; ++j) full(fit.fitted[static_cast<size_t>(j)]) = act(j);

@@ -27,7 +27,7 @@ AnatomicalFace::AnatomicalFace(const Head& head, const std::vector<MuscleDef>& m
   std::vector<DragSite> sites;
   for (const DragDef& d : drags_) sites.push_back({d.vertex, d.radius});
   skin_ = std::make_shared<const AnatomicalSkin>(head, muscles, settings, sites, cache);
-  placement_ = std::make_shared<const SkinPlacement>(skin_->head(), skin_->muscleNames());
+  placement_ = skin_->placementPtr();  // built with the skin (its contact patterns are in the basis)
   buildSeconds_ = clock.seconds();
 }
 
@@ -48,6 +48,7 @@ AnatomicalSimulator::AnatomicalSimulator(std::shared_ptr<const AnatomicalFace> f
   stepper_ = std::make_unique<AnatomicalStepper>(face_->skinPtr());
   loads_.activations = VecX::Zero(face_->muscleCount());
   loads_.drags.assign(face_->drags().size(), Vec3::Zero());
+  loads_.contact = face_->skin().settings().contact;  // the penalty acts when the skin has one
   const MatX3& V = face_->head().mesh.V;
   runawayLimit_ = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   gravityScale_ = face_->gravityEnabled() ? 1.0 : 0.0;
@@ -87,6 +88,7 @@ void AnatomicalSimulator::setJaw(const JawPose& pose) {
     throw InputError("this head has no jaw: its landmarks have no 68-point jaw line (docs/jaw.md)",
                      face_->head().landmarks.sourcePath);
   jaw_ = pose;
+  loads_.jaw = pose;
 }
 
 void AnatomicalSimulator::updateGravity() {

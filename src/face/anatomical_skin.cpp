@@ -46,6 +46,8 @@ void AnatomicalSettings::validate() const {
   if (!(dampingMass >= 0) || !(dampingStiffness >= 0)) bad("damping must be ≥ 0");
   if (!(relaxedMuscleModulus >= 0) || !std::isfinite(relaxedMuscleModulus))
     bad("the relaxed muscles' modulus must be ≥ 0 dyn/cm² (0: muscles hold the skin)");
+  if (!(contactStiffness > 0) || !std::isfinite(contactStiffness))
+    bad("the contact stiffness must be > 0 1/s² (per unit vertex mass)");
 }
 
 ShellMaterial anatomicalSkinMaterial(const AnatomicalSettings& s, double meanEdge) {
@@ -112,7 +114,13 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
 
   ritz_.modes.modeCount = std::min(settings_.skinModes, 3 * n);
   buildReleaseColumns();
-  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, the extra release columns
+  // The placement (jaw, lids, contact) and the contact's load patterns, whose static responses join
+  // the basis (docs/mouth_contact.md, "Penalty forces"). The switch does not change the basis.
+  std::vector<std::string> names;
+  for (const CoupledMuscle& m : muscles_) names.push_back(m.muscle.def.name);
+  placement_ = std::make_shared<const SkinPlacement>(head_, names, settings_.contact);
+  contactLoads_ = contactLoadPatterns(*placement_, V, mass_);
+  // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, the extra columns
   // of the release, diagonalise; then per drag its x, y, z patterns and diagonalise (as addDrag).
   // Bump when the sequence changes.
   constexpr int kSequenceVersion = 2;
@@ -139,6 +147,10 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
     const VecX col = releaseColumns_.col(releaseColumns_.cols() - extraReleaseColumns_ + j);
     h.bytes(col.data(), sizeof(double) * static_cast<size_t>(col.size()));
   }
+  if (!contactLoads_.empty()) {  // absent (a head with nothing to touch): the key as before contact
+    h.str("contact").pod(static_cast<int64_t>(contactLoads_.size()));
+    for (const MatX3& f : contactLoads_) h.bytes(f.data(), sizeof(double) * static_cast<size_t>(f.size()));
+  }
   key_ = h.key();
 
   // The cache keeps two bases: the held one (key_: what a drag grabbed later and the full-space
@@ -160,6 +172,7 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
       fromCache_ = true;
       heldReader_ = cache->reader();
       setMuscleStrengths();
+      makeContactPenalty();
       return;
     }
   if (cache)
@@ -195,6 +208,8 @@ ModalBasis AnatomicalSkin::buildHeldBasis() const {
   // The extra release columns' responses, so that the release stays exact in the basis (Woodbury).
   for (int j = 0; j < extraReleaseColumns_; ++j)
     loads.push_back(rows3(VecX(releaseColumns_.col(releaseColumns_.cols() - extraReleaseColumns_ + j))));
+  // The contact's normal loads (after everything else, so a head without contact builds as before).
+  loads.insert(loads.end(), contactLoads_.begin(), contactLoads_.end());
   builder_->addLoads(loads);
   builder_->diagonalize();
   for (const Drag& d : drags_) {
@@ -267,6 +282,30 @@ SparseMat AnatomicalSkin::loadPatternColumns() const {
   SparseMat S(3 * n, M + 3 + 3 * static_cast<Eigen::Index>(drags_.size()));
   S.setFromTriplets(trip.begin(), trip.end());
   return S;
+}
+
+SparseMat AnatomicalSkin::cutBackPatternColumns() const {
+  SparseMat S = loadPatternColumns();
+  if (contactLoads_.empty()) return S;
+  std::vector<Triplet> trip;
+  for (Eigen::Index c = 0; c < S.outerSize(); ++c)
+    for (SparseMat::InnerIterator it(S, c); it; ++it) trip.emplace_back(it.row(), it.col(), it.value());
+  const Eigen::Index first = S.cols();
+  for (size_t k = 0; k < contactLoads_.size(); ++k) {
+    const MatX3& f = contactLoads_[k];
+    for (Eigen::Index i = 0; i < f.rows(); ++i)
+      for (int a = 0; a < 3; ++a)
+        if (f(i, a) != 0.0) trip.emplace_back(static_cast<int>(3 * i + a), static_cast<int>(first + static_cast<Eigen::Index>(k)), f(i, a));
+  }
+  SparseMat out(S.rows(), first + static_cast<Eigen::Index>(contactLoads_.size()));
+  out.setFromTriplets(trip.begin(), trip.end());
+  return out;
+}
+
+void AnatomicalSkin::makeContactPenalty() {
+  penalty_.reset();
+  if (!settings_.contact || !placement_->hasContact() || basis_->modeCount() == 0) return;
+  penalty_ = std::make_shared<const ContactPenalty>(*placement_, head_.mesh.V, mass_, *basis_, settings_.contactStiffness);
 }
 
 MatX AnatomicalSkin::modalLoadPatterns(const ModalBasis& basis) const {
@@ -434,6 +473,7 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   if (releaseColumns_.cols() == 0 || M == 0 || held.modeCount() == 0) {
     basis_ = heldBasis_;
     setMuscleStrengths();
+    makeContactPenalty();
     return;
   }
   const MatX P = (releaseColumns_.transpose() * held.Phi).transpose();  // D × R
@@ -452,7 +492,7 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
     lambda = lam;
   } else {
     const Eigen::Index dModes = std::min<Eigen::Index>(ritz_.modes.modeCount, Kr.rows());
-    const MatX patterns = (loadPatternColumns().transpose() * held.Phi).transpose();
+    const MatX patterns = (cutBackPatternColumns().transpose() * held.Phi).transpose();
     const Eigen::Index nPatterns = patterns.cols();
     MatX Y(P.rows(), dModes + nPatterns);
     Y.leftCols(dModes) = Z.leftCols(dModes);
@@ -487,6 +527,7 @@ void AnatomicalSkin::releaseRelaxedMuscles() {
   b.lambda = lambda;
   basis_ = std::make_shared<const ModalBasis>(std::move(b));
   setMuscleStrengths();
+  makeContactPenalty();
 }
 
 RitzBasisBuilder& AnatomicalSkin::builder() const {
@@ -564,21 +605,26 @@ MatX3 AnatomicalSkin::worldLoad(const SkinLoads& loads) const {
   return f;
 }
 
-MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const {
+MatX3 AnatomicalSkin::linearFullResponse(const SkinLoads& loads) const { return linearFullResponse(worldLoad(loads)); }
+
+MatX3 AnatomicalSkin::linearFullResponse(const MatX3& load) const {
   RitzBasisBuilder& b = builder();
-  const MatX3 y = b.staticResponse(worldLoad(loads));
+  const MatX3 y = b.staticResponse(load);
   const Eigen::Index R = releaseColumns_.cols();
   if (R == 0) return y;
   const int n = head_.mesh.vertexCount();
   if (heldCouplingResponses_.empty())
     for (Eigen::Index j = 0; j < R; ++j) heldCouplingResponses_.push_back(b.staticResponse(rows3(VecX(releaseColumns_.col(j)))));
-  // Woodbury: K⁻¹F = y + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ Cᵀy.
+  // Woodbury: K⁻¹F = y + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ Cᵀy, written with S = Ρ^½ as
+  // y + K̂⁻¹C S (I − S CᵀK̂⁻¹C S)⁻¹ S Cᵀy so that a column with ρ = 0 (a muscle without springs
+  // lets go of nothing) drops out instead of making Ρ⁻¹ infinite.
   MatX KhC(3 * n, R);
   for (Eigen::Index j = 0; j < R; ++j) KhC.col(j) = flat(heldCouplingResponses_[static_cast<size_t>(j)]);
-  MatX D = -(releaseColumns_.transpose() * KhC);
-  D.diagonal() += releaseRho_.cwiseInverse();
-  const VecX Cy = releaseColumns_.transpose() * flat(y);
-  const VecX z = D.ldlt().solve(Cy);
+  const VecX S = releaseRho_.cwiseSqrt();
+  MatX D = -(S.asDiagonal() * (releaseColumns_.transpose() * KhC) * S.asDiagonal());
+  D.diagonal().array() += 1.0;
+  const VecX SCy = S.cwiseProduct(releaseColumns_.transpose() * flat(y));
+  const VecX z = S.cwiseProduct(VecX(D.ldlt().solve(SCy)));
   MatX3 out = y;
   flat(out) += KhC * z;
   return out;
@@ -607,11 +653,63 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
   SettledSkin out;
   const VecX f0 = B.Phi.transpose() * flat(F) + c;
   out.q = (f0.array() / B.lambda.array()).matrix();
-  const double scale = std::max(f0.norm(), 1e-300);
+  double scale = std::max(f0.norm(), 1e-300);
+  // The contact penalty (contact_penalty.h): E_c(q) joins the reduced energy; with nothing touching
+  // at the linear solution it adds nothing and the result is the linear one bit for bit.
+  const ContactPenalty* pen = loads.contact ? penalty_.get() : nullptr;
+  if (pen && !loads.jaw.isZero()) validateJawPose(loads.jaw);
+  const LidPose lids = placement_->lidPose(loads.activations);
+  std::optional<ContactPenalty::Workspace> ws;
+  if (pen) {
+    ws.emplace(pen->workspace());
+    VecX fc = VecX::Zero(d);
+    if (pen->evaluate(out.q, loads.jaw, lids, *ws, &fc) == 0.0 && !warped) pen = nullptr;  // nothing touches
+    else scale = std::max(scale, fc.norm());
+  }
+  if (pen && !warped) {
+    // Newton (Gauss–Newton for the penalty) on Π(q) = ½ qᵀΛq − f0ᵀq + E_c(q), with a backtracking
+    // line search on Π: the active set settles in a few iterations (d unknowns).
+    auto energy = [&](const VecX& q, VecX* g, MatX* H) {
+      VecX fc;
+      if (g) fc = VecX::Zero(d);
+      const double E = pen->evaluate(q, loads.jaw, lids, *ws, g ? &fc : nullptr, H);
+      if (g) *g = (B.lambda.array() * q.array()).matrix() - f0 - fc;
+      if (H) H->diagonal() += B.lambda;
+      return 0.5 * q.dot(B.lambda.cwiseProduct(q)) - f0.dot(q) + E;
+    };
+    // The merit is the residual's norm, not Π: with a lid closing, J leaves out the closure's
+    // dependence on the margins, so the force is not exactly −∇E there.
+    VecX g, gt;
+    MatX H = MatX::Zero(d, d);
+    energy(out.q, &g, &H);
+    for (int it = 0; it < 50 && g.norm() > 1e-10 * scale; ++it) {
+      const VecX step = H.ldlt().solve(-g);
+      double alpha = 1.0;
+      VecX qt = out.q;
+      bool decreased = false;
+      for (int ls = 0; ls < 30 && !decreased; ++ls, alpha *= 0.5) {
+        qt = out.q + alpha * step;
+        energy(qt, &gt, nullptr);
+        decreased = gt.norm() < (1.0 - 1e-4 * alpha) * g.norm();
+      }
+      if (!decreased) break;  // no decrease left at round-off
+      out.q = qt;
+      H.setZero();
+      energy(out.q, &g, &H);
+      out.contactIterations = it + 1;
+    }
+    out.residual = g.norm() / scale;
+    out.converged = out.residual <= 1e-6;
+  }
   if (warped) {
     auto residual = [&](const VecX& q, MatX* J) {
       VecX r = (B.lambda.array() * q.array()).matrix() - c;
       if (J) *J = B.lambda.asDiagonal();
+      if (pen) {  // the penalty on the linear displacement Φq of the candidates
+        VecX fc = VecX::Zero(d);
+        pen->evaluate(q, loads.jaw, lids, *ws, &fc, J);
+        r -= fc;
+      }
       for (int i = 0; i < n; ++i) {
         const Vec3 Fi = F.row(i);
         if (Fi.squaredNorm() == 0.0) continue;
@@ -638,6 +736,7 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
       out.q = qt;
       r = residual(out.q, &J);
       out.iterations = it + 1;
+      if (pen) out.contactIterations = it + 1;
     }
     out.residual = r.norm() / scale;
     out.converged = out.residual <= 1e-8;
@@ -645,6 +744,7 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
   } else {
     out.u = linearDisplacement(B, out.q);
   }
+  if (pen) pen->evaluate(out.q, loads.jaw, lids, *ws, nullptr, nullptr, &out.contactDepth);
   return out;
 }
 
@@ -670,6 +770,15 @@ AnatomicalStepper::AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin)
     loadModes_ = skin_->modalLoadPatterns(integrator_.basis());
     loadCoords_ = VecX::Zero(loadModes_.cols());
     modalForce_ = VecX::Zero(loadModes_.rows());
+  }
+  if (const ContactPenalty* pen = skin_->contactPenalty()) {
+    contact_ = pen->workspace();
+    const Eigen::Index d = integrator_.q().size();
+    contactStiffness_ = MatX::Zero(d, d);
+    contactForce_ = VecX::Zero(d);
+    contactStep_ = VecX::Zero(d);
+    contactSystem_ = MatX::Zero(d, d);
+    contactLu_ = Eigen::PartialPivLU<MatX>(d);
   }
 }
 
@@ -704,6 +813,27 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     for (size_t k = 0; k < loads.drags.size(); ++k)
       loadCoords_.segment<3>(M + 3 + 3 * static_cast<Eigen::Index>(k)) = loads.drags[k];
     modalForce_.noalias() = loadModes_ * loadCoords_;
+    // The contact penalty, linearly implicit (docs/mouth_contact.md, "Penalty forces"): at q_n its
+    // force f_c and stiffness K_c; the step's force f_c − K_c Δ with Δ = q⁺ − q_n, so that
+    // q⁺ = a q + b q̇ + g (f̃ + f_c − K_c Δ) gives (I + diag(g) K_c) Δ = a q + b q̇ + g (f̃ + f_c) − q.
+    if (const ContactPenalty* pen = loads.contact ? skin_->contactPenalty() : nullptr) {
+      contactForce_.setZero();
+      contactStiffness_.setZero();
+      pen->evaluate(integrator_.q(), loads.jaw, skin_->placement_->lidPose(loads.activations), contact_, &contactForce_,
+                    &contactStiffness_);
+      if (!contact_.active.empty()) {
+        const VecX& q = integrator_.q();
+        const VecX& g = integrator_.stepQFromForce();
+        modalForce_ += contactForce_;
+        contactStep_ = integrator_.stepQFromQ().cwiseProduct(q) + integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) +
+                       g.cwiseProduct(modalForce_) - q;
+        contactSystem_.noalias() = g.asDiagonal() * contactStiffness_;
+        contactSystem_.diagonal().array() += 1.0;
+        contactLu_.compute(contactSystem_);
+        contactStep_ = contactLu_.solve(contactStep_).eval();
+        modalForce_.noalias() -= contactStiffness_ * contactStep_;
+      }
+    }
     times_.force = clock.seconds() - times_.levels;
     integrator_.stepModal(modalForce_);
     times_.modal = clock.seconds() - times_.levels - times_.force;
@@ -718,6 +848,8 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     const auto& vs = skin_->drags_[k].vertices;
     for (int v : vs) force_.row(v) += loads.drags[k].transpose() / static_cast<double>(vs.size());
   }
+  // Warped: no contact penalty in the step (the projection at output still holds; the warped
+  // settle has it). docs/mouth_contact.md, "Penalty forces".
   times_.force = clock.seconds() - times_.levels;
   integrator_.step(force_);
   times_.modal = clock.seconds() - times_.levels - times_.force;

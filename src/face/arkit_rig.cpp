@@ -23,8 +23,7 @@ JawPose jawPoseOf(const RetargetShape& shape) {
 }
 
 ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const SkinPlacement* placement) {
-  std::optional<SkinPlacement> ownPlacement;
-  if (!placement) placement = &ownPlacement.emplace(skin.head(), skin.muscleNames());
+  if (!placement) placement = &skin.placement();
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
   // The muscles' settled displacement, placed (the jaw in `pose`, the lids, the contact).
@@ -34,6 +33,9 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
     loads.activations = VecX::Zero(static_cast<Eigen::Index>(skin.muscles().size()));
     for (const auto& [name, value] : activations) loads.activations(skin.muscleIndex(name)) = value;
+    // No contact penalty: a blendshape rig is linear, and fit-rig reads it back with the fit's linear
+    // columns; the shapes are placed with the projection (docs/mouth_contact.md, "Penalty forces").
+    loads.jaw = pose;
     const SettledSkin s = skin.settle(loads, warped);
     if (!s.converged || !s.u.allFinite())
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));

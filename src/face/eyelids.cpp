@@ -245,41 +245,54 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
   return rig;
 }
 
-ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions) {
-  ContactReport contact;
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<double>, 2>* angles) {
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
     const double c = pose.close[e], r = pose.raise[e];
-    if (c != 0.0 || r != 0.0) {
-      // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
-      // margins meet whatever the physics did to them.
-      const EyeFrame f = eyeFrame(eye);
-      const Fissure now = fissure(positions, eye, f);
-      for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
-        const int i = eye.lidVertices[k];
-        Vec3 d = positions.row(i).transpose() - eye.centre;
-        const double x = d.dot(eye.axis);
-        double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
-        if (c != 0.0 && x > now.xLow && x < now.xHigh) {
-          const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
-          const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
-          const double w = eye.lidWeights[k];  // + upper lid, − lower lid
-          const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
-          alpha = share * gap * w;
-          kappa = share * step * w;
-        }
-        const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k];
-        const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
-        const double rho = across.norm();
-        if (rho > 0.0) d += (c * kappa / rho) * across;
-        positions.row(i) = (eye.centre + Eigen::AngleAxisd(theta, eye.axis) * d).transpose();
+    if (angles) (*angles)[e].assign(eye.lidVertices.size(), 0.0);
+    if (c == 0.0 && r == 0.0) continue;
+    // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
+    // margins meet whatever the physics did to them.
+    const EyeFrame f = eyeFrame(eye);
+    const Fissure now = fissure(positions, eye, f);
+    for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
+      const int i = eye.lidVertices[k];
+      Vec3 d = positions.row(i).transpose() - eye.centre;
+      const double x = d.dot(eye.axis);
+      double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
+      if (c != 0.0 && x > now.xLow && x < now.xHigh) {
+        const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+        const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
+        const double w = eye.lidWeights[k];  // + upper lid, − lower lid
+        const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
+        alpha = share * gap * w;
+        kappa = share * step * w;
       }
+      const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k];
+      const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
+      const double rho = across.norm();
+      if (rho > 0.0) d += (c * kappa / rho) * across;
+      positions.row(i) = (eye.centre + Eigen::AngleAxisd(theta, eye.axis) * d).transpose();
+      if (angles) (*angles)[e][k] = theta;
     }
+  }
+}
+
+ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions, bool project) {
+  turnLids(rig, pose, positions);
+  ContactReport contact;
+  for (size_t e = 0; e < 2; ++e) {
+    const EyeLids& eye = rig.eyes[e];
     for (int i : eye.orbitVertices) {
       const Vec3 d = positions.row(i).transpose() - eye.centre;
       const double dist = d.norm();
       if (dist >= eye.contactRadius || dist == 0.0) continue;
-      contact.maxPenetrationBefore = std::max(contact.maxPenetrationBefore, eye.contactRadius - dist);
+      const double depth = eye.contactRadius - dist;
+      contact.maxPenetrationBefore = std::max(contact.maxPenetrationBefore, depth);
+      if (!project) {
+        contact.maxPenetrationAfter = std::max(contact.maxPenetrationAfter, depth);
+        continue;
+      }
       positions.row(i) = (eye.centre + (eye.contactRadius / dist) * d).transpose();
       contact.maxPenetrationAfter =
           std::max(contact.maxPenetrationAfter, eye.contactRadius - (positions.row(i).transpose() - eye.centre).norm());

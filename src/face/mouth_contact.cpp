@@ -166,7 +166,46 @@ MouthContact mouthContact(const TriMesh& skin, const Landmarks& landmarks, const
   return m;
 }
 
-ContactReport applyMouthContact(const MouthContact& m, const JawRig& jaw, const JawPose& pose, MatX3& P) {
+double teethPenetration(const MouthContact& m, const RigidMotion& mandible, const Vec3& p, Vec3* gradient) {
+  const Mandible jaw{mandible};
+  // d = ρ (1/s − 1) in the arch's (x, z − z_c) plane: ρ the distance from the axis, s the
+  // ellipse-normalised radius; ∇d = (1/s − 1) ∇ρ − (ρ/s²) ∇s, nothing along y.
+  auto grad = [&](const Vec3& q) {
+    const double x = q.x(), z = q.z() - m.zCentre;
+    const double rho = std::hypot(x, z), s = archRadius(m, q);
+    const double dsx = x / (m.a * m.a * s), dsz = z / (m.b * m.b * s);
+    return Vec3((1.0 / s - 1.0) * x / rho - rho / (s * s) * dsx, 0.0, (1.0 / s - 1.0) * z / rho - rho / (s * s) * dsz);
+  };
+  const Vec3 q = local(m.frame, p);
+  if (proxyAt(m, q) == Proxy::Upper) {
+    const double d = archDepth(m, q, nullptr);
+    if (d > 0.0 && gradient) *gradient = m.frame.axes * grad(q);
+    return std::max(d, 0.0);
+  }
+  const Vec3 r = local(m.frame, jaw.toRest(p));
+  if (proxyAt(m, r) != Proxy::Lower) return 0.0;
+  const double d = archDepth(m, r, nullptr);
+  if (d > 0.0 && gradient) *gradient = mandible.R * (m.frame.axes * grad(r));
+  return std::max(d, 0.0);
+}
+
+double lipPairViolation(const MouthContact& m, size_t pair, const MatX3& positions) {
+  return lipViolation(m, pair, positions);
+}
+
+Vec3 archOutward(const MouthContact& m, const Vec3& p) {
+  const Vec3 q = local(m.frame, p);
+  const Vec3 radial(q.x(), 0.0, q.z() - m.zCentre);
+  const double r = radial.norm();
+  return r > 0.0 ? Vec3(m.frame.axes * (radial / r)) : Vec3(m.frame.axes.col(2));
+}
+
+ContactReport applyMouthContact(const MouthContact& m, const JawRig& jaw, const JawPose& pose, MatX3& P, bool project) {
+  if (!project) {
+    ContactReport measured;
+    measured.maxPenetrationBefore = measured.maxPenetrationAfter = mouthPenetration(m, jaw, pose, P);
+    return measured;
+  }
   ContactReport report;
   const Eigen::RowVector3d y = m.frame.axes.col(1).transpose();
   for (size_t k = 0; k < m.lipPairs.size(); ++k) {

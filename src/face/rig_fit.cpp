@@ -144,8 +144,8 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   // The jaw, when the head has the 68-point jaw line (face/jaw.h): jaw shapes fit its degree of
   // freedom first, then the muscles on what the jaw leaves.
   const MatX3& rest = skin.head().mesh.V;
-  // Every fit places its shape with one placement (face/skin_placement.h), built here once.
-  const SkinPlacement placement(skin.head(), skin.muscleNames());
+  // Every fit places its shape with the skin's one placement (face/skin_placement.h).
+  const SkinPlacement& placement = skin.placement();
   const JawRig* jaw = placement.jaw();
 
   // The shapes the rig has, in ARKit order; a corrective (mouthClose) is fitted on its base's target.

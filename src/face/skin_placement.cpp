@@ -4,7 +4,8 @@
 
 namespace myo {
 
-SkinPlacement::SkinPlacement(const Head& head, const std::vector<std::string>& muscleNames) : rest_(head.mesh.V) {
+SkinPlacement::SkinPlacement(const Head& head, const std::vector<std::string>& muscleNames, bool contact)
+    : rest_(head.mesh.V), contact_(contact) {
   if (head.landmarks.multipie68.size() == 68) {
     jaw_ = jawRig(head.mesh, head.landmarks);
     mouth_ = mouthContact(head.mesh, head.landmarks, *jaw_);
@@ -15,13 +16,14 @@ SkinPlacement::SkinPlacement(const Head& head, const std::vector<std::string>& m
   }
 }
 
-ContactReport SkinPlacement::place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
+ContactReport SkinPlacement::place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out,
+                                   bool project) const {
   MYO_CHECK(jaw.isZero() || jaw_, "SkinPlacement::place: a jaw pose on a head without a jaw");
   if (jaw.isZero()) out = rest_ + u;
   else jawedPositions(*jaw_, jaw, rest_, u, out);
   ContactReport report;
-  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out));
-  if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out));
+  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out, project));
+  if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out, project));
   return report;
 }
 

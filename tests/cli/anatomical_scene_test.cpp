@@ -64,6 +64,7 @@ TEST(AnatomicalScene, RunGivesTheHandSteppedSkinBitForBit) {
   loads.activations = VecX::Zero(2);
   loads.gravity = skin->restGravity();  // upright, gravity on: no gravity load
   loads.drags.assign(1, Vec3::Zero());
+  loads.contact = scene.anatomical.contact;  // as the playing face: the contact penalty (docs/mouth_contact.md)
   const int zyg = skin->muscleIndex("zygomaticus_major_left"), dao = skin->muscleIndex("depressor_anguli_oris_right");
   const double dt = skin->settings().dt;
   const int frames = ScenePlayer::frameCount(scene.duration, scene.fps);

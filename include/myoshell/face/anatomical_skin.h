@@ -15,6 +15,7 @@
 // and K̂ is then factorised only when something needs it (addDrag, linearFullResponse).
 #pragma once
 
+#include <Eigen/LU>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -22,8 +23,11 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/reduce/basis_cache.h"
+#include "myoshell/face/contact_penalty.h"
 #include "myoshell/face/head.h"
+#include "myoshell/face/jaw.h"
 #include "myoshell/face/muscle_coupling.h"
+#include "myoshell/face/skin_placement.h"
 #include "myoshell/face/tissue_attachment.h"
 #include "myoshell/reduce/modal_warping.h"
 #include "myoshell/reduce/ritz_basis.h"
@@ -82,6 +86,15 @@ struct AnatomicalSettings {
   bool releaseRingHalves = true;
   // The fibres insert into the dermis: at a = 1 the skin over the insertion moves with the muscle end.
   StrengthRule strength = StrengthRule::SkinFollows;
+  // Contact (docs/mouth_contact.md, docs/eyelids.md): on a head with eyeballs or teeth proxies, the
+  // penalty forces in the step and the settle (for loads with SkinLoads::contact) and the projection
+  // out of the proxies when a shape is placed. false: neither (the shape without contact; the basis
+  // is the same, so the switch costs no rebuild). The scene's "contact": "on" | "off".
+  bool contact = true;
+  // κ (1/s²): the penalty stiffness per unit vertex mass, k_i = κ m_i (contact_penalty.h). The
+  // penalty's reduced stiffness is at most about κ, so the explicit penalty in the step is stable for
+  // κ below the limit docs/mouth_contact.md ("Penalty forces") measures.
+  double contactStiffness = 1.0e9;
   void validate() const;            // InputError naming the field
 };
 
@@ -98,6 +111,12 @@ struct SkinLoads {
   VecX activations;                 // m
   Vec3 gravity = Vec3::Zero();      // g(t), cm/s² (head space); the rest value is g_rest
   std::vector<Vec3> drags;          // one force per registered drag (dyn, spread over its vertices)
+  // The jaw the shape will be placed with: the contact penalty places its candidates with it.
+  JawPose jaw;
+  // Whether the contact penalty acts (when the skin has one: a head with eyeballs or teeth and
+  // AnatomicalSettings::contact). false keeps the settle and the step exactly linear in the loads
+  // (the fit's activation columns).
+  bool contact = false;
 };
 
 // A drag known when the skin is built: a force spread over the vertices within `radius` (cm) of
@@ -113,6 +132,8 @@ struct SettledSkin {
   int iterations = 0;   // Newton iterations (0 for linear)
   double residual = 0;  // |r(q)| / |force scale|
   bool converged = true;
+  int contactIterations = 0;  // the penalty's Newton iterations (0: no contact, or none touched)
+  double contactDepth = 0.0;  // cm: the deepest violation the penalty left (before any projection)
 };
 
 class AnatomicalSkin {
@@ -148,13 +169,22 @@ class AnatomicalSkin {
   // γ_m = 1/(κ_m + s_m), s_m = U_mᵀ K_c,m U_m: how far muscle m lets go of the skin along its shape
   // (0 when held).
   double muscleRelease(int m) const { return release_.size() ? release_(m) : 0.0; }
+  // How a shape of this skin is placed (jaw, lids, contact projection; AnatomicalSettings::contact).
+  const SkinPlacement& placement() const { return *placement_; }
+  std::shared_ptr<const SkinPlacement> placementPtr() const { return placement_; }
+  // The contact penalty in the step and the settle; null on a head with nothing to touch, with
+  // contact off or with no basis.
+  const ContactPenalty* contactPenalty() const { return penalty_.get(); }
+  // The contact's load patterns whose static responses are in the basis (contactLoadPatterns).
+  int contactPatternCount() const { return static_cast<int>(contactLoads_.size()); }
   // True when the basis came from the BasisCache given to the constructor.
   bool basisFromCache() const { return fromCache_; }
   // The cache key of this skin's basis as built (before any later addDrag): a hash of K̂ (its
   // sparsity and values: mesh, skin material, attachment map with its overrides, muscle
   // couplings), the masses, rest positions and triangles, the Ritz settings (d, eigen-solver,
   // deflation), every load pattern in the order it enters (muscle coupling loads: muscle defs,
-  // coupling settings, shortening; gravity along x, y, z; the build-time drags' vertex sets), the
+  // coupling settings, shortening; gravity along x, y, z; the build-time drags' vertex sets; the
+  // contact's load patterns, when the head has any), the
   // build sequence's version and kModalBasisFormatVersion. The magnitude of gravity is not in it:
   // the gravity patterns are M·ê_a whatever |g| is.
   const BasisKey& basisKey() const { return key_; }
@@ -178,6 +208,8 @@ class AnatomicalSkin {
   // The full-space linear response (n×3, cm) of the world load (reading (b)): K⁻¹F with K = K̂ and
   // the relaxed muscles released (Woodbury: K̂⁻¹F + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ CᵀK̂⁻¹F, C = [C̃_m]).
   MatX3 linearFullResponse(const SkinLoads& loads) const;
+  // The same for a world load given as n×3 forces (dyn), e.g. a contact pattern.
+  MatX3 linearFullResponse(const MatX3& load) const;
   // The release's stiffness, Σ_m ρ_m C̃_m C̃_mᵀ (3n×3n, sparse over the muscles' skin vertices,
   // dyn/cm): the skin's stiffness with the relaxed muscles released is K̂ − this (zero when held).
   SparseMat releaseStiffness() const;
@@ -194,6 +226,7 @@ class AnatomicalSkin {
   void buildReleaseColumns();
   // The muscle loads α_m c_m from basis_ (AnatomicalSettings::strength).
   void setMuscleStrengths();
+  void makeContactPenalty();  // penalty_ for basis_
   bool fitsSkin(const ModalBasis& b) const;  // a cached basis's sizes and masses fit this skin
   ModalBasis buildHeldBasis() const;          // from scratch (sets builder_)
   void ensureHeldBasis() const;               // read through heldReader_, else rebuilt
@@ -202,6 +235,8 @@ class AnatomicalSkin {
   // coordinates (levels, g − g_rest, drag forces).
   MatX modalLoadPatterns(const ModalBasis& basis) const;
   SparseMat loadPatternColumns() const;  // [c_m, M·ê_x,y,z, drags' ê_x,y,z] (3n × (M + 3 + 3·drags))
+  // loadPatternColumns and the contact patterns: what the released basis's cut-back keeps exact.
+  SparseMat cutBackPatternColumns() const;
   MatX3 gravityPattern(int axis) const;                 // M·ê_axis
   MatX3 dragPattern(const std::vector<int>& vertices, int axis) const;  // ê_axis spread evenly
   Head head_;
@@ -239,12 +274,19 @@ class AnatomicalSkin {
   BasisKey key_;
   BasisKey releasedKey_;               // the released basis's (when muscles are released)
   bool fromCache_ = false;
+  std::shared_ptr<const SkinPlacement> placement_;
+  std::vector<MatX3> contactLoads_;    // contactLoadPatterns (empty: nothing to touch)
+  std::shared_ptr<const ContactPenalty> penalty_;
 };
 
 // Time stepping of one AnatomicalSkin: each muscle's activation level follows its target with a
 // critically damped second-order response at the muscle's natural frequency (its one mode), the
 // skin with the per-mode exact stepper of modal_warping. Gravity reading (b). step() allocates
-// nothing.
+// nothing, but for the lids' fissure curves when a lid is driven and the contact penalty is on.
+//
+// Contact (loads.contact, linear modes): the penalty (contact_penalty.h) at q_n, taken linearly
+// implicitly, one d×d solve on steps where something touches; it reads the contact candidates' rows
+// of Φ every step (docs/mouth_contact.md, "Penalty forces"). Warped: no penalty in the step.
 //
 // Linear modes (warping off, the default): the loads are fixed patterns scaled by the levels,
 // g − g_rest and the drag forces, so the modal force ΦᵀF is the product of their reduced patterns
@@ -254,7 +296,8 @@ class AnatomicalSkin {
 class AnatomicalStepper {
  public:
   explicit AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin);
-  // Advances one dt under the loads (activation targets, gravity, drag forces).
+  // Advances one dt under the loads (activation targets, gravity, drag forces, the jaw and the
+  // contact switch for the penalty).
   void step(const SkinLoads& loads);
   // n×3, cm. Linear modes: the first read after a step computes u = Φq (one pass over the basis).
   const MatX3& displacement() const { return integrator_.freeDisplacement(); }
@@ -284,6 +327,10 @@ class AnatomicalStepper {
   MatX loadModes_;      // linear: the skin's modalLoadPatterns for the integrator's basis
   VecX loadCoords_;     // linear: [levels, g − g_rest, drag forces]
   VecX modalForce_;     // linear: f̃ = loadModes_ · loadCoords_ (d)
+  ContactPenalty::Workspace contact_;  // the penalty's scratch (when the skin has one)
+  MatX contactStiffness_, contactSystem_;  // K_c and I + diag(g) K_c (d×d)
+  VecX contactForce_, contactStep_;        // f_c and Δ (d)
+  Eigen::PartialPivLU<MatX> contactLu_;
 };
 
 }  // namespace myo

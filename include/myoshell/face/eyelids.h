@@ -108,7 +108,16 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
 // Turns the lid vertices of `positions` (n×3, the skin's jawed rest + residual) about their eye's
 // centre by θ_i (above), then projects every orbit vertex out of its proxy. The turn is skipped for
 // a zero pose; the projection always runs (at rest it moves nothing).
-ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions);
+// `project` false (contact off, docs/scene_format.md): the turn alone; the report then measures the
+// deepest vertex (after = before) and moves nothing.
+ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions, bool project = true);
+
+// The turn of applyLids alone (no contact). It reads the rows of `positions` at the margins and the
+// lid vertices and writes only the lid vertices'. `angles`, when given, receives per eye the angle
+// θ_i (radians, about eye.axis through the centre) each lid vertex turned by, in lidVertices' order
+// (zeros for an eye at rest); the change of ρ a closure adds is not in it.
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions,
+              std::array<std::vector<double>, 2>* angles = nullptr);
 
 // The lid gap of eye `eye` (0 right, 1 left) in `positions`: the mean distance of its two mid-lid
 // landmark pairs, cm.

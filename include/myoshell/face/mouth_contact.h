@@ -67,7 +67,19 @@ MouthContact mouthContact(const TriMesh& skin, const Landmarks& landmarks, const
 
 // Projects `positions` (n×3: the placed skin, the jaw in `pose`) out of the teeth proxies and the
 // lips out of each other (pairs first, then the teeth). At rest it moves nothing.
-ContactReport applyMouthContact(const MouthContact& mouth, const JawRig& jaw, const JawPose& pose, MatX3& positions);
+// `project` false (contact off): moves nothing; the report's before and after are the deepest violation.
+ContactReport applyMouthContact(const MouthContact& mouth, const JawRig& jaw, const JawPose& pose, MatX3& positions,
+                                bool project = true);
+
+// The depth (cm, ≥ 0) of position p inside the teeth proxies, the lower one moved by `mandible`
+// (jawMotion at weight 1), as the projection measures it (along the ray from the arch's axis); and,
+// when inside and `gradient` is given, ∂depth/∂p (head space; about unit length over the front).
+double teethPenetration(const MouthContact& mouth, const RigidMotion& mandible, const Vec3& p, Vec3* gradient);
+// Lip pair k's violation in `positions`: its least allowed separation along the frame's y minus the
+// separation (cm; > 0 when the lips cross). Its gradient is −y at the upper vertex, +y at the lower.
+double lipPairViolation(const MouthContact& mouth, size_t pair, const MatX3& positions);
+// The arch's outward direction at p (head space, unit): from the arch's axis, across y.
+Vec3 archOutward(const MouthContact& mouth, const Vec3& p);
 
 // The deepest violation of the mouth's constraints in `positions` (cm; 0 when none).
 double mouthPenetration(const MouthContact& mouth, const JawRig& jaw, const JawPose& pose, const MatX3& positions);

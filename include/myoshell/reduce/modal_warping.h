@@ -80,6 +80,11 @@ class ModalWarpingIntegrator {
   void stepModal(const VecX& modalForce);
 
   const VecX& q() const { return q_; }        // d, cm·g^1/2
+  // The per-mode update's coefficients of q⁺ = a q + b q̇ + g f̃ (d each): what a caller with a force
+  // that depends on q⁺ (a contact penalty taken implicitly) needs to solve for it.
+  const VecX& stepQFromQ() const { return ca_; }
+  const VecX& stepQFromQdot() const { return cb_; }
+  const VecX& stepQFromForce() const { return cg_; }
   const VecX& qdot() const { return v_; }     // d, cm·g^1/2/s
   // The current displacement of the free vertices, f×3 (cm). After stepModal the first read
   // computes it (one pass over the basis), so two threads must not make that first read at once.
