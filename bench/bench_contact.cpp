@@ -4,7 +4,7 @@
 // lips. The shape is a settled blink with the mouth's ring pressed and the jaw at 10°, so every
 // projection has work. Placement runs at output, not in the step: this is the price per written
 // frame. docs/PERFORMANCE.md ("Contact") has the figures. The penalty forces (face/contact_penalty.h)
-// run in the step: penaltyForce (the reduced force at the pressed shape's q), penaltyForceAndStiffness
+// run in the step: penaltyForce/0 (the reduced force at the pressed shape's q), penaltyForce/1
 // (with the Gauss–Newton K_c the step's implicit solve needs), and one AnatomicalStepper step with
 // the contact on against off, in that pressed state (docs/mouth_contact.md, "Penalty forces").
 //
@@ -106,34 +106,24 @@ void placeSkin(benchmark::State& state) {  // jaw, lids and eyeballs, teeth and 
   state.counters["before_mm"] = 10 * r.maxPenetrationBefore;
 }
 
+// The reduced penalty force at the pressed shape's q (Arg 0), or the force and its stiffness (Arg 1,
+// what a step that touches evaluates).
 void penaltyForce(benchmark::State& state) {
   const Scene* s = scene();
   if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
+  const bool withStiffness = state.range(0) != 0;
   const ContactPenalty& pen = *s->face->skin().contactPenalty();
   ContactPenalty::Workspace ws = pen.workspace();
   const LidPose lids = s->face->lidPose(s->activations);
   VecX f = VecX::Zero(s->q.size());
+  MatX K = MatX::Zero(withStiffness ? s->q.size() : 0, withStiffness ? s->q.size() : 0);
   for (auto _ : state) {
     f.setZero();
-    benchmark::DoNotOptimize(pen.evaluate(s->q, s->jaw, lids, ws, &f));
+    if (withStiffness) K.setZero();
+    benchmark::DoNotOptimize(pen.evaluate(s->q, s->jaw, lids, ws, &f, withStiffness ? &K : nullptr));
   }
   state.counters["active_rows"] = static_cast<double>(ws.active.size());
   state.counters["candidates"] = static_cast<double>(pen.candidates().size());
-}
-
-void penaltyForceAndStiffness(benchmark::State& state) {
-  const Scene* s = scene();
-  if (!s) return state.SkipWithError("no ICT head: set MYOSHELL_DATA to the folder holding ict/");
-  const ContactPenalty& pen = *s->face->skin().contactPenalty();
-  ContactPenalty::Workspace ws = pen.workspace();
-  const LidPose lids = s->face->lidPose(s->activations);
-  VecX f = VecX::Zero(s->q.size());
-  MatX K = MatX::Zero(s->q.size(), s->q.size());
-  for (auto _ : state) {
-    f.setZero();
-    K.setZero();
-    benchmark::DoNotOptimize(pen.evaluate(s->q, s->jaw, lids, ws, &f, &K));
-  }
 }
 
 // One step of the pressed, blinking face after 0.5 s of steps (the contact active), contact on or off.
@@ -152,8 +142,7 @@ void stepPressed(benchmark::State& state) {
   state.counters["contact"] = static_cast<double>(state.range(0));
 }
 
-BENCHMARK(penaltyForce)->Unit(benchmark::kMicrosecond);
-BENCHMARK(penaltyForceAndStiffness)->Unit(benchmark::kMicrosecond);
+BENCHMARK(penaltyForce)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(stepPressed)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(copyOnly)->Unit(benchmark::kMicrosecond);
 BENCHMARK(withJaw)->Unit(benchmark::kMicrosecond);
