@@ -495,7 +495,8 @@ void ModalWarpingIntegrator::step(const MatX3& freeForce) {
     // dense loads (gravity) one streaming matvec.
     Eigen::Index loaded = 0;
     for (Eigen::Index i = 0; i < freeForce.rows(); ++i)
-      loaded += (freeForce(i, 0) != 0.0) | (freeForce(i, 1) != 0.0) | (freeForce(i, 2) != 0.0);
+      loaded += static_cast<int>(freeForce(i, 0) != 0.0) | static_cast<int>(freeForce(i, 1) != 0.0) |
+                static_cast<int>(freeForce(i, 2) != 0.0);
     if (4 * loaded > freeForce.rows())
       Kernel::projectDense(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.Gd, k.accd, ftilde_);
     else
