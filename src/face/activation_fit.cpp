@@ -288,15 +288,26 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
   for (Eigen::Index j = 0; j < m; ++j) u += a(j) * cols[static_cast<size_t>(j)];
   u = placed(*placement, rest, u, allActivations(a));
 
-  // Gauss–Newton on the warped static solve, the alignment kept: r(a) = u_w(a)|rows − e.
-  if (skin.settings().warping && settings.refineSteps > 0) {
+  // Gauss–Newton on the model's own shape, the alignment kept: r(a) = u(a)|rows − e, where u(a) is
+  // nonlinear in a when warping is on (the warped static solve) or the fit turns a lid (the lid's
+  // rotation, whose secant the columns above hold; exact at a = 0 and 1 only).
+  bool turnsALid = false;
+  for (Eigen::Index j = 0; j < m; ++j) turnsALid = turnsALid || (a(j) > 0.0 && placement->turnsALid(fit.fitted[static_cast<size_t>(j)]));
+  const bool warping = skin.settings().warping;
+  if ((warping || turnsALid) && settings.refineSteps > 0) {
     fit.refined = true;
     SkinLoads loads;
     loads.activations = VecX::Zero(mAll);
     loads.gravity = skin.restGravity();
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
-    const MatX3 u0 = skin.settle(loads, true).u;
+    const MatX3 u0 = warping ? skin.settle(loads, true).u : MatX3();
     auto warped = [&](const VecX& act) {
+      if (!warping) {
+        MatX3 linear = MatX3::Zero(n, 3);
+        for (Eigen::Index j = 0; j < m; ++j)
+          if (act(j) != 0.0) linear += act(j) * cols[static_cast<size_t>(j)];
+        return placed(*placement, rest, linear, allActivations(act));
+      }
       for (Eigen::Index j = 0; j < m; ++j) loads.activations(fit.fitted[static_cast<size_t>(j)]) = act(j);
       const SettledSkin s = skin.settle(loads, true);
       if (!s.converged || !s.u.allFinite())
@@ -308,23 +319,35 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
     };
     u = warped(a);
     double f = objective(u, a);
+    // The warped solve refines every fitted muscle; the lids' turn only the muscles the linear fit
+    // uses (a > 0): the others' columns are exact there, and each refined muscle costs a placement
+    // per step.
+    std::vector<Eigen::Index> free;
+    for (Eigen::Index j = 0; j < m; ++j)
+      if (warping || a(j) > 0.0) free.push_back(j);
+    const auto k = static_cast<Eigen::Index>(free.size());
     for (int step = 0; step < settings.refineSteps; ++step) {
       ++fit.iterations;
       const VecX r = gatherRows(u, rows) - eRows;
-      MatX J(r.size(), m);
+      MatX J(r.size(), k);
+      VecX lower(k), upper(k);
       constexpr double h = 1e-3;  // forward difference, backward at the upper bound
-      for (Eigen::Index j = 0; j < m; ++j) {
+      for (Eigen::Index q = 0; q < k; ++q) {
+        const Eigen::Index j = free[static_cast<size_t>(q)];
         VecX ah = a;
         const double hj = a(j) + h <= 1.0 ? h : -h;
         ah(j) += hj;
-        J.col(j) = (gatherRows(warped(ah), rows) - gatherRows(u, rows)) / hj;
+        J.col(q) = (gatherRows(warped(ah), rows) - gatherRows(u, rows)) / hj;
+        lower(q) = -a(j), upper(q) = 1.0 - a(j);
       }
-      const VecX c = -J.transpose() * r - VecX::Constant(m, 0.5 * settings.lambda * eNorm2);
-      const BoxQpResult qp = solveBoxQp(J.transpose() * J, c, -a, VecX::Ones(m) - a);
+      const VecX c = -J.transpose() * r - VecX::Constant(k, 0.5 * settings.lambda * eNorm2);
+      const BoxQpResult qp = solveBoxQp(J.transpose() * J, c, lower, upper);
       fit.solverIterations += qp.iterations;
       bool improved = false;
       for (double t = 1.0; t >= 1.0 / 16; t *= 0.5) {
-        const VecX at = (a + t * qp.x).cwiseMax(0.0).cwiseMin(1.0);
+        VecX at = a;
+        for (Eigen::Index q = 0; q < k; ++q) at(free[static_cast<size_t>(q)]) += t * qp.x(q);
+        at = at.cwiseMax(0.0).cwiseMin(1.0);
         const MatX3 ut = warped(at);
         const double ft = objective(ut, at);
         if (ft < f) {

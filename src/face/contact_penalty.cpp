@@ -120,7 +120,7 @@ ContactPenalty::Workspace ContactPenalty::workspace() const {
   ws.flagged.assign(rows_.size(), 0);
   ws.a = VecX::Zero(Phi_.cols());
   if (const LidRig* lids = placement_->lids())
-    for (size_t e = 0; e < 2; ++e) ws.lidAngles[e].reserve(lids->eyes[e].lidVertices.size());
+    for (size_t e = 0; e < 2; ++e) ws.lidTurns[e].reserve(lids->eyes[e].lidVertices.size());
   return ws;
 }
 
@@ -149,14 +149,12 @@ double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose
   }
   const LidRig* lr = placement_->lids();
   if (lr && !lids.isZero()) {
-    turnLids(*lr, lids, ws.positions, &ws.lidAngles);
+    turnLids(*lr, lids, ws.positions, &ws.lidTurns);
     for (size_t e = 0; e < 2; ++e) {
       const EyeLids& eye = lr->eyes[e];
       for (size_t j = 0; j < eye.lidVertices.size(); ++j) {
-        const double theta = ws.lidAngles[e][j];
-        if (theta == 0.0) continue;
         const int r = rowOf_[static_cast<size_t>(eye.lidVertices[j])];
-        ws.J[static_cast<size_t>(r)] = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix() * ws.J[static_cast<size_t>(r)];
+        ws.J[static_cast<size_t>(r)] = ws.lidTurns[e][j] * ws.J[static_cast<size_t>(r)];
       }
     }
   }

@@ -174,6 +174,7 @@ EyeLids buildEye(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame
   const double orbit = s.orbitReach * lids.radius;
   lids.contactRadius = lids.radius;
   lids.lowerShare = s.lowerShare;
+  lids.nasalTurn = s.nasalSlide * frame.scale / lids.radius;
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     const Vec3 p = V.row(i).transpose();
     const double fromCentre = (p - lids.centre).norm();
@@ -245,25 +246,27 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
   return rig;
 }
 
-void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<double>, 2>* angles) {
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns) {
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
     const double c = pose.close[e], r = pose.raise[e];
-    if (angles) (*angles)[e].assign(eye.lidVertices.size(), 0.0);
+    if (turns) (*turns)[e].assign(eye.lidVertices.size(), Mat3::Identity());
     if (c == 0.0 && r == 0.0) continue;
     // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
     // margins meet whatever the physics did to them.
     const EyeFrame f = eyeFrame(eye);
     const Fissure now = fissure(positions, eye, f);
+    // The nasal slide turns about the vertical axis through the centre, towards the inner canthus.
+    const double towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
     for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
       const int i = eye.lidVertices[k];
       Vec3 d = positions.row(i).transpose() - eye.centre;
       const double x = d.dot(eye.axis);
+      const double w = eye.lidWeights[k];  // + upper lid, − lower lid
       double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
       if (c != 0.0 && x > now.xLow && x < now.xHigh) {
         const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
         const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
-        const double w = eye.lidWeights[k];  // + upper lid, − lower lid
         const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
         alpha = share * gap * w;
         kappa = share * step * w;
@@ -272,8 +275,11 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
       const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
       const double rho = across.norm();
       if (rho > 0.0) d += (c * kappa / rho) * across;
-      positions.row(i) = (eye.centre + Eigen::AngleAxisd(theta, eye.axis) * d).transpose();
-      if (angles) (*angles)[e][k] = theta;
+      Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
+      if (c != 0.0 && eye.nasalTurn != 0.0)
+        R = Eigen::AngleAxisd(towardsNose * c * eye.nasalTurn * std::abs(w), eye.up).toRotationMatrix() * R;
+      positions.row(i) = (eye.centre + R * d).transpose();
+      if (turns) (*turns)[e][k] = R;
     }
   }
 }

@@ -166,6 +166,38 @@ TEST(EyelidsOnIct, AZeroPoseLeavesTheSkinBitForBitAndTheEyeballsSitBehindTheLids
   EXPECT_LT(rig.eyes[0].centre.x(), 0.0);  // eyes[0] is the subject's right (−x)
 }
 
+// A closure slides both lids towards the inner canthus over the globe (LidSettings::nasalSlide, ~2 mm
+// at the margin): the mid-lid landmarks of each eye move towards its inner corner by about s, the
+// upper and lower ones alike (so they still meet one above the other); with s = 0 they do not.
+TEST(EyelidsOnIct, AClosureSlidesBothLidsTowardsTheNose) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head head = ictHead();
+  LidSettings still;
+  still.nasalSlide = 0.0;
+  const LidRig slid = lidRig(head.mesh, head.landmarks), unslid = lidRig(head.mesh, head.landmarks, still);
+  LidPose p;
+  p.close = {1.0, 1.0};
+  MatX3 P = head.mesh.V, Q = head.mesh.V;
+  turnLids(slid, p, P);
+  turnLids(unslid, p, Q);
+  const double expected = LidSettings{}.nasalSlide * head.frame().scale;  // cm
+  const std::array<std::array<int, 5>, 2> eyes = {{{39, 38, 37, 40, 41}, {42, 43, 44, 47, 46}}};  // inner corner, mid-lid points
+  for (size_t e = 0; e < 2; ++e) {
+    const Vec3 inner = head.mesh.V.row(head.landmarks.multipie68[static_cast<size_t>(eyes[e][0])]).transpose();
+    const Vec3 centre = slid.eyes[e].centre;
+    const Vec3 nasal = (slid.eyes[e].axis * slid.eyes[e].axis.dot(inner - centre)).normalized();
+    for (size_t k = 1; k < 5; ++k) {
+      const int v = head.landmarks.multipie68[static_cast<size_t>(eyes[e][k])];
+      const double towards = (P.row(v) - head.mesh.V.row(v)).dot(nasal.transpose());
+      const double without = (Q.row(v) - head.mesh.V.row(v)).dot(nasal.transpose());
+      RecordProperty(slid.eyes[e].side + "_landmark_" + std::to_string(eyes[e][k]) + "_nasal_mm", std::to_string(10 * towards));
+      EXPECT_GT(towards, 0.5 * expected) << slid.eyes[e].side << " landmark " << eyes[e][k];
+      EXPECT_LT(towards, 1.5 * expected) << slid.eyes[e].side << " landmark " << eyes[e][k];
+      EXPECT_LT(std::abs(without), 0.3 * expected) << slid.eyes[e].side << " landmark " << eyes[e][k];
+    }
+  }
+}
+
 TEST(Eyelids, AClosedEyedHeadHasNoLidsAndIsRefusedByName) {
   const Head head = loadDefaultHead(defaultHeadOptions(FaceModelKind::Thesis));  // the thesis model's: eyes closed
   EXPECT_FALSE(hasOpenEyes(head.mesh, head.landmarks));

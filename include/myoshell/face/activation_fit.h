@@ -42,7 +42,7 @@ struct FitSettings {
   std::vector<std::string> muscles;  // the muscles to fit (empty: all); the others stay at 0
   double lambda = 0.0;               // dimensionless sparsity weight (above); ≥ 0
   int maxAlignmentRounds = 100;      // alternations of alignment and fit (1 without alignment)
-  int refineSteps = 3;               // Gauss–Newton steps on the warped solve (warping on only)
+  int refineSteps = 3;               // Gauss–Newton steps on the nonlinear shape (warping on, or a lid fitted)
   double threshold = 0.05;           // cm: the compared vertices (shape_metric.h), 0.5 mm
   void validate() const;             // InputError naming the field
 };
@@ -84,7 +84,7 @@ struct ActivationFit {
   int solverIterations = 0;      // active-set iterations, summed
   double seconds = 0.0;          // wall time, columns included
   double conditionNumber = 0.0;  // σ_max/σ_min of the column matrix over the compared vertices
-  bool refined = false;          // Gauss–Newton on the warped solve ran
+  bool refined = false;          // Gauss–Newton on the nonlinear shape ran
 };
 
 // Throws InputError (unknown muscle, shapes, marker vertex out of range, non-finite target),

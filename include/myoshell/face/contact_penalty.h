@@ -49,7 +49,7 @@ class ContactPenalty {
     MatX3 positions;                               // n×3: only the candidates' rows are kept up to date
     VecX u;                                        // 3k: the candidates' residual
     std::vector<Mat3> J;                           // k: J_i = R_lid,i R_jaw,i
-    std::array<std::vector<double>, 2> lidAngles;  // the lids' turn per lid vertex
+    std::array<std::vector<Mat3>, 2> lidTurns;  // the lids' rotation per lid vertex
     MatX3 gradient;                                // k×3: ∂E/∂x per candidate, head space
     std::vector<int> active;                       // candidate indices in a violated constraint
     std::vector<char> flagged;                     // k: whether a candidate is in `active`

@@ -16,7 +16,12 @@
 //   upper lid: α_i = (1 − f)·Δ(x_i)·w_i,   β_i = −k·Δ(x_i)·w_i     (k = LidSettings::raiseFraction)
 //   lower lid: α_i = −f·Δ(x_i)·w_i,        β_i = 0
 // so at c = 1 both margins reach the elevation φ_lo + f·Δ: they meet. Δ vanishes at the canthi
-// (both margins end there), where the canthal tendons hold the lids.
+// (both margins end there), where the canthal tendons hold the lids. A closure also turns every lid
+// vertex about the vertical axis through the centre, towards the inner canthus, by
+//   γ_i = c·(s/R)·|w_i|                  (s = LidSettings::nasalSlide, R the proxy's radius)
+// the pars palpebralis shortening towards its fixed medial attachment: the lower lid's travel in a
+// blink is mostly this horizontal, nasal slide (Doane 1980), and both margins take it, so they meet
+// where they stood above each other.
 //
 // As the jaw (jaw.h), the rest rides with the lid and the physics acts on the residual: a lid vertex
 // is placed at c + R(θ_i)(x_i − c), x_i its (jawed) position rest + u, so the residual turns with the
@@ -41,6 +46,7 @@ namespace myo {
 struct LidSettings {
   double eyeballRadius = 0.125;  // ≈ 1.2 cm: the eyeball's axial length is about 2.4 cm
   double lowerShare = 0.1;       // f: in a blink the upper lid travels ~9 mm, the lower ~1 mm up (and nasally)
+  double nasalSlide = 0.02;      // s: a blink slides the lids ~2 mm towards the nose over the globe (below)
   double raiseFraction = 0.3;    // k: a full AU5 lifts the upper margin by ~30 % of the fissure (≈ 3 mm)
   double upperTarsus = 0.03;     // w = 1 within this of the upper margin: the visible pretarsal skin, ~3 mm
   double upperFalloff = 0.06;    // then w falls to 0 at the lid crease (~8 mm above the margin)
@@ -63,6 +69,7 @@ struct EyeLids {
   std::vector<double> lidWeights;    // w per lid vertex, in (0, 1] on the upper lid, [−1, 0) on the lower
   std::vector<double> raiseAngle;    // β per lid vertex, radians (from the rest fissure)
   double lowerShare = 0.1;           // f (LidSettings::lowerShare)
+  double nasalTurn = 0.0;            // radians: the lids' nasal turn about `up` at c = 1 and |w| = 1
   std::vector<int> orbitVertices;    // vertices projected out of the proxy
   std::vector<int> upperMargin, lowerMargin;  // the margin paths, inner corner to outer corner
   // The mid-lid landmark pairs whose distance is the lid gap (upper, lower): 37/41 and 38/40 on the
@@ -113,11 +120,10 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
 ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions, bool project = true);
 
 // The turn of applyLids alone (no contact). It reads the rows of `positions` at the margins and the
-// lid vertices and writes only the lid vertices'. `angles`, when given, receives per eye the angle
-// θ_i (radians, about eye.axis through the centre) each lid vertex turned by, in lidVertices' order
-// (zeros for an eye at rest); the change of ρ a closure adds is not in it.
-void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions,
-              std::array<std::vector<double>, 2>* angles = nullptr);
+// lid vertices and writes only the lid vertices'. `turns`, when given, receives per eye the rotation
+// (about the centre) each lid vertex turned by, in lidVertices' order (identities for an eye at rest);
+// the change of ρ a closure adds is not in it.
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns = nullptr);
 
 // The lid gap of eye `eye` (0 right, 1 left) in `positions`: the mean distance of its two mid-lid
 // landmark pairs, cm.
