@@ -119,8 +119,18 @@ ContactPenalty::Workspace ContactPenalty::workspace() const {
   ws.active.reserve(rows_.size());
   ws.flagged.assign(rows_.size(), 0);
   ws.a = VecX::Zero(Phi_.cols());
-  if (const LidRig* lids = placement_->lids())
-    for (size_t e = 0; e < 2; ++e) ws.lidTurns[e].reserve(lids->eyes[e].lidVertices.size());
+  if (const LidRig* lids = placement_->lids()) {
+    size_t margin = 0;
+    for (size_t e = 0; e < 2; ++e) {
+      ws.lidTurns[e].reserve(lids->eyes[e].lidVertices.size());
+      margin = std::max({margin, lids->eyes[e].upperMargin.size(), lids->eyes[e].lowerMargin.size()});
+    }
+    for (LidMarginCurve* c : {&ws.fissure.upper, &ws.fissure.lower}) {
+      c->byX.reserve(margin);
+      c->elevation.reserve(margin);
+      c->distance.reserve(margin);
+    }
+  }
   return ws;
 }
 
@@ -149,7 +159,7 @@ double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose
   }
   const LidRig* lr = placement_->lids();
   if (lr && !lids.isZero()) {
-    turnLids(*lr, lids, ws.positions, &ws.lidTurns);
+    turnLids(*lr, lids, ws.positions, &ws.lidTurns, &ws.fissure);
     for (size_t e = 0; e < 2; ++e) {
       const EyeLids& eye = lr->eyes[e];
       for (size_t j = 0; j < eye.lidVertices.size(); ++j) {

@@ -92,22 +92,19 @@ double distanceToPath(const MatX3& V, const std::vector<int>& path, const Vec3& 
 }
 
 // A margin over x: its elevation φ(x) and its distance from the axis ρ(x), from the path's
-// vertices sorted by x.
-struct MarginCurve {
-  std::vector<std::pair<double, double>> elevation, distance;
-};
-MarginCurve marginCurve(const MatX3& V, const std::vector<int>& path, const EyeFrame& f) {
-  std::vector<int> byX = path;
-  std::sort(byX.begin(), byX.end(), [&](int a, int b) {
+// vertices sorted by x (into `curve`, reusing its storage).
+void marginCurve(const MatX3& V, const std::vector<int>& path, const EyeFrame& f, LidMarginCurve& curve) {
+  curve.byX.assign(path.begin(), path.end());
+  std::sort(curve.byX.begin(), curve.byX.end(), [&](int a, int b) {
     return f.along(V.row(a).transpose()) < f.along(V.row(b).transpose());
   });
-  MarginCurve curve;
-  for (int v : byX) {
+  curve.elevation.clear();
+  curve.distance.clear();
+  for (int v : curve.byX) {
     const Vec3 p = V.row(v).transpose();
     curve.elevation.emplace_back(f.along(p), f.elevation(p));
     curve.distance.emplace_back(f.along(p), f.fromAxis(p));
   }
-  return curve;
 }
 
 EyeFrame eyeFrame(const EyeLids& lids) {
@@ -115,17 +112,13 @@ EyeFrame eyeFrame(const EyeLids& lids) {
 }
 
 // The palpebral fissure of positions P: both margins over x, and the canthi's x range.
-struct Fissure {
-  MarginCurve upper, lower;
-  double xLow = 0.0, xHigh = 0.0;
-};
-Fissure fissure(const MatX3& P, const EyeLids& lids, const EyeFrame& f) {
-  Fissure r{marginCurve(P, lids.upperMargin, f), marginCurve(P, lids.lowerMargin, f)};
+void fissure(const MatX3& P, const EyeLids& lids, const EyeFrame& f, LidFissure& r) {
+  marginCurve(P, lids.upperMargin, f, r.upper);
+  marginCurve(P, lids.lowerMargin, f, r.lower);
   const double inner = f.along(P.row(lids.upperMargin.front()).transpose());
   const double outer = f.along(P.row(lids.upperMargin.back()).transpose());
   r.xLow = std::min(inner, outer);
   r.xHigh = std::max(inner, outer);
-  return r;
 }
 
 // The centre behind the mid-lid landmarks' mean m, along −z, at the depth t where their mean
@@ -167,7 +160,8 @@ EyeLids buildEye(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame
   lids.lowerMargin = marginPath(skin, {id(e.inner), id(e.lower[0]), id(e.lower[1]), id(e.outer)});
 
   const EyeFrame f = eyeFrame(lids);
-  const Fissure rest = fissure(V, lids, f);
+  LidFissure rest;
+  fissure(V, lids, f, rest);
   const double tu = s.upperTarsus * frame.scale, fu = s.upperFalloff * frame.scale;
   const double tl = s.lowerTarsus * frame.scale, fl = s.lowerFalloff * frame.scale;
   const double reach = std::max(tu + fu, tl + fl);
@@ -246,7 +240,10 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
   return rig;
 }
 
-void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns) {
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns,
+              LidFissure* scratch) {
+  LidFissure local;
+  LidFissure& now = scratch ? *scratch : local;
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
     const double c = pose.close[e], r = pose.raise[e];
@@ -255,7 +252,7 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
     // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
     // margins meet whatever the physics did to them.
     const EyeFrame f = eyeFrame(eye);
-    const Fissure now = fissure(positions, eye, f);
+    fissure(positions, eye, f, now);
     // The nasal slide turns about the vertical axis through the centre, towards the inner canthus.
     const double towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
     for (size_t k = 0; k < eye.lidVertices.size(); ++k) {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/face/eyelids.h"
 #include "myoshell/face/jaw.h"
 #include "myoshell/face/skin_placement.h"
 #include "myoshell/reduce/modal_basis.h"
@@ -49,7 +50,8 @@ class ContactPenalty {
     MatX3 positions;                               // n×3: only the candidates' rows are kept up to date
     VecX u;                                        // 3k: the candidates' residual
     std::vector<Mat3> J;                           // k: J_i = R_lid,i R_jaw,i
-    std::array<std::vector<Mat3>, 2> lidTurns;  // the lids' rotation per lid vertex
+    std::array<std::vector<Mat3>, 2> lidTurns;     // the lids' rotation per lid vertex
+    LidFissure fissure;                            // the lids' margins, measured at each turn
     MatX3 gradient;                                // k×3: ∂E/∂x per candidate, head space
     std::vector<int> active;                       // candidate indices in a violated constraint
     std::vector<char> flagged;                     // k: whether a candidate is in `active`

@@ -32,6 +32,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "myoshell/core/types.h"
@@ -123,7 +124,18 @@ ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions
 // lid vertices and writes only the lid vertices'. `turns`, when given, receives per eye the rotation
 // (about the centre) each lid vertex turned by, in lidVertices' order (identities for an eye at rest);
 // the change of ρ a closure adds is not in it.
-void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns = nullptr);
+// `scratch`, when given, holds the fissure's curves between calls, so a warm call allocates nothing
+// (the step's contact penalty turns the lids at every step).
+struct LidMarginCurve {
+  std::vector<int> byX;                                    // the margin's vertices sorted by x
+  std::vector<std::pair<double, double>> elevation, distance;  // (x, φ) and (x, ρ)
+};
+struct LidFissure {
+  LidMarginCurve upper, lower;
+  double xLow = 0.0, xHigh = 0.0;  // the canthi's x
+};
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns = nullptr,
+              LidFissure* scratch = nullptr);
 
 // The lid gap of eye `eye` (0 right, 1 left) in `positions`: the mean distance of its two mid-lid
 // landmark pairs, cm.
