@@ -8,6 +8,7 @@
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_skin.h"
 
@@ -40,7 +41,10 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
   grabTimes_.factorisation = clock.seconds();
   if (!home) {
     responses.resize(n3, 3);
-    for (int a = 0; a < 3; ++a) responses.col(a) = flat(builder->staticResponse(skin.dragPattern(vertices, a)));
+    parallelFor(3, [&](std::int64_t a) {  // independent solves with the one kept factorisation
+      responses.col(a) = flat(builder->staticResponse(skin.dragPattern(vertices, static_cast<int>(a))));
+    });
+    grabTimes_.solves = clock.seconds() - grabTimes_.factorisation;
     // The release (Woodbury, as linearFullResponse): K⁻¹f = y + K̂⁻¹C̃ S (I − S C̃ᵀK̂⁻¹C̃ S)⁻¹ S C̃ᵀy,
     // y = K̂⁻¹f, S = Ρ^½, with K̂⁻¹C̃ = Φ_h Λ_h⁻¹ Φ_hᵀC̃ from the held basis (it spans K̂⁻¹C̃), so the
     // release costs no solve.
@@ -61,15 +65,17 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
   grip.vertices = std::move(vertices);
   grip.responses = std::move(responses);
 
-  // The candidates for the new vectors, each with its Ψ (= W times it): every moved grip's
-  // responses, then the state's fields u = Φ_c q and v = Φ_c q̇ (Ψ_c q, Ψ_c q̇), so that the state
-  // lies in the new span whatever grips it came from.
+  // The candidates for the new vectors, each with its Ψ (= W times it) when warping: every moved
+  // grip's responses, then the state's fields u = Φ_c q and v = Φ_c q̇ (Ψ_c q, Ψ_c q̇), so that the
+  // state lies in the new span whatever grips it came from. With linear modes the integrator never
+  // reads Ψ: the extended basis carries none (half the cost of turning the basis).
+  const bool warped = skin.settings_.warping;
   std::vector<VecX> phi, psi;
   std::vector<double> tolerance;
   for (const Grip& g : grips_)
     for (Eigen::Index a = 0; a < g.responses.cols(); ++a) {
       phi.push_back(g.responses.col(a));
-      psi.push_back(builder->rotationOperator() * phi.back());
+      psi.push_back(warped ? VecX(builder->rotationOperator() * phi.back()) : VecX());
       tolerance.push_back(skin.ritz_.deflationTolerance);
     }
   const VecX& q = integrator_.q();
@@ -77,7 +83,7 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
   for (const VecX* s : {&q, &qdot})
     if (s->size() > 0 && s->squaredNorm() > 0.0) {
       phi.push_back(Bc.Phi * *s);
-      psi.push_back(Bc.Psi * *s);
+      psi.push_back(warped ? VecX(Bc.Psi * *s) : VecX());
       tolerance.push_back(1e-12);  // the state must stay exact: keep all but round-off
     }
   if (phi.empty()) {  // nothing moved and the stepper at rest: the skin's basis as it is
@@ -93,7 +99,7 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
   // M-orthonormalise against the skin's basis and each other (twice), with the Ritz deflation.
   VecX mass3(n3);
   for (Eigen::Index i = 0; i < n3 / 3; ++i) mass3.segment<3>(3 * i).setConstant(skin.mass_(i));
-  MatX X(n3, static_cast<Eigen::Index>(phi.size())), PsiX(n3, X.cols());
+  MatX X(n3, static_cast<Eigen::Index>(phi.size())), PsiX(warped ? n3 : 0, X.cols());
   Eigen::Index k = 0;
   for (size_t c = 0; c < phi.size(); ++c) {
     VecX& x = phi[c];
@@ -106,13 +112,14 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
       const VecX b = X.leftCols(k).transpose() * Mx;
       x.noalias() -= B0.Phi * a;
       x.noalias() -= X.leftCols(k) * b;
+      if (!warped) continue;
       w.noalias() -= B0.Psi * a;
       w.noalias() -= PsiX.leftCols(k) * b;
     }
     const double after = std::sqrt(x.dot(mass3.cwiseProduct(x)));
     if (!(after > tolerance[c] * before)) continue;
     X.col(k) = x / after;
-    PsiX.col(k) = w / after;
+    if (warped) PsiX.col(k) = w / after;
     ++k;
   }
   X.conservativeResize(Eigen::NoChange, k);
@@ -154,8 +161,10 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
   b.fromCache = B0.fromCache;
   b.Phi.noalias() = B0.Phi * Z.topRows(d0);
   b.Phi.noalias() += X * Z.bottomRows(k);
-  b.Psi.noalias() = B0.Psi * Z.topRows(d0);
-  b.Psi.noalias() += PsiX * Z.bottomRows(k);
+  if (warped) {
+    b.Psi.noalias() = B0.Psi * Z.topRows(d0);
+    b.Psi.noalias() += PsiX * Z.bottomRows(k);
+  }
   b.lambda = eig.eigenvalues();
   auto basis = std::make_shared<const ModalBasis>(std::move(b));
   grabTimes_.basis = clock.seconds() - grabTimes_.factorisation - grabTimes_.responses;

@@ -18,6 +18,7 @@
 #include "myoshell/face/shape_metric.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "myoshell/reduce/rotation_operator.h"
 #include "support/free_vertex.h"
 #include "support/ict.h"
 #include "support/test_data.h"
@@ -463,6 +464,37 @@ TEST(AnatomicalGrip, AGripMovedAtRunTimeIsExactAndContinuousOnTheBuiltInHead) {
 TEST(AnatomicalGrip, AGripMovedAtRunTimeIsExactAndContinuousOnIct) {
   MYO_REQUIRE_SHARED_DATA();
   recordMovedGrip(movedGrip(ictHead()));
+}
+
+// Warped, the grabbed basis carries Ψ = WΦ (the rotation operator of the new vectors, turned with
+// them), and the warped displacement R̃(Ψq)Φq does not jump across a grab either.
+TEST(AnatomicalGrip, WarpedTheGrabbedBasisKeepsPsiAndTheDisplacement) {
+  const Head head = loadDefaultHead();
+  AnatomicalSettings settings;
+  settings.warping = true;
+  settings.contact = false;
+  const int nose = head.landmarks.vertex("nose_tip");
+  const auto skin = std::make_shared<const AnatomicalSkin>(head, thesisMuscleDefs(), settings,
+                                                           std::vector<DragSite>{{nose, 1.0}}, nullptr);
+  AnatomicalStepper stepper(skin);
+  SkinLoads l;
+  l.activations = VecX::Zero(static_cast<Eigen::Index>(skin->muscles().size()));
+  l.gravity = skin->restGravity();
+  l.drags = {20000.0 * head.frame().axes.col(2)};
+  stepper.grab(0, test::freeLeftCheekVertex(head, {}), 1.0);
+  for (int k = 0; k < 60; ++k) stepper.step(l);
+  l.drags[0].setZero();
+  for (int k = 0; k < 10; ++k) stepper.step(l);
+  const MatX3 before = stepper.displacement();
+  stepper.grab(0, head.landmarks.vertex("mouth_corner_left"), 1.0);
+  const double jump = relativeError(stepper.displacement(), before);
+  const ModalBasis& B = stepper.integrator().basis();
+  EXPECT_EQ(B.modeCount(), skin->basis()->modeCount() + 5);  // the corner's three, u and u̇
+  const double psi = (B.Psi - rotationOperator(head.mesh.V, head.mesh.F) * B.Phi).norm() / B.Psi.norm();
+  RecordProperty("jump", std::to_string(jump));
+  RecordProperty("psi_vs_w_phi", std::to_string(psi));
+  EXPECT_LE(jump, 1e-9);
+  EXPECT_LE(psi, 1e-12);
 }
 
 TEST_F(AnatomicalIct, CorrugatorAndDepressorLabiiMoveWhereTheyInsert) {

@@ -319,16 +319,17 @@ class AnatomicalStepper {
   // fields Φq and Φq̇, M-orthonormalised (Ritz deflation), the reduced system re-diagonalised and the
   // state carried over by M-projection (the displacement does not jump: it lies in the new span).
   // Grabbing the grip it already has, or a vertex set the skin's own drag has, adds nothing of its
-  // own. Allocates; returns the wall time (s, the grab latency). Safe while other steppers on the
+  // own. With linear modes (warping off) an extended basis carries no Ψ (the integrator reads it
+  // only when warping). Allocates; returns the wall time (s, the grab latency). Safe while other steppers on the
   // same skin step or grab (the factorisation is made once under the skin's lock, then only read).
   // InputError for a vertex outside the mesh or a negative radius.
   double grab(int drag, int vertex, double radius);
   // Where the last grab's time went (s): making the factorisation and reading the held basis (the
-  // first grab on a skin after a warm start; 0 after), the three solves and the release, the new
-  // basis (orthonormalisation, reduced eigenproblem, Φ and Ψ turned), the integrator, the load
-  // patterns and the contact penalty on it.
+  // first grab on a skin after a warm start; 0 after), the responses (the three solves, `solves`,
+  // and the release), the new basis (orthonormalisation, reduced eigenproblem, Φ (and Ψ) turned),
+  // the integrator, the load patterns and the contact penalty on it (`finish`).
   struct GrabTimes {
-    double factorisation = 0.0, responses = 0.0, basis = 0.0, finish = 0.0, total = 0.0;
+    double factorisation = 0.0, responses = 0.0, solves = 0.0, basis = 0.0, finish = 0.0, total = 0.0;
   };
   const GrabTimes& lastGrabTimes() const { return grabTimes_; }
   // The vertices drag `drag`'s force is spread over (the skin's drag until grabbed elsewhere).
