@@ -865,6 +865,7 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
   for (Eigen::Index i = 0; i < force_.rows(); ++i) force_.row(i) = mass(i) * dg.transpose();
   for (Eigen::Index m = 0; m < level_.size(); ++m)
     if (level_(m) != 0.0) force_.noalias() += level_(m) * skin_->muscleLoads_[static_cast<size_t>(m)];
+  MYO_CHECK(loads.drags.size() <= grips_.size(), "a drag added to the skin after its stepper was made");
   for (size_t k = 0; k < loads.drags.size(); ++k) {
     const auto& vs = grips_[k].vertices;
     for (int v : vs) force_.row(v) += loads.drags[k].transpose() / static_cast<double>(vs.size());
