@@ -72,8 +72,8 @@ class ViewerSession {
   static constexpr double kBlinkClose = 0.10, kBlinkHold = 0.05, kBlinkOpen = 0.20;
 
   // --- the mouse drag ----------------------------------------------------------------------------
-  // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin; the anatomical
-  // model grips only the mouse drag's own vertex, the nose tip, for now).
+  // Grabs skin vertex `vertex` (InputError when it is pinned or outside the skin). The anatomical
+  // model computes the grip's Ritz vectors at grab time (AnatomicalStepper::grab).
   void grab(int vertex);
   // While grabbing: the force (dyn) on the grabbed spot.
   void pull(const Vec3& force);

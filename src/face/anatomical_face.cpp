@@ -48,6 +48,7 @@ AnatomicalSimulator::AnatomicalSimulator(std::shared_ptr<const AnatomicalFace> f
   stepper_ = std::make_unique<AnatomicalStepper>(face_->skinPtr());
   loads_.activations = VecX::Zero(face_->muscleCount());
   loads_.drags.assign(face_->drags().size(), Vec3::Zero());
+  for (const DragDef& d : face_->drags()) dragVertex_.push_back(d.vertex);
   loads_.contact = face_->skin().settings().contact;  // the penalty acts when the skin has one
   const MatX3& V = face_->head().mesh.V;
   runawayLimit_ = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
@@ -107,13 +108,14 @@ void AnatomicalSimulator::setDragForce(int drag, const Vec3& force) {
 void AnatomicalSimulator::setDragVertex(int drag, int vertex, double radius) {
   MYO_CHECK(drag >= 0 && drag < static_cast<int>(loads_.drags.size()), "drag index " << drag);
   const DragDef& d = face_->drags()[static_cast<size_t>(drag)];
-  if (vertex == d.vertex && (radius <= 0.0 || radius == d.radius)) return;
-  throw InputError("drag '" + d.name + "': the anatomical model grips a drag where the scene puts it (vertex " +
-                   std::to_string(d.vertex) + "); moving the grip to vertex " + std::to_string(vertex) +
-                   " is model: thesis only for now");
+  const int n = face_->head().mesh.vertexCount();
+  if (vertex < 0 || vertex >= n)
+    throw InputError("drag '" + d.name + "': vertex " + std::to_string(vertex) + " is outside [0, " + std::to_string(n) +
+                     ")");
+  if (!(radius > 0.0)) radius = d.radius;
+  grabSeconds_ = stepper_->grab(drag, vertex, radius);
+  dragVertex_[static_cast<size_t>(drag)] = vertex;
 }
-
-int AnatomicalSimulator::dragVertex(int drag) const { return face_->drags()[static_cast<size_t>(drag)].vertex; }
 
 void AnatomicalSimulator::setSkinStiffnessScale(double) {
   throw InputError("the skin stiffness scale is model: thesis only (the anatomical model has one skin, set by "

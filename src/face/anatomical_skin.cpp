@@ -613,8 +613,11 @@ MatX3 AnatomicalSkin::linearFullResponse(const MatX3& load) const {
   const Eigen::Index R = releaseColumns_.cols();
   if (R == 0) return y;
   const int n = head_.mesh.vertexCount();
-  if (heldCouplingResponses_.empty())
-    for (Eigen::Index j = 0; j < R; ++j) heldCouplingResponses_.push_back(b.staticResponse(rows3(VecX(releaseColumns_.col(j)))));
+  {  // made once, under the lock: a const skin is shared across threads (filled, it is only read)
+    std::lock_guard<std::mutex> lock(builderMutex_);
+    if (heldCouplingResponses_.empty())
+      for (Eigen::Index j = 0; j < R; ++j) heldCouplingResponses_.push_back(b.staticResponse(rows3(VecX(releaseColumns_.col(j)))));
+  }
   // Woodbury: K⁻¹F = y + K̂⁻¹C (Ρ⁻¹ − CᵀK̂⁻¹C)⁻¹ Cᵀy, written with S = Ρ^½ as
   // y + K̂⁻¹C S (I − S CᵀK̂⁻¹C S)⁻¹ S Cᵀy so that a column with ρ = 0 (a muscle without springs
   // lets go of nothing) drops out instead of making Ρ⁻¹ infinite.
@@ -764,16 +767,34 @@ AnatomicalStepper::AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin)
   const Eigen::Index m = static_cast<Eigen::Index>(skin_->muscles().size());
   level_ = VecX::Zero(m);
   levelRate_ = VecX::Zero(m);
-  if (skin_->settings().warping) {
-    force_ = MatX3::Zero(skin_->basis()->fullVertexCount, 3);
-  } else {
-    loadModes_ = skin_->modalLoadPatterns(integrator_.basis());
+  for (const AnatomicalSkin::Drag& d : skin_->drags_) grips_.push_back({d.vertices, MatX()});
+  if (skin_->settings().warping) force_ = MatX3::Zero(skin_->basis()->fullVertexCount, 3);
+  penalty_ = skin_->penalty_;
+  fitToBasis();
+}
+
+// The stepper's basis is the skin's until a grab extends it (anatomical_grab.cpp).
+void AnatomicalStepper::fitToBasis() {
+  const ModalBasis& B = integrator_.basis();
+  const Eigen::Index d = B.modeCount();
+  if (!skin_->settings().warping) {
+    loadModes_ = skin_->modalLoadPatterns(B);
+    const Eigen::Index first = loadModes_.cols() - 3 * static_cast<Eigen::Index>(grips_.size());
+    for (size_t k = 0; k < grips_.size(); ++k) {  // a moved grip's ê_x, ê_y, ê_z spread over its vertices
+      if (grips_[k].responses.size() == 0) continue;
+      const std::vector<int>& vs = grips_[k].vertices;
+      for (int a = 0; a < 3; ++a) {
+        auto col = loadModes_.col(first + 3 * static_cast<Eigen::Index>(k) + a);
+        col.setZero();
+        for (int v : vs) col += B.Phi.row(3 * v + a).transpose();
+        col /= static_cast<double>(vs.size());
+      }
+    }
     loadCoords_ = VecX::Zero(loadModes_.cols());
-    modalForce_ = VecX::Zero(loadModes_.rows());
+    modalForce_ = VecX::Zero(d);
   }
-  if (const ContactPenalty* pen = skin_->contactPenalty()) {
-    contact_ = pen->workspace();
-    const Eigen::Index d = integrator_.q().size();
+  if (penalty_) {
+    contact_ = penalty_->workspace();
     contactStiffness_ = MatX::Zero(d, d);
     contactForce_ = VecX::Zero(d);
     contactStep_ = VecX::Zero(d);
@@ -816,7 +837,7 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     // The contact penalty, linearly implicit (docs/mouth_contact.md, "Penalty forces"): at q_n its
     // force f_c and stiffness K_c; the step's force f_c − K_c Δ with Δ = q⁺ − q_n, so that
     // q⁺ = a q + b q̇ + g (f̃ + f_c − K_c Δ) gives (I + diag(g) K_c) Δ = a q + b q̇ + g (f̃ + f_c) − q.
-    if (const ContactPenalty* pen = loads.contact ? skin_->contactPenalty() : nullptr) {
+    if (const ContactPenalty* pen = loads.contact ? penalty_.get() : nullptr) {
       contactForce_.setZero();
       contactStiffness_.setZero();
       pen->evaluate(integrator_.q(), loads.jaw, skin_->placement_->lidPose(loads.activations), contact_, &contactForce_,
@@ -844,8 +865,9 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
   for (Eigen::Index i = 0; i < force_.rows(); ++i) force_.row(i) = mass(i) * dg.transpose();
   for (Eigen::Index m = 0; m < level_.size(); ++m)
     if (level_(m) != 0.0) force_.noalias() += level_(m) * skin_->muscleLoads_[static_cast<size_t>(m)];
+  MYO_CHECK(loads.drags.size() <= grips_.size(), "a drag added to the skin after its stepper was made");
   for (size_t k = 0; k < loads.drags.size(); ++k) {
-    const auto& vs = skin_->drags_[k].vertices;
+    const auto& vs = grips_[k].vertices;
     for (int v : vs) force_.row(v) += loads.drags[k].transpose() / static_cast<double>(vs.size());
   }
   // Warped: no contact penalty in the step (the projection at output still holds; the warped

@@ -62,7 +62,7 @@ void RitzBasisBuilder::prepare(const VecX& vertexMass, const MatX3& rest, const 
   if (settings_.modes.modeCount < 0 || settings_.modes.modeCount > 3 * n)
     throw InputError("Ritz basis: mode count must lie in [0, 3n]");
   if (!(vertexMass.minCoeff() > 0.0)) throw InputError("Ritz basis: every vertex mass must be > 0");
-  W_ = rotationOperator(rest, F);
+  W_ = myo::rotationOperator(rest, F);  // the free function, not the accessor
   mass3_.resize(3 * n);
   for (Eigen::Index i = 0; i < n; ++i) mass3_.segment<3>(3 * i).setConstant(vertexMass(i));
 }

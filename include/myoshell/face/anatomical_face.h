@@ -101,9 +101,14 @@ class AnatomicalSimulator : public FaceStepper {
   void setJaw(const JawPose& pose) override;
   JawPose jaw() const override { return jaw_; }
   void setDragForce(int drag, const Vec3& force) override;
-  // Only the drag's own vertex (its Ritz vectors were built there): InputError otherwise.
+  // Moves the grip to any skin vertex (radius ≤ 0: the drag's own) for this simulator only
+  // (AnatomicalStepper::grab: the grip's static responses join this simulator's basis, the shared
+  // face is untouched; the displacement does not jump). InputError naming the drag and the vertex
+  // outside the mesh. The latency: lastGrabSeconds().
   void setDragVertex(int drag, int vertex, double radius = 0.0) override;
-  int dragVertex(int drag) const override;
+  int dragVertex(int drag) const override { return dragVertex_[static_cast<size_t>(drag)]; }
+  // Wall time of the last setDragVertex (s; AnatomicalStepper::lastGrabTimes has its parts).
+  double lastGrabSeconds() const { return grabSeconds_; }
   // Refused (InputError naming the model): the one skin has no per-channel stiffness scale.
   void setSkinStiffnessScale(double s) override;
   double skinStiffnessScale() const override { return 1.0; }
@@ -130,6 +135,8 @@ class AnatomicalSimulator : public FaceStepper {
   std::shared_ptr<const AnatomicalFace> face_;
   std::unique_ptr<AnatomicalStepper> stepper_;
   SkinLoads loads_;
+  std::vector<int> dragVertex_;  // per drag: the vertex gripped
+  double grabSeconds_ = 0.0;
   double gravityScale_ = 1.0;
   Eigen::Quaterniond pose_ = Eigen::Quaterniond::Identity();
   bool posed_ = false;          // a head pose other than upright was set

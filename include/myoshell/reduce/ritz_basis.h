@@ -65,6 +65,8 @@ class RitzBasisBuilder {
   // K⁻¹f with the kept factorisation (n×3, cm).
   MatX3 staticResponse(const MatX3& f) const;
   const SparseMat& stiffness() const { return K_; }
+  // W (3n×3n, rotation_operator.h): Ψ = WΦ for a vector a caller appends to a copy of the basis.
+  const SparseMat& rotationOperator() const { return W_; }
 
  private:
   SparseMat K_;
