@@ -8,6 +8,8 @@
 #include <Eigen/SparseCholesky>
 #include <random>
 
+#include "myoshell/face/head.h"
+#include "myoshell/face/muscle_def.h"
 #include "myoshell/face/nonlinear_settle.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/primitives.h"
@@ -122,6 +124,34 @@ TEST(NonlinearSettle, AReducedSolveInABasisThatSpansEverythingIsTheFullNonlinear
   const VecX lin = ldlt.solve(flat(F));
   EXPECT_GE((lin - flat(r.u)).norm(), 0.01 * flat(r.u).norm());
   RecordProperty("linear_vs_nonlinear", std::to_string((lin - flat(r.u)).norm() / flat(r.u).norm()));
+}
+
+// The skin's settle on the built-in head: the basis grows by the corrections and stays
+// M-orthonormal, and where the nonlinearity vanishes (all muscles at the activation that moves the
+// skin by at most 1 µm) the nonlinear settle is the linear one (the same K_x, release and loads as
+// AnatomicalSkin::settle).
+TEST(NonlinearSettle, ASmallLoadSettlesAsTheLinearSkin) {
+  const auto skin = std::make_shared<const AnatomicalSkin>(loadDefaultHead(), thesisMuscleDefs());
+  NonlinearSettleSettings ns;
+  ns.residualRounds = 0;  // the enrichment's plumbing is the ICT long test's (minutes here)
+  ns.loadSteps = 1;
+  const NonlinearSkinSettle nl(skin, ns);
+  const MatX& Phi = nl.basis();
+  EXPECT_GT(nl.corrections(), 0);
+  EXPECT_EQ(Phi.cols(), skin->basis()->modeCount() + nl.corrections());
+  VecX mass3(Phi.rows());
+  for (Eigen::Index i = 0; i < skin->vertexMass().size(); ++i) mass3.segment<3>(3 * i).setConstant(skin->vertexMass()(i));
+  const MatX gram = Phi.transpose() * mass3.asDiagonal() * Phi;
+  EXPECT_LE((gram - MatX::Identity(Phi.cols(), Phi.cols())).norm(), 1e-8);
+  SkinLoads l;
+  l.activations = VecX::Ones(static_cast<Eigen::Index>(skin->muscles().size()));
+  l.gravity = skin->restGravity();  // upright: no gravity load (SkinLoads's zero would lift the rest weight)
+  l.activations *= 1e-4 / skin->settle(l, false).u.cwiseAbs().maxCoeff();
+  const SettledSkin lin = skin->settle(l, false), s = nl.settle(l);
+  ASSERT_TRUE(s.converged);
+  const double err = (s.u - lin.u).norm() / lin.u.norm();
+  RecordProperty("small_load_vs_linear", std::to_string(err));
+  EXPECT_LE(err, 1e-3);
 }
 
 }  // namespace
