@@ -47,11 +47,11 @@ struct NonlinearSettleSettings {
   // Residual enrichment after the second-order terms: per round, for each muscle alone at a = 1,
   // the full residual r = F − g_shell(X + u) − K_x u of its reduced solve u joins the basis as K⁻¹r
   // (a modified-Newton correction in full space, with the rest stiffness). 0: none. Each round
-  // costs one reduced solve and one full-space solve per muscle (ICT: about 80 s on a loaded
+  // costs one reduced solve and one full-space solve per muscle (ICT: about 33 s on a loaded
   // machine); two bring all eight at a = 1 from 7.8 % to 4.5 % (docs/anatomical_model.md).
   int residualRounds = 2;
   double deflationTolerance = 1e-8;  // as RitzSettings: a correction already in the span is dropped
-  int loadSteps = 10;                // continuation (as the full-space reference)
+  int loadSteps = 3;                 // continuation (the full-space reference takes 10)
   int maxIterations = 30;            // Newton iterations per load step
   double tolerance = 1e-8;           // |∇E_r| ≤ tolerance · |ΦᵀF|
   void validate() const;             // InputError naming the field
