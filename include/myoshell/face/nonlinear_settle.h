@@ -11,7 +11,7 @@
 // with second-order static corrections, the static modal derivatives of Idelsohn & Cardona (1985,
 // "A reduction method for nonlinear structural dynamic analysis", Comput Methods Appl Mech Eng 49:253)
 // as Barbič & James (2005, "Real-time subspace integration for St. Venant–Kirchhoff deformable
-// models", SIGGRAPH, eq. 9) write them for modes: with ψ_i the linear response to load pattern i
+// models", SIGGRAPH: "modal derivatives") write them for modes: with ψ_i the linear response to load pattern i
 // (Kψ_i = F_i, K = ∇²E at rest) and N(a, b) = ∇³E_shell(X)[a, b] the second-order internal force,
 // u = Σ a_i ψ_i + Σ_{i≤j} a_i a_j χ_ij + O(a³) solves the equilibrium to second order when
 //
