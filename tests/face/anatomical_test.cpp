@@ -6,15 +6,19 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <thread>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
 #include "myoshell/face/anatomical_face.h"
 #include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/muscle_def.h"
+#include "myoshell/face/nonlinear_settle.h"
 #include "myoshell/face/shape_metric.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -105,6 +109,29 @@ MatX3 fullSpaceReference(const AnatomicalSkin& skin, MatX3 F) {
         break;
       }
     }
+  }
+  return u;
+}
+
+// fullSpaceReference, kept in MYO_REFERENCE_DIR (when set) as <name>.bin (the rows, then n×3 doubles):
+// each case's reference is minutes of Newton on 34k DOF, the reduced settles seconds.
+MatX3 cachedFullSpaceReference(const AnatomicalSkin& skin, const MatX3& F, const std::string& name) {
+  const char* dir = std::getenv("MYO_REFERENCE_DIR");
+  const std::string path = dir ? std::string(dir) + "/" + name + ".bin" : std::string();
+  if (dir) {
+    std::ifstream in(path, std::ios::binary);
+    Eigen::Index rows = 0;
+    if (in.read(reinterpret_cast<char*>(&rows), sizeof rows) && rows == F.rows()) {
+      MatX3 u(rows, 3);
+      if (in.read(reinterpret_cast<char*>(u.data()), static_cast<std::streamsize>(sizeof(double) * u.size()))) return u;
+    }
+  }
+  const MatX3 u = fullSpaceReference(skin, F);
+  if (dir) {
+    std::ofstream out(path, std::ios::binary);
+    const Eigen::Index rows = u.rows();
+    out.write(reinterpret_cast<const char*>(&rows), sizeof rows);
+    out.write(reinterpret_cast<const char*>(u.data()), static_cast<std::streamsize>(sizeof(double) * u.size()));
   }
   return u;
 }
@@ -262,11 +289,49 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
       {"zyg_dao", loads({{"zygomaticus_major_left", 1.0}, {"depressor_anguli_oris_left", 1.0}})},
       {"all_eight", loads(all)},
       {"gravity_face_down", loads({}, Vec3(90, 0, 0))}};
+  // The reduced nonlinear settle (nonlinear_settle.h, default settings: the Ritz basis with the
+  // second-order corrections, self and crossed, and two rounds of residual enrichment), asserted
+  // below; MYO_NONLINEAR_VARIANTS=ritz,self,cross,cross_residual1 records the lesser variants
+  // beside it (docs/anatomical_model.md, "The reduced nonlinear settle").
+  std::vector<std::pair<std::string, std::unique_ptr<NonlinearSkinSettle>>> nonlinear;
+  const char* variants = std::getenv("MYO_NONLINEAR_VARIANTS");
+  for (const std::string variant : {"chosen", "ritz", "self", "cross", "cross_residual1"}) {
+    NonlinearSettleSettings ns;
+    if (variant != "chosen") {
+      if (!variants || ("," + std::string(variants) + ",").find("," + variant + ",") == std::string::npos) continue;
+      ns.terms = variant == "ritz" ? SecondOrderTerms::None : variant == "self" ? SecondOrderTerms::Self : SecondOrderTerms::WithCross;
+      ns.residualRounds = variant == "cross_residual1" ? 1 : 0;
+    }
+    nonlinear.emplace_back(variant, std::make_unique<NonlinearSkinSettle>(skin_, ns));
+    RecordProperty("nonlinear_" + variant + "_basis", std::to_string(nonlinear.back().second->basis().cols()));
+    RecordProperty("nonlinear_" + variant + "_build_seconds", std::to_string(nonlinear.back().second->buildSeconds()));
+    std::printf("nonlinear %s: basis %ld (+%d), built in %.2f s\n", variant.c_str(),
+                static_cast<long>(nonlinear.back().second->basis().cols()), nonlinear.back().second->corrections(),
+                nonlinear.back().second->buildSeconds());
+    std::fflush(stdout);
+  }
   // MYO_REFERENCE_CASES=zyg,gravity_face_down runs only those (each case takes minutes).
   const char* only = std::getenv("MYO_REFERENCE_CASES");
   for (const auto& [name, l] : cases) {
     if (only && ("," + std::string(only) + ",").find("," + name + ",") == std::string::npos) continue;
-    const MatX3 ref = fullSpaceReference(*skin_, skin_->worldLoad(l));
+    const MatX3 ref = cachedFullSpaceReference(*skin_, skin_->worldLoad(l), name);
+    for (const auto& [variant, settle] : nonlinear) {
+      const Stopwatch clock;
+      const SettledSkin s = settle->settle(l);
+      const double seconds = clock.seconds();
+      const double err = relativeError(s.u, ref);
+      RecordProperty(name + "_nonlinear_" + variant + "_error", std::to_string(err));
+      RecordProperty(name + "_nonlinear_" + variant + "_seconds", std::to_string(seconds));
+      std::printf("%s nonlinear %s: error %.4f, %d iterations, residual %.1e, %.2f s, max edge strain %.3f\n", name.c_str(),
+                  variant.c_str(), err, s.iterations, s.residual, seconds, maxEdgeStrain(skin_->head().mesh, s.u));
+      std::fflush(stdout);
+      // The goal, for the chosen reduced nonlinear settle (measured: zygomaticus 1.1 %, with
+      // the depressor anguli 3.4 %, all eight 4.5 %, gravity face-down 0.1 %).
+      if (variant == "chosen") {
+        EXPECT_TRUE(s.converged) << name;
+        EXPECT_LE(err, 0.05) << name;
+      }
+    }
     const double lin = relativeError(skin_->settle(l, false).u, ref);
     const double warp = relativeError(skin_->settle(l, true).u, ref);
     const double linFull = relativeError(skin_->linearFullResponse(l), ref);
@@ -283,11 +348,12 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
       RecordProperty(name + "_warped_reading_a_error", std::to_string(relativeError(skinA.settle(l, true).u, ref)));
       RecordProperty(name + "_linear_reading_a_error", std::to_string(relativeError(skinA.settle(l, false).u, ref)));
     }
-    // The goal is 5 %. Measured (2026-11-26, relaxed muscles released across, the skin
-    // following the insertion; the reference with the same release): zygomaticus linear 12.9 %,
-    // warped 25.6 %; with the depressor anguli 15.6 % / 15.1 %; all eight 24.3 % / 37.2 %; gravity
-    // face-down 2.55 % / 2.54 % (docs/anatomical_model.md). Asserted: the chosen linear modes are
-    // within a percentage point of warping or better, and under 25 %.
+    // The goal is 5 %, reached by the reduced nonlinear settle (above). The linear settles
+    // (2026-11-26, relaxed muscles released across, the skin following the insertion; the reference
+    // with the same release): zygomaticus linear 12.9 %, warped 25.3 %; with the depressor anguli
+    // 15.6 % / 15.0 %; all eight 24.3 % / 36.2 %; gravity face-down 2.55 % / 2.55 %
+    // (docs/anatomical_model.md). Asserted: the default linear modes are within a percentage point
+    // of warping or better, and under 25 %.
     EXPECT_LE(lin, warp + 0.01) << name;
     EXPECT_LE(lin, 0.25) << name;
   }

@@ -1,0 +1,201 @@
+#include "myoshell/face/nonlinear_settle.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+
+namespace myo {
+
+void NonlinearSettleSettings::validate() const {
+  if (!(crossOverlap >= 0.0)) throw InputError("nonlinear settle: crossOverlap must be ≥ 0");
+  if (!(deflationTolerance > 0.0 && deflationTolerance < 1.0))
+    throw InputError("nonlinear settle: deflationTolerance must lie in (0, 1)");
+  if (loadSteps < 1) throw InputError("nonlinear settle: loadSteps must be ≥ 1");
+  if (residualRounds < 0) throw InputError("nonlinear settle: residualRounds must be ≥ 0");
+  if (maxIterations < 1) throw InputError("nonlinear settle: maxIterations must be ≥ 1");
+  if (!(tolerance > 0.0)) throw InputError("nonlinear settle: tolerance must be > 0");
+}
+
+double reducedShellEnergy(const DiscreteShell& shell, const MatX& Phi, const MatX& Kxr, const VecX& fr, const VecX& q,
+                          VecX* grad, MatX* hess, HessianMode mode) {
+  MatX3 x = shell.rest();
+  flat(x) += Phi * q;
+  VecX g;
+  SparseMat H;
+  const ShellEnergy e = shell.energy(x, grad ? &g : nullptr, hess ? &H : nullptr, mode);
+  const VecX Kq = Kxr * q;
+  if (grad) *grad = Phi.transpose() * g + Kq - fr;
+  if (hess) {
+    const MatX HPhi = H * Phi;
+    *hess = Phi.transpose() * HPhi + Kxr;
+    *hess = 0.5 * (*hess + hess->transpose()).eval();
+  }
+  return e.total + 0.5 * q.dot(Kq) - fr.dot(q);
+}
+
+namespace {
+
+// H(X + εa) and H(X − εa), ε·max|a| = step: N(a, b) = (H₊ − H₋) b / 2ε for any b.
+struct HessianPair {
+  SparseMat plus, minus;
+  double eps = 0.0;
+  VecX apply(const VecX& b) const { return (plus * b - minus * b) / (2.0 * eps); }
+};
+HessianPair hessianPair(const DiscreteShell& shell, const MatX3& a, double step) {
+  HessianPair p;
+  const double amax = a.cwiseAbs().maxCoeff();
+  if (!(amax > 0.0)) throw InputError("second-order force: the direction is zero");
+  p.eps = step / amax;
+  shell.energy(shell.rest() + p.eps * a, nullptr, &p.plus, HessianMode::Exact);
+  shell.energy(shell.rest() - p.eps * a, nullptr, &p.minus, HessianMode::Exact);
+  return p;
+}
+
+// Appends r to the M-orthonormal columns of Phi (classical Gram–Schmidt twice, as RitzBasisBuilder);
+// false when r is already in the span (deflation).
+bool appendMOrthonormal(MatX& Phi, const VecX& mass3, VecX r, double tolerance) {
+  const double before = std::sqrt(r.dot(mass3.cwiseProduct(r)));
+  if (!(before > 0.0)) return false;
+  for (int pass = 0; pass < 2; ++pass) r -= Phi * (Phi.transpose() * mass3.cwiseProduct(r));
+  const double after = std::sqrt(r.dot(mass3.cwiseProduct(r)));
+  if (!(after > tolerance * before)) return false;
+  Phi.conservativeResize(Eigen::NoChange, Phi.cols() + 1);
+  Phi.col(Phi.cols() - 1) = r / after;
+  return true;
+}
+
+}  // namespace
+
+VecX secondOrderForce(const DiscreteShell& shell, const MatX3& a, const MatX3& b, double step) {
+  return hessianPair(shell, a, step).apply(flat(b));
+}
+
+ReducedSolve minimizeReducedEnergy(const DiscreteShell& shell, const MatX& Phi, const MatX& Kxr, const VecX& fr,
+                                   const NonlinearSettleSettings& s) {
+  s.validate();
+  const Eigen::Index r = Phi.cols();
+  ReducedSolve out;
+  out.q = VecX::Zero(r);
+  const double fNorm = std::max(fr.norm(), 1e-300);
+  Eigen::LLT<MatX> llt;
+  VecX g;
+  MatX H;
+  for (int step = 1; step <= s.loadSteps; ++step) {
+    const VecX f = (static_cast<double>(step) / s.loadSteps) * fr;
+    for (int it = 0; it < s.maxIterations; ++it) {
+      const double e0 = reducedShellEnergy(shell, Phi, Kxr, f, out.q, &g, &H, HessianMode::Exact);
+      out.residual = g.norm() / fNorm;
+      if (out.residual <= s.tolerance) break;
+      ++out.iterations;
+      llt.compute(H);
+      if (llt.info() != Eigen::Success) {  // indefinite: the projected Hessian (PSD blocks) + K_x
+        reducedShellEnergy(shell, Phi, Kxr, f, out.q, nullptr, &H, HessianMode::Projected);
+        llt.compute(H);
+        if (llt.info() != Eigen::Success) throw NumericalError("nonlinear settle: the reduced Hessian is singular");
+      }
+      const VecX p = llt.solve(-g);
+      double alpha = 1.0;
+      for (int ls = 0; ls < 30; ++ls, alpha *= 0.5) {
+        const VecX qt = out.q + alpha * p;
+        if (reducedShellEnergy(shell, Phi, Kxr, f, qt, nullptr, nullptr) <= e0 + 1e-4 * alpha * g.dot(p) || ls == 29) {
+          out.q = qt;
+          break;
+        }
+      }
+    }
+  }
+  reducedShellEnergy(shell, Phi, Kxr, fr, out.q, &g, nullptr);
+  out.residual = g.norm() / fNorm;
+  out.converged = out.residual <= 1e3 * s.tolerance;
+  out.u = MatX3(shell.rest().rows(), 3);
+  flat(out.u) = Phi * out.q;
+  return out;
+}
+
+NonlinearSkinSettle::NonlinearSkinSettle(std::shared_ptr<const AnatomicalSkin> skin, const NonlinearSettleSettings& settings)
+    : skin_(std::move(skin)), settings_(settings) {
+  settings_.validate();
+  if (!skin_) throw InputError("nonlinear settle: no skin");
+  const Stopwatch clock;
+  const AnatomicalSkin& sk = *skin_;
+  const DiscreteShell& shell = sk.shell();
+  Kx_ = sk.extraStiffness() - sk.releaseStiffness();
+  Phi_ = sk.basis()->Phi;
+  const Eigen::Index n = shell.vertexCount();
+  VecX mass3(3 * n);
+  for (Eigen::Index i = 0; i < n; ++i) mass3.segment<3>(3 * i).setConstant(sk.vertexMass()(i));
+
+  if (settings_.terms != SecondOrderTerms::None) {
+    // The load patterns at their scale: each muscle at a = 1, gravity |g| along x, y, z.
+    std::vector<MatX3> psi;
+    for (int m = 0; m < static_cast<int>(sk.muscles().size()); ++m) psi.push_back(sk.linearFullResponse(sk.muscleLoad(m)));
+    for (int a = 0; a < 3; ++a) {
+      MatX3 f = MatX3::Zero(n, 3);
+      f.col(a) = sk.settings().gravity * sk.vertexMass();
+      psi.push_back(sk.linearFullResponse(f));
+    }
+    const size_t P = psi.size();
+    const VecX norm = [&] {
+      VecX v(static_cast<Eigen::Index>(P));
+      for (size_t i = 0; i < P; ++i) v(static_cast<Eigen::Index>(i)) = psi[i].norm();
+      return v;
+    }();
+    auto overlaps = [&](size_t i, size_t j) {
+      const double o = psi[i].rowwise().norm().dot(psi[j].rowwise().norm());
+      return o > settings_.crossOverlap * norm(static_cast<Eigen::Index>(i)) * norm(static_cast<Eigen::Index>(j));
+    };
+    for (size_t i = 0; i < P; ++i) {
+      if (!(norm(static_cast<Eigen::Index>(i)) > 0.0)) continue;
+      const HessianPair hp = hessianPair(shell, psi[i], 1e-4);
+      for (size_t j = i; j < P; ++j) {
+        if (j != i && (settings_.terms != SecondOrderTerms::WithCross || !overlaps(i, j))) continue;
+        if (!(norm(static_cast<Eigen::Index>(j)) > 0.0)) continue;
+        VecX N = hp.apply(flat(psi[j]));
+        const MatX3 chi = sk.linearFullResponse(rows3(N));
+        if (appendMOrthonormal(Phi_, mass3, flat(chi), settings_.deflationTolerance)) ++corrections_;
+      }
+    }
+  }
+  auto reduceKx = [&] {
+    Kxr_ = Phi_.transpose() * (Kx_ * Phi_);
+    Kxr_ = 0.5 * (Kxr_ + Kxr_.transpose()).eval();
+  };
+  reduceKx();
+  for (int round = 0; round < settings_.residualRounds; ++round) {
+    std::vector<VecX> residuals;
+    for (int m = 0; m < static_cast<int>(sk.muscles().size()); ++m) {
+      const MatX3& F = sk.muscleLoad(m);
+      const ReducedSolve r = minimizeReducedEnergy(shell, Phi_, Kxr_, Phi_.transpose() * flat(F), settings_);
+      VecX g;
+      shell.energy(shell.rest() + r.u, &g);
+      residuals.push_back(flat(F) - g - Kx_ * flat(r.u));
+    }
+    for (VecX& res : residuals) {
+      const MatX3 c = sk.linearFullResponse(rows3(res));
+      if (appendMOrthonormal(Phi_, mass3, flat(c), settings_.deflationTolerance)) ++corrections_;
+    }
+    reduceKx();
+  }
+  buildSeconds_ = clock.seconds();
+}
+
+SettledSkin NonlinearSkinSettle::settle(const SkinLoads& loads) const { return settle(skin_->worldLoad(loads)); }
+
+SettledSkin NonlinearSkinSettle::settle(const MatX3& F) const {
+  const VecX fr = Phi_.transpose() * flat(F);
+  const ReducedSolve r = minimizeReducedEnergy(skin_->shell(), Phi_, Kxr_, fr, settings_);
+  SettledSkin out;
+  out.u = r.u;
+  out.q = r.q;
+  out.iterations = r.iterations;
+  out.residual = r.residual;
+  out.converged = r.converged;
+  return out;
+}
+
+}  // namespace myo
