@@ -194,7 +194,7 @@ MatX3 placed(const SkinPlacement& placement, const MatX3& rest, const MatX3& u, 
 }  // namespace
 
 ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings,
-                             const SkinPlacement* placement) {
+                             const SkinPlacement* placement, const std::vector<MatX3>* everyColumn) {
   const Stopwatch clock;
   settings.validate();
   const MatX3& rest = skin.head().mesh.V;
@@ -241,7 +241,14 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
     fit.fitted.push_back(k);
   }
   const auto m = static_cast<Eigen::Index>(fit.fitted.size());
-  const std::vector<MatX3> cols = activationColumns(skin, fit.fitted);
+  if (everyColumn && everyColumn->size() != static_cast<size_t>(mAll))
+    throw CheckError("fitActivations: " + std::to_string(everyColumn->size()) + " columns for " + std::to_string(mAll) +
+                     " muscles");
+  std::vector<MatX3> cols;
+  if (everyColumn)
+    for (int k : fit.fitted) cols.push_back((*everyColumn)[static_cast<size_t>(k)]);
+  else
+    cols = activationColumns(skin, fit.fitted);
   // A lid muscle's column is its placed shape at a = 1 (its physics and the lid fully turned): a
   // secant of the lid's rotation, so the bounded least squares stays linear; the fitted shape is
   // then placed exactly (below), and the figures measure that.

@@ -147,6 +147,11 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   // Every fit places its shape with the skin's one placement (face/skin_placement.h).
   const SkinPlacement& placement = skin.placement();
   const JawRig* jaw = placement.jaw();
+  // Every muscle's settled column, once: each fit below (and each jaw value a jaw shape's search
+  // tries) reuses them instead of solving them again.
+  std::vector<int> everyMuscle(skin.muscles().size());
+  for (size_t k = 0; k < everyMuscle.size(); ++k) everyMuscle[k] = static_cast<int>(k);
+  const std::vector<MatX3> columns = activationColumns(skin, everyMuscle);
 
   // The shapes the rig has, in ARKit order; a corrective (mouthClose) is fitted on its base's target.
   std::vector<RigShapeFit> shapes;
@@ -175,7 +180,7 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
       const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
       FitTarget t;
       t.displacement = s.target - jawMotion;
-      ActivationFit f = fitActivations(skin, t, settings, &placement);
+      ActivationFit f = fitActivations(skin, t, settings, &placement, &columns);
       if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
       return f;
     };
@@ -194,7 +199,7 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
     } else {
       FitTarget target;
       target.displacement = s.target;
-      s.fit = fitActivations(skin, target, settings, &placement);
+      s.fit = fitActivations(skin, target, settings, &placement, &columns);
     }
     return pose;
   };

@@ -91,8 +91,10 @@ struct ActivationFit {
 // NumericalError (the warped solve fails).
 // Shapes are placed by `placement` (face/skin_placement.h: the lids and the contact, the jaw at
 // rest), built from the skin's head and muscles when null; pass one to fit many shapes.
+// `everyColumn`, when given, holds activationColumns for every muscle of the skin in order (made
+// once for many fits: a column is a static solve); null computes the fitted muscles' columns.
 ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings = {},
-                             const SkinPlacement* placement = nullptr);
+                             const SkinPlacement* placement = nullptr, const std::vector<MatX3>* everyColumn = nullptr);
 
 // The linear columns: u_m (n×3, cm) of each listed muscle at a = 1, gravity off (rest gravity).
 std::vector<MatX3> activationColumns(const AnatomicalSkin& skin, const std::vector<int>& muscles);
