@@ -174,7 +174,7 @@ EyeLids buildEye(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame
     const double fromCentre = (p - lids.centre).norm();
     if (fromCentre < orbit) {
       lids.orbitVertices.push_back(static_cast<int>(i));
-      lids.contactRadius = std::min(lids.contactRadius, fromCentre * (1.0 - 1e-9));  // the rest stays clear
+      lids.contactRadius = std::min(lids.contactRadius, fromCentre - kRestContactClearance * frame.scale);  // the rest stays clear
     }
     const double x = f.along(p);
     if (x <= rest.xLow || x >= rest.xHigh) continue;  // beyond the canthi the lids do not move

@@ -108,7 +108,9 @@ MouthContact mouthContact(const TriMesh& skin, const Landmarks& landmarks, const
     const Vec3 q = local(m.frame, p);
     if (archClearance(m, q) > s.clearance * unit) continue;
     m.vertices.push_back(static_cast<int>(i));
-    if (proxyAt(m, q) != Proxy::None) m.shrink = std::min(m.shrink, archRadius(m, q) * (1.0 - 1e-9));
+    // Strictly clear: kRestContactClearance relative to the arch's half-width (contact_report.h).
+    if (proxyAt(m, q) != Proxy::None)
+      m.shrink = std::min(m.shrink, archRadius(m, q) * (1.0 - kRestContactClearance / s.archHalfWidth));
   }
   m.a *= m.shrink;  // about the ellipse's centre: its front recedes by (1 − k)·b
   m.b *= m.shrink;
@@ -128,7 +130,7 @@ MouthContact mouthContact(const TriMesh& skin, const Landmarks& landmarks, const
   const Vec3 y = m.frame.axes.col(1);
   auto pair = [&](int u, int l) {
     m.lipPairs.emplace_back(u, l);
-    m.lipBounds.push_back(std::min(0.0, (V.row(u) - V.row(l)).dot(y.transpose())));
+    m.lipBounds.push_back(std::min(0.0, (V.row(u) - V.row(l)).dot(y.transpose())) - kRestContactClearance * unit);
   };
   // (1) Where the lips touch at rest: each lower-lip vertex within pairReach of the upper lip.
   for (int l : lower) {
