@@ -48,17 +48,13 @@ double AnatomicalStepper::grab(int drag, int vertex, double radius) {
     // The release (Woodbury, as linearFullResponse): K⁻¹f = y + K̂⁻¹C̃ S (I − S C̃ᵀK̂⁻¹C̃ S)⁻¹ S C̃ᵀy,
     // y = K̂⁻¹f, S = Ρ^½, with K̂⁻¹C̃ = Φ_h Λ_h⁻¹ Φ_hᵀC̃ from the held basis (it spans K̂⁻¹C̃), so the
     // release costs no solve.
+    // What no grip changes (C̃ᵀΦ_h, the R × R factorisation) is the skin's, made at the first grab.
     const SparseMat& C = skin.releaseColumns_;
     if (C.cols() > 0) {
-      const ModalBasis& held = builder->basis();
-      const MatX CtPhi = C.transpose() * held.Phi;                         // R × D_h
-      const MatX PL = CtPhi * held.lambda.cwiseInverse().asDiagonal();    // C̃ᵀΦ_h Λ_h⁻¹
-      const VecX S = skin.releaseRho_.cwiseSqrt();
-      MatX D = -(S.asDiagonal() * (PL * CtPhi.transpose()) * S.asDiagonal());
-      D.diagonal().array() += 1.0;
-      const MatX SCy = S.asDiagonal() * (C.transpose() * responses);       // R × 3
-      const MatX z = S.asDiagonal() * MatX(D.ldlt().solve(SCy));
-      responses.noalias() += held.Phi * (PL.transpose() * z);
+      const AnatomicalSkin::ReleaseSolve& release = skin.releaseSolve();
+      const MatX SCy = release.S.asDiagonal() * (C.transpose() * responses);  // R × 3
+      const MatX z = release.S.asDiagonal() * MatX(release.D.solve(SCy));
+      responses.noalias() += builder->basis().Phi * (release.PL.transpose() * z);
     }
   }
   grabTimes_.responses = clock.seconds() - grabTimes_.factorisation;

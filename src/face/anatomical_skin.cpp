@@ -538,6 +538,22 @@ RitzBasisBuilder& AnatomicalSkin::builder() const {
   return *builder_;
 }
 
+const AnatomicalSkin::ReleaseSolve& AnatomicalSkin::releaseSolve() const {
+  const ModalBasis& held = builder().basis();  // builder() takes the lock itself
+  std::lock_guard<std::mutex> lock(builderMutex_);
+  if (!releaseSolve_) {
+    auto r = std::make_unique<ReleaseSolve>();
+    r->CtPhi = releaseColumns_.transpose() * held.Phi;                 // R × D_h
+    r->PL = r->CtPhi * held.lambda.cwiseInverse().asDiagonal();        // C̃ᵀΦ_h Λ_h⁻¹
+    r->S = releaseRho_.cwiseSqrt();
+    MatX D = -(r->S.asDiagonal() * (r->PL * r->CtPhi.transpose()) * r->S.asDiagonal());
+    D.diagonal().array() += 1.0;
+    r->D.compute(D);
+    releaseSolve_ = std::move(r);
+  }
+  return *releaseSolve_;
+}
+
 std::vector<int> AnatomicalSkin::dragVertices(int vertex, double radius) const {
   const MatX3& V = head_.mesh.V;
   const int n = head_.mesh.vertexCount();
@@ -568,6 +584,7 @@ int AnatomicalSkin::addDrag(int vertex, double radius, double* seconds) {
   b.addLoads({dragPattern(d.vertices, 0), dragPattern(d.vertices, 1), dragPattern(d.vertices, 2)});
   b.diagonalize();
   heldBasis_ = std::make_shared<const ModalBasis>(b.basis());
+  releaseSolve_.reset();  // made from the held basis, which just grew
   drags_.push_back(std::move(d));  // before the release: its cut-back basis keeps the drag's responses
   releaseRelaxedMuscles();
   if (seconds) *seconds = clock.seconds();

@@ -15,6 +15,7 @@
 // and K̂ is then factorised only when something needs it (addDrag, linearFullResponse).
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <memory>
 #include <mutex>
@@ -256,6 +257,16 @@ class AnatomicalSkin {
   // shape, then every across column. Their static responses join the held basis as loads.
   int extraReleaseColumns_ = 0;
   mutable std::vector<MatX3> heldCouplingResponses_;  // K̂⁻¹C̃_j, for linearFullResponse
+  // The release's part that no grip changes (a grab's Woodbury, anatomical_grab.cpp), made once
+  // under the builder's lock from the held basis Φ_h, Λ_h: C̃ᵀΦ_h, C̃ᵀΦ_hΛ_h⁻¹, S = Ρ^½ and the
+  // LDLᵀ of I − S C̃ᵀK̂⁻¹C̃ S. Dropped by addDrag (the held basis grows).
+  struct ReleaseSolve {
+    MatX CtPhi, PL;
+    VecX S;
+    Eigen::LDLT<MatX> D;
+  };
+  const ReleaseSolve& releaseSolve() const;
+  mutable std::unique_ptr<ReleaseSolve> releaseSolve_;
   struct Drag {
     std::vector<int> vertices;
   };
