@@ -308,7 +308,8 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
     loads.gravity = skin.restGravity();
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
     const MatX3 u0 = warping ? skin.settle(loads, true).u : MatX3();
-    auto warped = [&](const VecX& act) {
+    // The model's shape at these activations: the warped solve, or the placed linear shape.
+    auto shapeAt = [&](const VecX& act) {
       if (!warping) {
         MatX3 linear = MatX3::Zero(n, 3);
         for (Eigen::Index j = 0; j < m; ++j)
@@ -324,7 +325,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
     auto objective = [&](const MatX3& uu, const VecX& act) {
       return (gatherRows(uu, rows) - eRows).squaredNorm() + settings.lambda * eNorm2 * act.sum();
     };
-    u = warped(a);
+    u = shapeAt(a);
     double f = objective(u, a);
     // The warped solve refines every fitted muscle; the lids' turn only the muscles the linear fit
     // uses (a > 0): the others' columns are exact there, and each refined muscle costs a placement
@@ -344,7 +345,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
         VecX ah = a;
         const double hj = a(j) + h <= 1.0 ? h : -h;
         ah(j) += hj;
-        J.col(q) = (gatherRows(warped(ah), rows) - gatherRows(u, rows)) / hj;
+        J.col(q) = (gatherRows(shapeAt(ah), rows) - gatherRows(u, rows)) / hj;
         lower(q) = -a(j), upper(q) = 1.0 - a(j);
       }
       const VecX c = -J.transpose() * r - VecX::Constant(k, 0.5 * settings.lambda * eNorm2);
@@ -355,7 +356,7 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
         VecX at = a;
         for (Eigen::Index q = 0; q < k; ++q) at(free[static_cast<size_t>(q)]) += t * qp.x(q);
         at = at.cwiseMax(0.0).cwiseMin(1.0);
-        const MatX3 ut = warped(at);
+        const MatX3 ut = shapeAt(at);
         const double ft = objective(ut, at);
         if (ft < f) {
           a = at, u = ut, f = ft, improved = true;
