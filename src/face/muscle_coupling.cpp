@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/tissue_attachment.h"
@@ -18,6 +19,9 @@ namespace {
 // How squarely the muscle must lie beneath a skin vertex to couple to it: −(direction to the
 // muscle)·(skin normal) above this (about 73° from straight down).
 constexpr double kBeneath = 0.3;
+
+// The skin's closest point to a point (a SurfaceLocator's query, or the brute-force one).
+using ClosestOnSkin = std::function<SurfacePoint(const Vec3&)>;
 
 double smooth(double s) {
   s = std::clamp(s, 0.0, 1.0);
@@ -40,10 +44,49 @@ void CouplingProfile::validate(const std::string& owner) const {
     bad("profile positions must satisfy 0 ≤ origin_end < belly_start ≤ insertion_start < 1");
 }
 
+// The mean motion of the insertion ring towards the origin along `axis` (unit), cm.
+double insertionShortening(const Muscle& mu, const MatX3& U, const Vec3& axis) {
+  double along = 0.0;
+  for (int v : mu.insertionNodes) along += U.row(v).dot(axis.transpose());
+  return along / static_cast<double>(mu.insertionNodes.size());
+}
+
+// The muscle moved by U along its bed (docs/anatomical_model.md, "Muscles slide over their bed"):
+// each node v hangs under its skin point c_v (the skin's closest point, normal n_v) at the offset
+// r_v = p_v − c_v, whose part along the normal is h_v = r_v·n_v < 0. Its motion across the skin's
+// tangent plane walks that point along the skin, in steps of at most a quarter of |r_v|, each step
+// re-projected onto the skin and onto its tangent plane there, to c' (normal n'); the node follows
+// at the same depth, q' = p_v + (c' − c_v) + h_v (n' − n_v), which is p_v when u_v = 0. Its motion into or out of the face is gone: a curved muscle follows the
+// face's curve instead of straightening through the deep tissue under it. The short steps keep the
+// walk on the skin beside c_v, never across a lip's seam or a fold.
+MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePoint>& restFoot,
+                   const ClosestOnSkin& onSkin) {
+  MatX3 slid = U;
+  for (Eigen::Index v = 0; v < U.rows(); ++v) {
+    if (U.row(v).squaredNorm() == 0.0) continue;  // the pinned origin
+    const SurfacePoint& c = restFoot[static_cast<size_t>(v)];
+    const Vec3 u = U.row(v).transpose();
+    const Vec3 offset = Vec3(mu.mesh.V.row(v)) - c.point;  // from the skin down to the node
+    const double below = offset.dot(c.normal);                 // its part along the normal (< 0)
+    const Vec3 along = u - u.dot(c.normal) * c.normal;
+    const int steps = std::clamp(static_cast<int>(std::ceil(along.norm() / (0.25 * offset.norm()))), 1, 64);
+    SurfacePoint foot = c;
+    for (int k = 0; k < steps; ++k) {
+      const Vec3 step = along / steps;
+      foot = onSkin(foot.point + step - step.dot(foot.normal) * foot.normal);
+    }
+    slid.row(v) = ((foot.point - c.point) + below * (foot.normal - c.normal)).transpose();
+  }
+  return slid;
+}
+
 // A linear muscle's shape at a = 1: the static response of the pinned muscle to its activation load
 // (unit forces along the contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's
-// static-shape variant), scaled so that the insertion ring moves shortening × length along the muscle.
-void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCouplingSettings& settings) {
+// static-shape variant), scaled so that the insertion ring moves shortening × length along the
+// muscle. With `slideOverBed`, the nodes then keep their rest depth (slideOverBed above) and the
+// scale is found again so that the slid insertion moves the same shortening × length.
+void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCouplingSettings& settings,
+                 const std::vector<SurfacePoint>& restFoot, const ClosestOnSkin& onSkin) {
   const Muscle& mu = cm.muscle;
   const MuscleDef& def = mu.def;
   const int nm = mu.mesh.vertexCount();
@@ -59,21 +102,38 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
   Eigen::SimplicialLDLT<SparseMat> ldlt(Kff);
   if (ldlt.info() != Eigen::Success) throw NumericalError("muscle '" + def.name + "': stiffness is singular");
   const VecX x = ldlt.solve(P);
-  // Scale: the insertion ring's mean motion along the muscle is shortening × length.
-  const Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
-  double along = 0.0;
-  for (int v : mu.insertionNodes) {
-    const int r = toFree[static_cast<size_t>(v)];
-    if (r >= 0) along += x.segment<3>(3 * r).dot(axis);
-  }
-  along /= static_cast<double>(mu.insertionNodes.size());
-  if (!(along > 0.0))
-    throw NumericalError("muscle '" + def.name + "': its activation load does not move the insertion towards the origin");
-  const double scale = settings.shortening * mu.restLength / along;
-  cm.fullShape = MatX3::Zero(nm, 3);
+  MatX3 response = MatX3::Zero(nm, 3);
   for (int v = 0; v < nm; ++v) {
     const int r = toFree[static_cast<size_t>(v)];
-    if (r >= 0) cm.fullShape.row(v) = scale * x.segment<3>(3 * r).transpose();
+    if (r >= 0) response.row(v) = x.segment<3>(3 * r).transpose();
+  }
+  const double target = settings.shortening * mu.restLength;
+  auto checkedScale = [&](double along) {
+    if (!(along > 0.0))
+      throw NumericalError("muscle '" + def.name + "': its activation load does not move the insertion towards the origin");
+    return target / along;
+  };
+  // The pinned tube shortens along its chord. On the bed the fibres follow the skin, so their
+  // shortening is measured along their own direction at the insertion (the contraction direction of
+  // the insertion ring's central nodes: the centre line's tangent there, which follows the skin);
+  // fixed-point steps on the scale make it σ × length.
+  Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
+  if (settings.slideOverBed) {
+    Vec3 fibre = Vec3::Zero();
+    for (size_t c = 0; c < mu.centralNodes.size(); ++c)
+      if (std::find(mu.insertionNodes.begin(), mu.insertionNodes.end(), mu.centralNodes[c]) != mu.insertionNodes.end())
+        fibre += mu.contractDirection.row(static_cast<Eigen::Index>(c)).transpose();
+    if (fibre.norm() > 0.0) axis = fibre.normalized();
+  }
+  double scale = checkedScale(insertionShortening(mu, response, axis));
+  cm.fullShape = scale * response;
+  if (settings.slideOverBed) {
+    for (int it = 0; it < 30; ++it) {
+      cm.fullShape = slideOverBed(mu, scale * response, restFoot, onSkin);
+      const double along = insertionShortening(mu, cm.fullShape, axis);
+      if (std::abs(along - target) <= 1e-9 * target) break;
+      scale *= checkedScale(along);
+    }
   }
   {
     const VecX& mass = shell.lumpedMass();
@@ -81,7 +141,6 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
     for (size_t k = 0; k < freeV.size(); ++k) mm2 += mass(freeV[k]) * x.segment<3>(3 * static_cast<Eigen::Index>(k)).squaredNorm();
     cm.naturalFrequency = std::sqrt(x.dot(Kff * x) / mm2);
   }
-
 }
 
 // A ring muscle's shape at a = 1 (docs/muscles.md, "Ring muscles"): the fibres shorten by the
@@ -125,27 +184,31 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   const int nm = mm.vertexCount();
   const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), settings.muscle);
 
-  if (mu.def.isRing()) ringShape(cm, shell, head.frame());
-  else linearShape(cm, shell, settings);
-
-  // Springs from every skin vertex over the muscle to the muscle's surface point below it.
   const MatX3& S = head.mesh.V;
   const MatX3i& F = head.mesh.F;
   const MatX3 skinNormals = skin ? skin->vertexNormals() : vertexNormals(S, F);
-  const SurfaceLocator muscleSurface(mm.V, mm.F, vertexNormals(mm.V, mm.F));
-  const VecX skinArea = lumpedVertexAreas(S, F);
+  const ClosestOnSkin onSkin = [&](const Vec3& p) { return skin ? skin->closest(p) : closestSurfacePoint(S, F, skinNormals, p); };
   const double L = mu.restLength;
   // Per muscle node: its place along the muscle (t) and its depth below the skin. A ring's fibres
   // insert into the skin all along it (the lips, the lids): t = 1, the insertion's modulus.
   const Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
   VecX nodeT(nm), nodeDepth(nm);
+  std::vector<SurfacePoint> foot(static_cast<size_t>(nm));  // each node's closest skin point
   for (int v = 0; v < nm; ++v) {
     const Vec3 p = mm.V.row(v);
     nodeT(v) = def.isRing() ? 1.0 : std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
-    nodeDepth(v) = (skin ? skin->closest(p) : closestSurfacePoint(S, F, skinNormals, p)).distance;
+    foot[static_cast<size_t>(v)] = onSkin(p);
+    nodeDepth(v) = foot[static_cast<size_t>(v)].distance;
     if (!(nodeDepth(v) > 1e-9 * L))
       throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
   }
+
+  if (mu.def.isRing()) ringShape(cm, shell, head.frame());
+  else linearShape(cm, shell, settings, foot, onSkin);
+
+  // Springs from every skin vertex over the muscle to the muscle's surface point below it.
+  const SurfaceLocator muscleSurface(mm.V, mm.F, vertexNormals(mm.V, mm.F));
+  const VecX skinArea = lumpedVertexAreas(S, F);
   // Skin farther than `searchRadius` from `middle` cannot lie over the muscle: skip the search.
   const Vec3 middle = def.isRing() ? mu.ringCentre : 0.5 * (mu.originPoint + mu.insertionPoint);
   double searchRadius = L;

@@ -362,7 +362,9 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
 // The insertions pull the skin over them, not one triangle (muscle_coupling.h): no muscle at a = 1
 // stretches a skin edge beyond what skin takes in an expression (tens of per cent) in the linear
 // settled shape; with muscle nodes tied to their closest skin points the zygomaticus stretched a
-// mouth-corner edge by 110 %.
+// mouth-corner edge by 110 %. Since the muscles slide over their bed the zygomaticus stretches the
+// skin beside the mouth corner by 47 % (it drew the corner into the cheek before, 24 %); ICT's
+// own mouthSmile_L stretches 515 edges there by more than 30 %, its largest by 527 %.
 // The warped shape is recorded beside it (docs/anatomical_model.md: warping vs linear).
 TEST_F(AnatomicalIct, InsertionsStretchTheSkinModerately) {
   MYO_REQUIRE_SHARED_DATA();
@@ -372,7 +374,7 @@ TEST_F(AnatomicalIct, InsertionsStretchTheSkinModerately) {
     const double warped = maxEdgeStrain(skin_->head().mesh, skin_->settle(loads({{name, 1.0}}), true).u);
     RecordProperty(name + "_linear_max_edge_strain", std::to_string(linear));
     RecordProperty(name + "_warped_max_edge_strain", std::to_string(warped));
-    EXPECT_LE(linear, 0.45) << name;
+    EXPECT_LE(linear, 0.6) << name;
   }
 }
 

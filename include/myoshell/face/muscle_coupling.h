@@ -40,6 +40,11 @@ struct MuscleCouplingSettings {
   // them) of the muscle's surface, the muscle beneath them. 2: the fibres fan out to about 1.7
   // depths beyond the muscle's edge (docs/anatomical_model.md, "Couplings").
   double footprintReach = 2.0;
+  // Linear muscles slide over their bed: at a = 1 every node of the muscle keeps its rest depth
+  // under the skin, so a curved muscle follows the face instead of straightening through the fat,
+  // teeth and bone under it (docs/anatomical_model.md, "Muscles slide over their bed"). false: the
+  // pinned tube's own static response, as before 2026-11-26. Rings keep their shape (docs/muscles.md).
+  bool slideOverBed = true;
   ShellMaterial muscle = [] {  // as the thesis face's muscles (docs/face_model.md)
     ShellMaterial m;
     m.kA = 1.0e3;

@@ -1,0 +1,129 @@
+// Muscles slide over their bed (face/muscle_coupling.h, MuscleCouplingSettings::slideOverBed;
+// docs/anatomical_model.md "Muscles slide over their bed"): a linear muscle's shape at a = 1 keeps
+// every node at its rest depth under the skin, and its insertion still shortens by σ × length.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "myoshell/face/muscle_coupling.h"
+#include "myoshell/face/muscle_def.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/geometry.h"
+
+namespace myo {
+namespace {
+
+const Head& builtInHead() {
+  static const Head head = loadDefaultHead();
+  return head;
+}
+
+// Per node of a muscle at a = 1: its distance to the skin minus its rest distance (cm; > 0 deeper),
+// over the nodes that lie straight under the skin (the skin's closest point above them, not on the
+// edge of a hole such as the mouth's, where a node's depth is not defined); NaN for the others.
+VecX depthChange(const CoupledMuscle& m, const Head& head) {
+  const MatX3 normals = vertexNormals(head.mesh.V, head.mesh.F);
+  const MatX3& X = m.muscle.mesh.V;
+  VecX change(X.rows());
+  for (Eigen::Index v = 0; v < X.rows(); ++v) {
+    const Vec3 p = X.row(v), q = p + Vec3(m.fullShape.row(v));
+    const SurfacePoint rest = closestSurfacePoint(head.mesh.V, head.mesh.F, normals, p);
+    const bool underneath = (rest.point - p).dot(rest.normal) >= 0.95 * rest.distance;
+    change(v) = underneath ? closestSurfacePoint(head.mesh.V, head.mesh.F, normals, q).distance - rest.distance
+                           : std::numeric_limits<double>::quiet_NaN();
+  }
+  return change;
+}
+
+// The insertion ring's mean motion towards the origin (cm): along the chord, or with `onBed` along
+// the fibres' direction at the insertion (the centre line's tangent there, from its last two
+// stations: it follows the skin), as the strength rule measures it.
+double insertionShortening(const CoupledMuscle& m, bool onBed) {
+  const Muscle& mu = m.muscle;
+  Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
+  if (onBed) {
+    const int R = mu.def.ringNodes, S = mu.def.stations;
+    Vec3 last = Vec3::Zero(), before = Vec3::Zero();
+    for (int k = 0; k < R; ++k) {
+      last += Vec3(mu.mesh.V.row((S - 1) * R + k));
+      before += Vec3(mu.mesh.V.row((S - 2) * R + k));
+    }
+    axis = (before - last).normalized();
+  }
+  double along = 0.0;
+  for (int v : mu.insertionNodes) along += Vec3(m.fullShape.row(v)).dot(axis);
+  return along / static_cast<double>(mu.insertionNodes.size());
+}
+
+// Every linear muscle of the whole face on the built-in head: no node under the skin sinks into the
+// face or rises towards the skin by more than a tenth of the muscle's smaller anchor depth (the
+// skin curves under a node as it walks; without the bed the curved muscles sink by millimetres, the
+// next test), and the insertion moves σ × length along the fibres' direction on the skin. The pinned
+// tube's own shape moves it σ × length along the chord.
+TEST(MuscleBed, EveryNodeKeepsItsDepthAndTheInsertionStillShortensBySigma) {
+  const Head& head = builtInHead();
+  const MuscleCouplingSettings settings;
+  ASSERT_TRUE(settings.slideOverBed) << "the default";
+  MuscleCouplingSettings pinned;
+  pinned.slideOverBed = false;
+  for (const MuscleDef& d : faceMuscleDefs()) {
+    if (d.isRing()) continue;
+    const CoupledMuscle m = coupleMuscle(d, head, settings);
+    const double sigmaL = settings.shortening * m.muscle.restLength;
+    const double scale = head.frame().scale * std::min(d.origin.depth, d.insertion.depth);
+    const VecX change = depthChange(m, head);
+    double worst = 0.0;
+    int counted = 0;
+    for (double c : change)
+      if (std::isfinite(c)) worst = std::max(worst, std::abs(c)), ++counted;
+    RecordProperty(d.name + "_max_depth_change_mm", std::to_string(10 * worst));
+    RecordProperty(d.name + "_chord_shortening_over_sigma_l", std::to_string(insertionShortening(m, false) / sigmaL));
+    EXPECT_GE(counted, 0.8 * change.size()) << d.name;
+    EXPECT_LE(worst, 0.1 * scale) << d.name;
+    EXPECT_NEAR(insertionShortening(m, true), sigmaL, 1e-6 * sigmaL) << d.name;
+    EXPECT_NEAR(insertionShortening(coupleMuscle(d, head, pinned), false), sigmaL, 1e-9 * sigmaL) << d.name;
+  }
+}
+
+// Without the bed, a muscle that curves round the face straightens through it: the risorius (from
+// the masseter's fascia round the cheek to the mouth corner) and the platysma drive their middle
+// nodes deep into the cheek. With it they stay at their depth, and the motion left is along the face.
+TEST(MuscleBed, ACurvedMuscleNoLongerCutsIntoTheFace) {
+  const Head& head = builtInHead();
+  MuscleCouplingSettings pinned;
+  pinned.slideOverBed = false;
+  for (const std::string name : {"risorius_left", "platysma_left", "buccinator_left"}) {
+    const MuscleDef& d = *std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(),
+                                       [&](const MuscleDef& m) { return m.name == name; });
+    const CoupledMuscle straight = coupleMuscle(d, head, pinned), slid = coupleMuscle(d, head);
+    auto deepest = [&](const CoupledMuscle& m) { double w = 0; for (double c : depthChange(m, head)) if (std::isfinite(c)) w = std::max(w, c); return w; };
+    const double sinkStraight = deepest(straight), sinkSlid = deepest(slid);
+    RecordProperty(name + "_deepest_sink_mm_pinned", std::to_string(10 * sinkStraight));
+    RecordProperty(name + "_deepest_sink_mm_slid", std::to_string(10 * sinkSlid));
+    EXPECT_GT(sinkStraight, 0.1 * pinned.shortening * straight.muscle.restLength) << name;
+    EXPECT_LT(sinkSlid, 0.1 * sinkStraight) << name;
+
+  }
+}
+
+// The bed is the skin's: moving and turning the head moves and turns the slid shape with it.
+TEST(MuscleBed, TheSlidShapeMovesTurnsAndScalesWithTheHead) {
+  const Head& head = builtInHead();
+  const Mat3 R = Eigen::AngleAxisd(0.6, Vec3(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
+  const Vec3 t(0.3, -1.2, 2.5);
+  Head moved = head;
+  for (Eigen::Index v = 0; v < moved.mesh.V.rows(); ++v) moved.mesh.V.row(v) = (R * Vec3(head.mesh.V.row(v)) + t).transpose();
+  for (const std::string name : {"risorius_left", "zygomaticus_major_right", "frontalis_medial_left"}) {
+    const MuscleDef& d = *std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(),
+                                       [&](const MuscleDef& m) { return m.name == name; });
+    const CoupledMuscle a = coupleMuscle(d, head), b = coupleMuscle(d, moved);
+    ASSERT_EQ(a.fullShape.rows(), b.fullShape.rows());
+    const MatX3 expected = a.fullShape * R.transpose();
+    EXPECT_LT((expected - b.fullShape).cwiseAbs().maxCoeff(), 1e-9 * a.fullShape.cwiseAbs().maxCoeff()) << name;
+  }
+}
+
+}  // namespace
+}  // namespace myo
