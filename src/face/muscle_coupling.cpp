@@ -20,6 +20,9 @@ namespace {
 // muscle)·(skin normal) above this (about 73° from straight down).
 constexpr double kBeneath = 0.3;
 
+// The outer-canthus distance (cm) of the head the muscles' material was set on: the built-in head.
+constexpr double kMuscleMaterialHeadScale = 8.8917179;
+
 // The skin's closest point to a point (a SurfaceLocator's query, or the brute-force one).
 using ClosestOnSkin = std::function<SurfacePoint(const Vec3&)>;
 
@@ -182,7 +185,14 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   const Muscle& mu = cm.muscle;
   const TriMesh& mm = mu.mesh;
   const int nm = mm.vertexCount();
-  const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), settings.muscle);
+  // The tube's material is the thesis face's, set on the built-in head: scaled with the head (k_L
+  // with its size, k_B with its square; k_A's term already scales as the area), the tube's static
+  // response keeps its form on a head of any size, and the strength rule sets its magnitude.
+  ShellMaterial material = settings.muscle;
+  const double size = head.frame().scale / kMuscleMaterialHeadScale;
+  material.kL *= size;
+  material.kB *= size * size;
+  const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), material);
 
   const MatX3& S = head.mesh.V;
   const MatX3i& F = head.mesh.F;
