@@ -291,16 +291,16 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
       {"gravity_face_down", loads({}, Vec3(90, 0, 0))}};
   // The reduced nonlinear settle (nonlinear_settle.h, default settings: the Ritz basis with the
   // second-order corrections, self and crossed, and two rounds of residual enrichment), asserted
-  // below; MYO_NONLINEAR_VARIANTS=ritz,self,cross,cross_residual1 records the lesser variants
+  // below; MYO_NONLINEAR_VARIANTS=ritz,self,cross,cross_residual1,cross_residual4,cross_residual6 records the lesser variants
   // beside it (docs/anatomical_model.md, "The reduced nonlinear settle").
   std::vector<std::pair<std::string, std::unique_ptr<NonlinearSkinSettle>>> nonlinear;
   const char* variants = std::getenv("MYO_NONLINEAR_VARIANTS");
-  for (const std::string variant : {"chosen", "ritz", "self", "cross", "cross_residual1"}) {
+  for (const std::string variant : {"chosen", "ritz", "self", "cross", "cross_residual1", "cross_residual4", "cross_residual6"}) {
     NonlinearSettleSettings ns;
     if (variant != "chosen") {
       if (!variants || ("," + std::string(variants) + ",").find("," + variant + ",") == std::string::npos) continue;
       ns.terms = variant == "ritz" ? SecondOrderTerms::None : variant == "self" ? SecondOrderTerms::Self : SecondOrderTerms::WithCross;
-      ns.residualRounds = variant == "cross_residual1" ? 1 : 0;
+      ns.residualRounds = variant == "cross_residual1" ? 1 : variant == "cross_residual4" ? 4 : variant == "cross_residual6" ? 6 : 0;
     }
     nonlinear.emplace_back(variant, std::make_unique<NonlinearSkinSettle>(skin_, ns));
     RecordProperty("nonlinear_" + variant + "_basis", std::to_string(nonlinear.back().second->basis().cols()));
