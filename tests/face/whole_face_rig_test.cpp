@@ -1,0 +1,58 @@
+// The whole face against ICT's artist shapes (`myoshell fit-rig ../shared/data/ict/ict_arkit_rig.glb
+// --head ../shared/data/ict --library face`, docs/fitting.md): the whole-face issue's measure, kept
+// from falling back.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "myoshell/face/rig_fit.h"
+#include "myoshell/io/fit_head.h"
+#include "myoshell/io/rig_fitting.h"
+#include "support/basis_cache.h"
+#include "support/ict.h"
+
+namespace myo {
+namespace {
+
+// The median cosine over the reachable shapes, and over the mouth and brow shapes (the names not
+// starting with jaw, eye or mouthClose), is at least 0.85 (measured 0.864 and 0.863 on 2026-11-26);
+// the six named shapes the model makes reach 0.8. The four it does not make (browInnerUp,
+// eyeSquintLeft, mouthShrugUpper, mouthRollLower: docs/muscles.md) are recorded.
+TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
+  MYO_REQUIRE_SHARED_DATA();
+  FitHeadOptions head;
+  head.head = (test::sharedDataDir() / "ict").string();
+  head.headGiven = true;
+  head.library = "face";
+  const RigFile& rig = test::ictRig();
+  FitSettings settings;
+  settings.lambda = 0.02;  // fit-rig's default
+  const FittedRig fitted = fitRigShapes(rig, rigFitInputs(rig, head), settings, test::sharedBasisCache());
+  std::vector<double> all, mouthAndBrow;
+  std::map<std::string, double> cosine;
+  for (const RigShapeFit& s : fitted.fit.shapes) {
+    if (!s.reachable || !s.fit) continue;
+    const double c = s.fit->metric.cosine;
+    cosine[s.name] = c;
+    RecordProperty(s.name + "_cosine", std::to_string(c));
+    all.push_back(c);
+    if (s.name.rfind("jaw", 0) != 0 && s.name.rfind("eye", 0) != 0 && s.name.rfind("mouthClose", 0) != 0)
+      mouthAndBrow.push_back(c);
+  }
+  RecordProperty("median_reachable", std::to_string(median(all)));
+  RecordProperty("median_mouth_and_brow", std::to_string(median(mouthAndBrow)));
+  EXPECT_EQ(all.size(), 26u);
+  EXPECT_EQ(mouthAndBrow.size(), 15u);
+  EXPECT_GE(median(all), 0.85);
+  EXPECT_GE(median(mouthAndBrow), 0.85);
+  for (const std::string name : {"mouthSmileLeft", "mouthFrownLeft", "mouthStretchLeft", "mouthUpperUpLeft", "mouthPucker",
+                                 "mouthFunnel"}) {
+    ASSERT_TRUE(cosine.count(name)) << name;
+    EXPECT_GE(cosine[name], 0.8) << name;
+  }
+}
+
+}  // namespace
+}  // namespace myo
