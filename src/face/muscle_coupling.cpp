@@ -59,9 +59,10 @@ double insertionShortening(const Muscle& mu, const MatX3& U, const Vec3& axis) {
 // r_v = p_v − c_v, whose part along the normal is h_v = r_v·n_v < 0. Its motion across the skin's
 // tangent plane walks that point along the skin, in steps of at most a quarter of |r_v|, each step
 // re-projected onto the skin and onto its tangent plane there, to c' (normal n'); the node follows
-// at the same depth, q' = p_v + (c' − c_v) + h_v (n' − n_v), which is p_v when u_v = 0. Its motion into or out of the face is gone: a curved muscle follows the
-// face's curve instead of straightening through the deep tissue under it. The short steps keep the
-// walk on the skin beside c_v, never across a lip's seam or a fold.
+// at the same depth, q' = p_v + (c' − c_v) + h_v (n' − n_v), which is p_v when u_v = 0. Its motion
+// into or out of the face is gone: a curved muscle follows the face's curve instead of straightening
+// through the deep tissue under it. The short steps keep the walk on the skin beside c_v, never
+// across a lip's seam or a fold.
 MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePoint>& restFoot,
                    const ClosestOnSkin& onSkin) {
   MatX3 slid = U;
@@ -86,8 +87,9 @@ MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePo
 // A linear muscle's shape at a = 1: the static response of the pinned muscle to its activation load
 // (unit forces along the contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's
 // static-shape variant), scaled so that the insertion ring moves shortening × length along the
-// muscle. With `slideOverBed`, the nodes then keep their rest depth (slideOverBed above) and the
-// scale is found again so that the slid insertion moves the same shortening × length.
+// muscle's chord. With `slideOverBed`, the nodes then walk along the skin at their rest depth
+// (slideOverBed above), and the scale is found so that the slid insertion moves shortening × length
+// along the fibres' direction at the insertion.
 void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCouplingSettings& settings,
                  const std::vector<SurfacePoint>& restFoot, const ClosestOnSkin& onSkin) {
   const Muscle& mu = cm.muscle;

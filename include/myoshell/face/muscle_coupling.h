@@ -17,7 +17,8 @@
 // so its muscles move twice as far.
 //
 // Strength: one head-independent rule: at a = 1 the muscle shortens by `shortening` × its rest
-// length (the insertion ring's mean motion along the muscle), whatever the muscle and head.
+// length (the insertion ring's mean motion along the muscle: along its chord, or with slideOverBed
+// along the fibres' direction at the insertion), whatever the muscle and head.
 #pragma once
 
 #include <string>
