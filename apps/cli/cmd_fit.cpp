@@ -240,7 +240,7 @@ static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--align", args->align, "none, rigid or similarity: remove the target's motion first (default none)");
   sub->add_option("--lambda", args->lambda, "sparsity weight ≥ 0 (default 0.02; 0 = plain bounded least squares)");
   sub->add_option("--out", args->out, "write the activations and figures as JSON (its folder must exist)");
-  sub->add_option("--library", args->library, "muscles: builtin (the thesis's eight, default), face (the whole face, docs/muscles.md) or a library file");
+  sub->add_option("--library", args->library, "muscles: builtin (the thesis's eight, placed anatomically; default), face (the whole face, docs/muscles.md) or a library file");
   sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
                                              "~/.cache/myoshell)");
   sub->add_flag("--json", args->json, "print the activations and figures as JSON");

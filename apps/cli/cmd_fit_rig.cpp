@@ -207,7 +207,7 @@ static CommandRegistrar reg("fit-rig", [](CLI::App& app) -> std::function<int()>
   sub->add_option("--lambda", args->lambda, "sparsity weight ≥ 0 (default 0.02; 0 = plain bounded least squares)");
   sub->add_option("--out", args->out, "write the retargeting map (JSON; its folder must exist)");
   sub->add_option("--report", args->report, "write report.md and a picture per shape into this folder");
-  sub->add_option("--library", args->head.library, "muscles: builtin (the thesis's eight, default), face (the whole face, docs/muscles.md) or a library file");
+  sub->add_option("--library", args->head.library, "muscles: builtin (the thesis's eight, placed anatomically; default), face (the whole face, docs/muscles.md) or a library file");
   sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
                                              "~/.cache/myoshell)");
   sub->add_flag("--json", args->json, "print every shape's figures and activations as JSON");

@@ -81,7 +81,7 @@ static CommandRegistrar reg("rig", [](CLI::App& app) -> std::function<int()> {
   args->unitsOption = sub->add_option("--units", args->head.units, "the OBJ head's length unit, m, mm or cm (default cm)");
   sub->add_option("--map", args->map, "a retargeting map (fit-rig --out; e.g. assets/retarget/arkit_ict.json)")->required();
   sub->add_option("--out", args->out, "the rig to write (.glb; its folder must exist)")->required();
-  sub->add_option("--library", args->head.library, "muscles: builtin (the thesis's eight, default), face (the whole face, docs/muscles.md) or a library file");
+  sub->add_option("--library", args->head.library, "muscles: builtin (the thesis's eight, placed anatomically; default), face (the whole face, docs/muscles.md) or a library file");
   sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
                                              "~/.cache/myoshell)");
   sub->add_flag("--json", args->json, "print each shape's largest displacement and the timings as JSON");

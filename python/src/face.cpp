@@ -63,12 +63,12 @@ JawPose jawPose(const py::object& o) {
   return pose;
 }
 
-// The muscles a scene on this head would use: the library's (or the `use` selection of them).
+// The muscles an anatomical scene on this head would use: the library's (or the `use` selection of them).
 std::vector<MuscleDef> libraryMuscles(const std::string& library, const std::vector<std::string>& use) {
   SceneDesc scene;
   scene.muscleLibrary = library;
   scene.muscles = use;
-  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(library);
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(library, FaceModelKind::Anatomical);
   std::vector<MuscleDef> muscles = sceneMuscles(scene, builtin ? *builtin : readMuscleDefs(library));
   readMuscleShells(muscles);
   return muscles;

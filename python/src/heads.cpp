@@ -32,7 +32,7 @@ std::shared_ptr<HeadHandle> loadHeadHandle(const std::string& head, const std::s
 }
 
 std::vector<std::string> muscleNames(const std::string& library) {
-  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(library);
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(library, FaceModelKind::Anatomical);
   const std::vector<MuscleDef> defs = builtin ? *builtin : readMuscleDefs(library);
   std::vector<std::string> names;
   for (const MuscleDef& d : defs) names.push_back(d.name);

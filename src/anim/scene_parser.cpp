@@ -447,7 +447,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   if (!isThesis) an.validate();
   // The muscle names: against the built-in library here; a library file is io's to read, so here
   // only the timeline against an explicit selection (io checks the rest: readSceneInputs).
-  if (const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary)) {
+  if (const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary, scene.modelKind)) {
     sceneMuscles(scene, *builtin);
   } else if (!scene.muscles.empty()) {
     std::vector<MuscleDef> named(scene.muscles.size());

@@ -1,5 +1,6 @@
 #include "myoshell/face/muscle_def.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -8,6 +9,7 @@
 
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/face/face_system.h"
 #include "thesis_muscles_data.h"
 
 namespace myo {
@@ -219,8 +221,21 @@ const std::vector<MuscleDef>& faceMuscleDefs() {
   return defs;
 }
 
-const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name) {
-  if (name == "builtin") return &thesisMuscleDefs();
+const std::vector<MuscleDef>& anatomicalEightDefs() {
+  static const std::vector<MuscleDef> defs = [] {
+    std::vector<MuscleDef> eight;
+    for (const MuscleDef& thesis : thesisMuscleDefs()) {
+      const auto& face = faceMuscleDefs();
+      const auto it = std::find_if(face.begin(), face.end(), [&](const MuscleDef& d) { return d.name == thesis.name; });
+      eight.push_back(it != face.end() ? *it : thesis);
+    }
+    return eight;
+  }();
+  return defs;
+}
+
+const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name, FaceModelKind model) {
+  if (name == "builtin") return model == FaceModelKind::Anatomical ? &anatomicalEightDefs() : &thesisMuscleDefs();
   if (name == "face") return &faceMuscleDefs();
   return nullptr;
 }

@@ -41,7 +41,7 @@ void loadScenePerformance(SceneDesc& scene) {
   performance = cropPerformance(performance, desc.start, desc.end, file);
 
   // The muscles the scene will have (its library, its selection, its own extra muscles).
-  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary);
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary, scene.modelKind);
   const std::vector<MuscleDef> library =
       builtin ? *builtin : readMuscleDefs(resolveAgainstScene(scene, scene.muscleLibrary));
   std::vector<std::string> names;
@@ -78,7 +78,7 @@ SceneInputs readSceneInputs(const SceneDesc& scene) {
     rescaleToCentimetres(in.head.skull, scene.head.units);  // written in the head's unit
   }
 
-  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary);
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary, scene.modelKind);
   const std::vector<MuscleDef> library = builtin ? *builtin : readMuscleDefs(resolve(scene.muscleLibrary));
   in.muscles = sceneMuscles(scene, library);
   readMuscleShells(in.muscles);  // the scene's own imported muscles

@@ -14,7 +14,9 @@ struct CouplingProfile {
   double bellyModulus = 1.0e4;      // G along the belly, dyn/cm² (1 kPa: subcutaneous fat)
   double originEnd = 0.15;          // t below which there is no coupling (the origin)
   double bellyStart = 0.30;         // G ramps 0 → belly over [originEnd, bellyStart]
-  double insertionStart = 0.70;     // G ramps belly → insertion over [insertionStart, 1]
+  // G ramps belly → insertion over [insertionStart, 1]: the last 15 % of the muscle, about 1 cm of a
+  // 6–7 cm zygomaticus, the modiolus's size (docs/anatomical_model.md, "The insertion zone").
+  double insertionStart = 0.85;
   // G at position t ∈ [0, 1] along the muscle (smooth ramps), dyn/cm².
   double modulus(double t) const;
   // InputError "OWNER: FIELD …" naming the field by its library key (insertion_modulus, …).

@@ -18,6 +18,8 @@ class Node;
 }
 
 namespace myo {
+
+enum class FaceModelKind;  // face_system.h
 class DocReader;
 }
 
@@ -116,8 +118,16 @@ const std::string& thesisMuscleJson();
 // muscles, the thesis's eight among them, linear and ring (docs/muscles.md).
 const std::vector<MuscleDef>& faceMuscleDefs();
 
-// A built-in library by its scene name: "builtin" (the thesis's eight, the default) or "face" (the
-// whole face); nullptr for any other name (a library file's path).
-const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name);
+// The thesis's eight as the whole face places them: faceMuscleDefs()'s entries under the thesis's
+// names, in the thesis's order. The anatomical model's built-in library: its zygomaticus major
+// arises from the zygomatic bone and its depressor anguli from the mandible's lower border, where
+// the thesis's placement leaves them short or in front of the chin (docs/muscles.md, "The
+// anatomical model's eight").
+const std::vector<MuscleDef>& anatomicalEightDefs();
+
+// A built-in library by its scene name for a model: "builtin" (the default: the thesis's eight,
+// placed as the thesis places them under model: thesis and as the whole face places them under
+// model: anatomical) or "face" (the whole face); nullptr for any other name (a library file's path).
+const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name, FaceModelKind model);
 
 }  // namespace myo
