@@ -568,6 +568,30 @@ TEST(AnatomicalGrip, WarpedTheGrabbedBasisKeepsPsiAndTheDisplacement) {
   EXPECT_LE(psi, 1e-12);
 }
 
+// The two corner muscles do what anatomy says they do (Standring, Gray's Anatomy 41st ed.): the
+// zygomaticus major draws the corner up, out and back; the depressor anguli oris draws it down and
+// out. Face-frame directions of the left corner's motion at a = 1 (x the subject's left). The
+// thesis's depressor, whose origin lands in front of ICT's receding chin, drew it in (−0.8 mm).
+TEST_F(AnatomicalIct, TheCornerMusclesPullTheCornerAsAnatomyDescribes) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head& head = skin_->head();
+  const FaceFrame fr = head.frame();
+  const int corner = head.landmarks.vertex("mouth_corner_left");
+  auto cornerMm = [&](const std::string& muscle) {
+    const SettledSkin s = skin_->settle(loads({{muscle, 1.0}}), warped());
+    const Vec3 u = 10.0 * fr.directionToFrame(Vec3(s.u.row(corner)));
+    RecordProperty(muscle + "_corner_mm", std::to_string(u.x()) + " " + std::to_string(u.y()) + " " + std::to_string(u.z()));
+    return u;
+  };
+  const Vec3 zyg = cornerMm("zygomaticus_major_left");
+  EXPECT_GT(zyg.y(), 2.0) << "up";
+  EXPECT_GT(zyg.x(), 1.0) << "out";
+  EXPECT_LT(zyg.z(), -1.0) << "back";
+  const Vec3 dao = cornerMm("depressor_anguli_oris_left");
+  EXPECT_LT(dao.y(), -2.0) << "down";
+  EXPECT_GT(dao.x(), 0.3) << "out";
+}
+
 TEST_F(AnatomicalIct, CorrugatorAndDepressorLabiiMoveWhereTheyInsert) {
   MYO_REQUIRE_SHARED_DATA();
   const Head& head = skin_->head();

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/face/anatomical_skin.h"
+#include "myoshell/face/face_system.h"
 #include "myoshell/face/muscle.h"
 #include "myoshell/face/muscle_def.h"
 #include "myoshell/io/head_files.h"
@@ -87,6 +89,29 @@ TEST(FaceMuscles, TheLibraryHoldsThirtyNineMusclesInMirroredPairsAndTheThesisEig
     EXPECT_EQ(byName[t.name]->insertion.offset, t.insertion.offset);
     EXPECT_EQ(byName[t.name]->origin.landmark, t.origin.landmark);
   }
+}
+
+// The built-in library is the thesis's eight under either model, placed as the thesis places them
+// under model: thesis and as the whole face places them under model: anatomical (muscle_def.h).
+TEST(FaceMuscles, TheAnatomicalModelsEightArePlacedAsTheWholeFace) {
+  EXPECT_EQ(builtinMuscleLibrary("builtin", FaceModelKind::Thesis), &thesisMuscleDefs());
+  EXPECT_EQ(builtinMuscleLibrary("face", FaceModelKind::Thesis), &faceMuscleDefs());
+  EXPECT_EQ(builtinMuscleLibrary("lib.json", FaceModelKind::Anatomical), nullptr);
+  const std::vector<MuscleDef>* eight = builtinMuscleLibrary("builtin", FaceModelKind::Anatomical);
+  ASSERT_NE(eight, nullptr);
+  ASSERT_EQ(eight->size(), thesisMuscleDefs().size());
+  int moved = 0;
+  for (size_t i = 0; i < eight->size(); ++i) {
+    const MuscleDef& a = (*eight)[i];
+    const MuscleDef& t = thesisMuscleDefs()[i];
+    EXPECT_EQ(a.name, t.name);  // the same names in the same order: scenes and maps transfer
+    const auto face = std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == a.name; });
+    ASSERT_NE(face, faceMuscleDefs().end()) << a.name;
+    EXPECT_EQ(a.origin.offset, face->origin.offset) << a.name;
+    EXPECT_EQ(a.insertion.offset, face->insertion.offset) << a.name;
+    moved += a.origin.offset != t.origin.offset;
+  }
+  EXPECT_EQ(moved, 4);  // the zygomaticus major and the depressor anguli oris, both sides
 }
 
 TEST(FaceMuscles, RingMusclesAreRefusedByTheThesisModelAndCheckedWhenRead) {
