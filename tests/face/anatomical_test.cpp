@@ -295,12 +295,18 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
   // beside it (docs/anatomical_model.md, "The reduced nonlinear settle").
   std::vector<std::pair<std::string, std::unique_ptr<NonlinearSkinSettle>>> nonlinear;
   const char* variants = std::getenv("MYO_NONLINEAR_VARIANTS");
-  for (const std::string variant : {"chosen", "ritz", "self", "cross", "cross_residual1", "cross_residual4", "cross_residual6"}) {
+  for (const std::string variant : {"chosen", "ritz", "self", "cross", "cross_residual1", "cross_residual2", "cross_residual4",
+                                    "cross_residual6", "cross_newton2", "cross_newton3", "cross_newton4", "cross_newton4_alone"}) {
     NonlinearSettleSettings ns;
     if (variant != "chosen") {
       if (!variants || ("," + std::string(variants) + ",").find("," + variant + ",") == std::string::npos) continue;
       ns.terms = variant == "ritz" ? SecondOrderTerms::None : variant == "self" ? SecondOrderTerms::Self : SecondOrderTerms::WithCross;
-      ns.residualRounds = variant == "cross_residual1" ? 1 : variant == "cross_residual4" ? 4 : variant == "cross_residual6" ? 6 : 0;
+      const auto count = [&](const std::string& prefix) {
+        return variant.rfind(prefix, 0) == 0 ? std::atoi(variant.c_str() + prefix.size()) : 0;
+      };
+      ns.residualRounds = count("cross_residual");
+      ns.newtonSteps = count("cross_newton");
+      ns.allMusclesTogether = variant.find("_alone") == std::string::npos;  // _alone: each muscle alone only
     }
     nonlinear.emplace_back(variant, std::make_unique<NonlinearSkinSettle>(skin_, ns));
     RecordProperty("nonlinear_" + variant + "_basis", std::to_string(nonlinear.back().second->basis().cols()));
