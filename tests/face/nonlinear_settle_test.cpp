@@ -191,7 +191,7 @@ TEST(NonlinearSettle, NewtonDirectionsFromTheReducedSolutionEnrichTheBasis) {
   RecordProperty("linear_basis_error", std::to_string(before));
   RecordProperty("newton_enriched_error", std::to_string(after));
   EXPECT_GE(before, 0.01);
-  EXPECT_LE(after, 0.1 * before);
+  EXPECT_LE(after, 1e-3 * before);  // measured: 11 % → 2e-9
 }
 
 TEST(NonlinearSettle, ANegativeNewtonStepCountIsRefusedNamingTheField) {
