@@ -297,8 +297,9 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
   // the other variants beside it (docs/anatomical_model.md, "The reduced nonlinear settle").
   std::vector<std::pair<std::string, std::unique_ptr<NonlinearSkinSettle>>> nonlinear;
   const char* variants = std::getenv("MYO_NONLINEAR_VARIANTS");
-  for (const std::string variant : {"chosen", "ritz", "self", "cross", "cross_residual1", "cross_residual2", "cross_residual4",
-                                    "cross_residual6", "cross_newton2", "cross_newton3", "cross_newton4", "cross_newton4_alone"}) {
+  for (const std::string variant :
+       {"chosen", "ritz", "self", "cross", "cross_residual1", "cross_residual2", "cross_residual4", "cross_residual6",
+        "cross_newton2", "cross_newton3", "cross_newton4", "cross_newton4_alone"}) {
     NonlinearSettleSettings ns;
     if (variant != "chosen") {
       if (!variants || ("," + std::string(variants) + ",").find("," + variant + ",") == std::string::npos) continue;

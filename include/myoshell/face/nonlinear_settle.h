@@ -8,7 +8,8 @@
 //
 // minimised by Newton on q with load continuation and a backtracking line search (as the full-space
 // reference; where the Hessian and its projection are indefinite, K_x's release being negative, a
-// Levenberg–Marquardt shift; below the energy's round-off, steps judged by the gradient). The basis is the skin's Ritz basis (every load pattern's static response) augmented
+// Levenberg–Marquardt shift; below the energy's round-off, steps judged by the gradient). The basis
+// is the skin's Ritz basis (every load pattern's static response) augmented
 // with second-order static corrections, the static modal derivatives of Idelsohn & Cardona (1985,
 // "A reduction method for nonlinear structural dynamic analysis", Comput Methods Appl Mech Eng 49:253)
 // as Barbič & James (2005, "Real-time subspace integration for St. Venant–Kirchhoff deformable
