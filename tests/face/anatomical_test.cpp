@@ -337,7 +337,7 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
       // The goal, for the chosen reduced nonlinear settle (measured 2026-11-26 with the bed:
       // zygomaticus 2.9 %, with the depressor anguli 3.5 %, all eight 0.4 % (all muscles together
       // is one of the enrichment's patterns, so this is close to a training load), gravity
-      // face-down 0.14 %; built in 107–123 s).
+      // face-down 0.14 %; built in 107–126 s).
       if (variant == "chosen") {
         EXPECT_TRUE(s.converged) << name;
         EXPECT_LE(err, 0.05) << name;

@@ -30,7 +30,7 @@
 // corner by 36 % and compresses a triangle there to 15 % of its area, far from the rest tangent.
 // Measured on ICT (docs/anatomical_model.md, "The reduced nonlinear settle"): zygomaticus 2.9 %,
 // with the depressor anguli 3.5 %, all eight 0.4 % (a training pattern), gravity face-down 0.14 %;
-// built in 107–123 s.
+// built in 107–126 s.
 #pragma once
 
 #include <Eigen/SparseCholesky>
