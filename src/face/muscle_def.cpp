@@ -224,8 +224,8 @@ const std::vector<MuscleDef>& faceMuscleDefs() {
 const std::vector<MuscleDef>& anatomicalEightDefs() {
   static const std::vector<MuscleDef> defs = [] {
     std::vector<MuscleDef> eight;
+    const std::vector<MuscleDef>& face = faceMuscleDefs();
     for (const MuscleDef& thesis : thesisMuscleDefs()) {
-      const auto& face = faceMuscleDefs();
       const auto it = std::find_if(face.begin(), face.end(), [&](const MuscleDef& d) { return d.name == thesis.name; });
       eight.push_back(it != face.end() ? *it : thesis);
     }

@@ -67,50 +67,21 @@ class AnatomicalIct : public ::testing::Test {
 std::shared_ptr<const AnatomicalSkin> AnatomicalIct::skin_;
 
 // The full-space nonlinear reference (METHOD.md §5.1 with the model's quadratic terms): minimises
-// E_shell(X + u) + ½uᵀK_x u − Fᵀu by Newton with a backtracking line search, K_x = K_att + ΣK_c, F
-// the world load with the muscle nodes held at their settled (feed-forward) positions.
-MatX3 fullSpaceReference(const AnatomicalSkin& skin, MatX3 F) {
-  const DiscreteShell& shell = skin.shell();
+// E_shell(X + u) + ½uᵀK_x u − Fᵀu by Newton with a backtracking line search (FullSpaceNewton, the
+// iteration the reduced settle's enrichment takes), K_x = K_att + ΣK_c, F the world load with the
+// muscle nodes held at their settled (feed-forward) positions.
+MatX3 fullSpaceReference(const AnatomicalSkin& skin, const MatX3& F) {
   // The attachment and the held couplings, less the relaxed muscles' release: the same linear terms
   // as the reduced model, so the reference differs from it only in the shell's nonlinearity.
-  const SparseMat Kx = skin.extraStiffness() - skin.releaseStiffness();
-  const MatX3& X = shell.rest();
-  MatX3 u = MatX3::Zero(X.rows(), 3);
-  auto objective = [&](const MatX3& uu, VecX* g, SparseMat* H, HessianMode mode) {
-    const ShellEnergy e = shell.energy(X + uu, g, H, mode);
-    const VecX Ku = Kx * flat(uu);
-    if (g) *g += Ku - flat(F);
-    if (H) *H += Kx;
-    return e.total + 0.5 * flat(uu).dot(Ku) - flat(F).dot(flat(uu));
-  };
-  const MatX3 Ftotal = F;
-  const double fNorm = flat(Ftotal).norm();
-  Eigen::SimplicialLDLT<SparseMat> ldlt;
+  FullSpaceNewton newton(skin.shell(), skin.extraStiffness() - skin.releaseStiffness());
+  VecX u = VecX::Zero(F.size());
   constexpr int kLoadSteps = 10;  // continuation, as solveStaticReference
-  for (int step = 1; step <= kLoadSteps; ++step)
-  for (int it = 0; it < 30; ++it) {
-    F = (static_cast<double>(step) / kLoadSteps) * Ftotal;
-    VecX g;
-    SparseMat H;
-    const double f0 = objective(u, &g, &H, HessianMode::Exact);
-    if (g.norm() <= 1e-8 * fNorm) break;
-    ldlt.compute(H);
-    if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= 0) {
-      objective(u, nullptr, &H, HessianMode::Projected);
-      ldlt.compute(H);
-    }
-    const VecX p = ldlt.solve(-g);
-    double alpha = 1.0;
-    for (int ls = 0; ls < 30; ++ls, alpha *= 0.5) {
-      MatX3 ut = u;
-      flat(ut) += alpha * p;
-      if (objective(ut, nullptr, nullptr, HessianMode::Exact) <= f0 + 1e-4 * alpha * g.dot(p) || ls == 29) {
-        u = ut;
-        break;
-      }
-    }
+  for (int step = 1; step <= kLoadSteps; ++step) {
+    const VecX Fs = (static_cast<double>(step) / kLoadSteps) * flat(F);
+    for (int it = 0; it < 30; ++it)
+      if (!(newton.step(Fs, u).squaredNorm() > 0.0)) break;  // converged: |∇E| ≤ 1e-8 |F|
   }
-  return u;
+  return rows3(u);
 }
 
 // fullSpaceReference, kept in MYO_REFERENCE_DIR (when set) as <name>.bin (the rows, then n×3 doubles):
