@@ -364,7 +364,7 @@ void anatomicalFigure(Figures& F, const FigureOptions& opt) {
     return;
   }
   const Head head = loadHead((ict / "head_skin.obj").string(), (ict / "landmarks_multipie68.json").string());
-  const auto face = std::make_shared<const AnatomicalFace>(head, anatomicalEightDefs(), AnatomicalSettings{}, std::vector<DragDef>{});
+  const auto face = std::make_shared<const AnatomicalFace>(head, anatomicalBuiltinDefs(), AnatomicalSettings{}, std::vector<DragDef>{});
   const AnatomicalSkin& skin = face->skin();
   const Camera cam = faceCamera(*face, ViewPreset::front, opt.size, opt.size, FaceFraming::face);
   auto loads = [&](const std::string& muscle, const Vec3& pose) {

@@ -322,25 +322,32 @@ MatX3 AnatomicalSkin::dragPattern(const std::vector<int>& vertices, int axis) co
 
 namespace {
 
-// The pieces a relaxed muscle is released in (spring indices): a ring's two halves when `splitRings`
-// (by the station of the muscle node nearest each spring's point: a ring's path runs from anchor to
-// anchor, so its first and second halves are the mouth parts' right and left quadrants, which
-// interlace at the philtrum, and the eye rings' upper and lower arcs, which meet at the medial
-// palpebral ligament and the lateral raphe); the whole muscle otherwise.
-std::vector<std::vector<size_t>> releasePieces(const CoupledMuscle& cm, bool splitRings) {
+// The pieces a relaxed muscle is released in: (spring index, share of its stiffness) pairs. A ring's
+// two halves when `splitRings` (a ring's path runs from anchor to anchor, so its first and second
+// halves are the mouth parts' right and left quadrants, which interlace at the philtrum, and the eye
+// rings' upper and lower arcs, which meet at the medial palpebral ligament and the lateral raphe);
+// the whole muscle otherwise. A spring belongs to the first half by the barycentric weight its point
+// has on first-half nodes, so a spring whose point lies between the halves is shared (two springs of
+// μk and (1 − μ)k at one place: K̂ unchanged). A share rather than a side: the point is the same
+// whichever triangle the closest-point search returns, the nearest node is not, and on a symmetric
+// head the midline's springs are ties that an ulp of the geometry decides.
+using ReleasePiece = std::vector<std::pair<size_t, double>>;
+std::vector<ReleasePiece> releasePieces(const CoupledMuscle& cm, bool splitRings) {
   if (!splitRings || !cm.muscle.def.isRing()) {
-    std::vector<size_t> all(cm.springs.size());
-    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    ReleasePiece all(cm.springs.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = {i, 1.0};
     return {all};
   }
   const int stations = cm.muscle.def.stations;
-  std::vector<std::vector<size_t>> halves(2);
+  std::vector<ReleasePiece> halves(2);
   for (size_t i = 0; i < cm.springs.size(); ++i) {
     const CoupledMuscle::Spring& spring = cm.springs[i];
-    const size_t nearest = static_cast<size_t>(
-        std::max_element(spring.weights.begin(), spring.weights.end()) - spring.weights.begin());
-    const int station = cm.muscle.stationOf(spring.nodes[nearest]);
-    halves[2 * station < stations ? 0 : 1].push_back(i);
+    double first = 0.0;
+    for (size_t b = 0; b < spring.nodes.size(); ++b)
+      if (2 * cm.muscle.stationOf(spring.nodes[b]) < stations) first += spring.weights[b];
+    first = std::clamp(first, 0.0, 1.0);
+    if (first > 0.0) halves[0].emplace_back(i, first);
+    if (first < 1.0) halves[1].emplace_back(i, 1.0 - first);
   }
   return halves;
 }
@@ -387,7 +394,7 @@ void AnatomicalSkin::buildReleaseColumns() {
   for (Eigen::Index m = 0; m < M; ++m) {
     const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
     const MuscleDef& def = cm.muscle.def;
-    const std::vector<std::vector<size_t>> pieces = releasePieces(cm, settings_.releaseRingHalves);
+    const std::vector<ReleasePiece> pieces = releasePieces(cm, settings_.releaseRingHalves);
     // κ = E_p A σ² L for the whole belly; a piece of it has its share of the length.
     const double area = 0.25 * std::numbers::pi * (def.width * scale) * (def.thickness * scale);
     const double sigma = def.isRing() ? def.ring.shortening : settings_.coupling.shortening;
@@ -395,16 +402,16 @@ void AnatomicalSkin::buildReleaseColumns() {
     const double kappa = kappaWhole / static_cast<double>(pieces.size());
     release_(m) = 1.0 / (kappaWhole + shapeEnergy_(m));
     for (size_t piece = 0; piece < pieces.size(); ++piece) {
-      const std::vector<size_t>& springs = pieces[piece];
+      const ReleasePiece& springs = pieces[piece];
       const size_t ns = springs.size();
       std::vector<Vec3> w(ns);
       std::vector<double> k(ns);
       std::vector<int> skinVertex(ns);
       double s = 0.0;
       for (size_t i = 0; i < ns; ++i) {
-        const CoupledMuscle::Spring& spring = cm.springs[springs[i]];
+        const CoupledMuscle::Spring& spring = cm.springs[springs[i].first];
         w[i] = spring.muscleDisplacement(cm.fullShape);
-        k[i] = spring.stiffness;
+        k[i] = springs[i].second * spring.stiffness;
         skinVertex[i] = spring.skin;
         s += k[i] * w[i].squaredNorm();
       }

@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
+#include "myoshell/core/check.h"
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/face_system.h"
 #include "thesis_muscles_data.h"
 
 namespace myo {
@@ -234,8 +234,22 @@ const std::vector<MuscleDef>& anatomicalEightDefs() {
   return defs;
 }
 
+const std::vector<MuscleDef>& anatomicalBuiltinDefs() {
+  static const std::vector<MuscleDef> defs = [] {
+    std::vector<MuscleDef> lib = anatomicalEightDefs();
+    for (const char* ring : {"orbicularis_oris_upper", "orbicularis_oris_lower"}) {
+      const std::vector<MuscleDef>& face = faceMuscleDefs();
+      const auto it = std::find_if(face.begin(), face.end(), [&](const MuscleDef& d) { return d.name == ring; });
+      MYO_CHECK(it != face.end(), "face_muscles.json has no " << ring);
+      lib.push_back(*it);
+    }
+    return lib;
+  }();
+  return defs;
+}
+
 const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name, FaceModelKind model) {
-  if (name == "builtin") return model == FaceModelKind::Anatomical ? &anatomicalEightDefs() : &thesisMuscleDefs();
+  if (name == "builtin") return model == FaceModelKind::Anatomical ? &anatomicalBuiltinDefs() : &thesisMuscleDefs();
   if (name == "face") return &faceMuscleDefs();
   return nullptr;
 }

@@ -173,7 +173,7 @@ TEST(SceneParser, RejectsUnknownMusclesOfTheBuiltInLibraryAtTheirPlace) {
             "b.json:1:49: key 'muscles.use': unknown muscle 'buccinator' (the library has: zygomaticus_major_right, "
             "zygomaticus_major_left, corrugator_supercilii_right, corrugator_supercilii_left, "
             "depressor_labii_inferioris_right, depressor_labii_inferioris_left, depressor_anguli_oris_right, "
-            "depressor_anguli_oris_left)");
+            "depressor_anguli_oris_left, orbicularis_oris_upper, orbicularis_oris_lower)");
   // A timeline muscle the library lacks, and one the selection leaves out.
   EXPECT_EQ(parseError("timeline:\n  activations:\n    buccinator: [{t: 0, value: 1}]\n", "u.yaml"),
             "u.yaml:3:5: key 'timeline.activations.buccinator': the scene has no muscle 'buccinator'");

@@ -17,11 +17,13 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-TEST(CliMuscles, ListsTheThesisEightByDefaultAndTheWholeFaceWithItsRings) {
+TEST(CliMuscles, ListsTheBuiltInTenByDefaultAndTheWholeFaceWithItsRings) {
   test::CliResult r = test::runCli("muscles --json");
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   nlohmann::json j = nlohmann::json::parse(r.out);
-  ASSERT_EQ(j["muscles"].size(), 8u);
+  ASSERT_EQ(j["muscles"].size(), 10u);  // the thesis's eight, then the mouth's two rings
+  EXPECT_EQ(j["muscles"][8]["name"], "orbicularis_oris_upper");
+  EXPECT_EQ(j["muscles"][9]["kind"], "ring");
   EXPECT_EQ(j["muscles"][0]["name"], "zygomaticus_major_right");
   EXPECT_EQ(j["muscles"][0]["side"], "right");
   EXPECT_EQ(j["muscles"][0]["aus"], nlohmann::json::array({12}));

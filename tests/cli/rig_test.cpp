@@ -239,10 +239,10 @@ TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   writeText(dir / "face_map.json",
-            R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "mouthPucker", "activations": {"orbicularis_oris_upper": 1}}]})");
+            R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "mouthShrugLower", "activations": {"mentalis_left": 1}}]})");
   r = run("rig --head default --map " + quoted(dir / "face_map.json") + " --out " + quoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_THAT(r.err, HasSubstr("face_map.json: the map uses the whole face's muscles (orbicularis_oris_upper, …): give --library face"));
+  EXPECT_THAT(r.err, HasSubstr("face_map.json: the map uses the whole face's muscles (mentalis_left, …): give --library face"));
   r = run("fit-rig " + quoted(dir / "missing.glb") + " --head default");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("missing.glb"));

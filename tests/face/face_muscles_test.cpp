@@ -91,20 +91,23 @@ TEST(FaceMuscles, TheLibraryHoldsThirtyNineMusclesInMirroredPairsAndTheThesisEig
   }
 }
 
-// The built-in library is the thesis's eight under either model, placed as the thesis places them
-// under model: thesis and as the whole face places them under model: anatomical (muscle_def.h).
-TEST(FaceMuscles, TheAnatomicalModelsEightArePlacedAsTheWholeFace) {
+// The built-in library: the thesis's eight as the thesis places them under model: thesis; under
+// model: anatomical the eight as the whole face places them, then the mouth's two rings (muscle_def.h).
+TEST(FaceMuscles, TheAnatomicalModelsBuiltInLibraryIsTheEightPlacedAsTheWholeFaceAndTheLips) {
   EXPECT_EQ(builtinMuscleLibrary("builtin", FaceModelKind::Thesis), &thesisMuscleDefs());
   EXPECT_EQ(builtinMuscleLibrary("face", FaceModelKind::Thesis), &faceMuscleDefs());
   EXPECT_EQ(builtinMuscleLibrary("lib.json", FaceModelKind::Anatomical), nullptr);
-  const std::vector<MuscleDef>* eight = builtinMuscleLibrary("builtin", FaceModelKind::Anatomical);
-  ASSERT_NE(eight, nullptr);
-  ASSERT_EQ(eight->size(), thesisMuscleDefs().size());
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary("builtin", FaceModelKind::Anatomical);
+  ASSERT_NE(builtin, nullptr);
+  ASSERT_EQ(builtin->size(), thesisMuscleDefs().size() + 2);
+  EXPECT_EQ((*builtin)[8].name, "orbicularis_oris_upper");
+  EXPECT_EQ((*builtin)[9].name, "orbicularis_oris_lower");
+  EXPECT_TRUE((*builtin)[8].isRing() && (*builtin)[9].isRing());
   int moved = 0;
-  for (size_t i = 0; i < eight->size(); ++i) {
-    const MuscleDef& a = (*eight)[i];
+  for (size_t i = 0; i < thesisMuscleDefs().size(); ++i) {
+    const MuscleDef& a = (*builtin)[i];
     const MuscleDef& t = thesisMuscleDefs()[i];
-    EXPECT_EQ(a.name, t.name);  // the same names in the same order: scenes and maps transfer
+    EXPECT_EQ(a.name, t.name);  // the eight first, under the same names in the same order: scenes and maps transfer
     const auto face = std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == a.name; });
     ASSERT_NE(face, faceMuscleDefs().end()) << a.name;
     EXPECT_EQ(a.origin.offset, face->origin.offset) << a.name;

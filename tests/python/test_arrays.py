@@ -50,7 +50,7 @@ def test_simulator_moves_and_resets(face):
 
 def test_muscle_libraries():
     builtin = myoshell.muscle_names()
-    assert len(builtin) == 8 and "zygomaticus_major_left" in builtin
+    assert len(builtin) == 10 and "zygomaticus_major_left" in builtin and builtin[-1] == "orbicularis_oris_lower"
     whole = myoshell.muscle_names("face")
     assert set(builtin) <= set(whole) and len(whole) > len(builtin)
 

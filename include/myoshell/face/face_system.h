@@ -12,13 +12,11 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/face/face_model_kind.h"
 #include "myoshell/face/head.h"
 #include "myoshell/face/jaw.h"
 
 namespace myo {
-
-enum class FaceModelKind { Thesis, Anatomical };
-const char* toString(FaceModelKind kind);  // "thesis", "anatomical"
 
 // The built-in head each model uses: the anatomical model's has open eyes (its lids turn about the
 // eyeballs, eyelids.h); the thesis model's keeps them closed, the head its figures were made on.

@@ -11,6 +11,7 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/coupling_profile.h"
+#include "myoshell/face/face_model_kind.h"
 #include "myoshell/mesh/tri_mesh.h"
 
 namespace YAML {
@@ -19,7 +20,6 @@ class Node;
 
 namespace myo {
 
-enum class FaceModelKind;  // face_system.h
 class DocReader;
 }
 
@@ -119,15 +119,19 @@ const std::string& thesisMuscleJson();
 const std::vector<MuscleDef>& faceMuscleDefs();
 
 // The thesis's eight as the whole face places them: faceMuscleDefs()'s entries under the thesis's
-// names, in the thesis's order. The anatomical model's built-in library: its zygomaticus major
-// arises from the zygomatic bone and its depressor anguli from the mandible's lower border, where
-// the thesis's placement leaves them short or in front of the chin (docs/muscles.md, "The
-// anatomical model's eight").
+// names, in the thesis's order. Its zygomaticus major arises from the zygomatic bone and its
+// depressor anguli from the mandible's lower border, where the thesis's placement leaves them short
+// or in front of the chin (docs/anatomical_model.md, "The anatomical model's eight").
 const std::vector<MuscleDef>& anatomicalEightDefs();
 
-// A built-in library by its scene name for a model: "builtin" (the default: the thesis's eight,
-// placed as the thesis places them under model: thesis and as the whole face places them under
-// model: anatomical) or "face" (the whole face); nullptr for any other name (a library file's path).
+// The anatomical model's built-in library: the eight above, then the mouth's sphincter
+// (orbicularis_oris_upper, _lower of the whole face), which is the lips' own body: without it the
+// lips are bare skin that a pulled corner drags sideways (docs/anatomical_model.md, "The lips").
+const std::vector<MuscleDef>& anatomicalBuiltinDefs();
+
+// A built-in library by its scene name for a model: "builtin" (the default: the thesis's eight as
+// the thesis places them under model: thesis; anatomicalBuiltinDefs() under model: anatomical) or
+// "face" (the whole face); nullptr for any other name (a library file's path).
 const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name, FaceModelKind model);
 
 }  // namespace myo
