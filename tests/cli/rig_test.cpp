@@ -170,7 +170,7 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
 
 TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFitted) {
   std::vector<std::string> muscles;
-  for (const MuscleDef& d : thesisMuscleDefs()) muscles.push_back(d.name);
+  for (const MuscleDef& d : anatomicalBuiltinDefs()) muscles.push_back(d.name);
   const RetargetMap map = readRetargetMapFile((test::sourceDir() / "assets/retarget/arkit_ict.json").string(), muscles);
   int reachable = 0;
   for (const RetargetShape& s : map.shapes) {
