@@ -18,6 +18,8 @@ void NonlinearSettleSettings::validate() const {
   if (loadSteps < 1) throw InputError("nonlinear settle: loadSteps must be ≥ 1");
   if (residualRounds < 0) throw InputError("nonlinear settle: residualRounds must be ≥ 0");
   if (newtonSteps < 0) throw InputError("nonlinear settle: newtonSteps must be ≥ 0");
+  if (!(newtonTolerance >= 0.0 && newtonTolerance < 1.0))
+    throw InputError("nonlinear settle: newtonTolerance must lie in [0, 1)");
   if (maxIterations < 1) throw InputError("nonlinear settle: maxIterations must be ≥ 1");
   if (!(tolerance > 0.0)) throw InputError("nonlinear settle: tolerance must be > 0");
 }
@@ -70,6 +72,18 @@ bool appendMOrthonormal(MatX& Phi, const VecX& mass3, VecX r, double tolerance) 
   return true;
 }
 
+// Kxr = ΦᵀK_xΦ (symmetrised), grown by the columns of Phi appended since it was formed.
+void growReducedStiffness(const SparseMat& Kx, const MatX& Phi, MatX& Kxr) {
+  const Eigen::Index r0 = Kxr.cols(), r = Phi.cols();
+  if (r0 == r) return;
+  const MatX KPhi = Kx * Phi.rightCols(r - r0);
+  MatX next(r, r);
+  next.topLeftCorner(r0, r0) = Kxr;
+  next.rightCols(r - r0) = Phi.transpose() * KPhi;
+  next.bottomLeftCorner(r - r0, r0) = next.topRightCorner(r0, r - r0).transpose();
+  Kxr = 0.5 * (next + next.transpose());
+}
+
 }  // namespace
 
 VecX secondOrderForce(const DiscreteShell& shell, const MatX3& a, const MatX3& b, double step) {
@@ -77,11 +91,15 @@ VecX secondOrderForce(const DiscreteShell& shell, const MatX3& a, const MatX3& b
 }
 
 ReducedSolve minimizeReducedEnergy(const DiscreteShell& shell, const MatX& Phi, const MatX& Kxr, const VecX& fr,
-                                   const NonlinearSettleSettings& s) {
+                                   const NonlinearSettleSettings& s, const VecX* start) {
   s.validate();
   const Eigen::Index r = Phi.cols();
   ReducedSolve out;
   out.q = VecX::Zero(r);
+  if (start) {
+    if (start->size() > r) throw InputError("nonlinear settle: the start has more coordinates than the basis");
+    out.q.head(start->size()) = *start;
+  }
   const double fNorm = std::max(fr.norm(), 1e-300);
   // The energy sums terms of ±10⁵ erg on ICT: a predicted decrease −½gᵀp below this fraction of |E|
   // cannot be measured, and the line search only halved round-off (measured: 20 wasted iterations
@@ -90,7 +108,8 @@ ReducedSolve minimizeReducedEnergy(const DiscreteShell& shell, const MatX& Phi, 
   Eigen::LLT<MatX> llt;
   VecX g;
   MatX H;
-  for (int step = 1; step <= s.loadSteps; ++step) {
+  // From a start, the full load at once (the start is near the solution: no continuation).
+  for (int step = start ? s.loadSteps : 1; step <= s.loadSteps; ++step) {
     const VecX f = (static_cast<double>(step) / s.loadSteps) * fr;
     // An intermediate load step is only the next one's start: it stops at the convergence threshold.
     const double tol = step < s.loadSteps ? 1e3 * s.tolerance : s.tolerance;
@@ -157,11 +176,11 @@ double FullSpaceNewton::energy(const VecX& F, const VecX& u, VecX* grad, SparseM
   return e.total + 0.5 * u.dot(Ku) - F.dot(u);
 }
 
-VecX FullSpaceNewton::step(const VecX& F, VecX& u) {
+VecX FullSpaceNewton::step(const VecX& F, VecX& u, bool projectedOnly) {
   if (F.size() != Kx_.rows() || u.size() != Kx_.rows()) throw InputError("full-space Newton: F and u must be 3n");
   VecX g;
   SparseMat H;
-  const double e0 = energy(F, u, &g, &H, HessianMode::Exact);
+  const double e0 = energy(F, u, &g, &H, projectedOnly ? HessianMode::Projected : HessianMode::Exact);
   if (g.norm() <= 1e-8 * F.norm()) return VecX::Zero(u.size());
   // The shell Hessian's pattern is the same at every x (discrete_shell.h): ordered once.
   if (!analysed_) {
@@ -169,19 +188,60 @@ VecX FullSpaceNewton::step(const VecX& F, VecX& u) {
     analysed_ = true;
   }
   ldlt_.factorize(H);
-  if (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0)) {
+  lastProjected_ = projectedOnly;
+  if (!projectedOnly && (ldlt_.info() != Eigen::Success || !(ldlt_.vectorD().minCoeff() > 0.0))) {
     energy(F, u, nullptr, &H, HessianMode::Projected);
+    lastProjected_ = true;
     ldlt_.factorize(H);
-    if (ldlt_.info() != Eigen::Success) throw NumericalError("full-space Newton: the projected Hessian is singular");
   }
+  if (lastProjected_ && ldlt_.info() != Eigen::Success)
+    throw NumericalError("full-space Newton: the projected Hessian is singular");
   const VecX p = ldlt_.solve(-g);
   double alpha = 1.0;
+  lastStepLength_ = 0.0;
   for (int ls = 0; ls < 30; ++ls, alpha *= 0.5)
     if (energy(F, u + alpha * p, nullptr, nullptr, HessianMode::Exact) <= e0 + 1e-4 * alpha * g.dot(p)) {
       u += alpha * p;
+      lastStepLength_ = alpha;
       break;
     }
   return p;
+}
+
+NewtonEnrichment enrichWithNewtonSteps(FullSpaceNewton& newton, const VecX& mass3, const VecX& F,
+                                       const NonlinearSettleSettings& s, MatX& Phi, MatX& Kxr) {
+  s.validate();
+  const DiscreteShell& shell = newton.shell();
+  if (F.size() != Phi.rows() || mass3.size() != Phi.rows() || Kxr.rows() != Phi.cols())
+    throw InputError("Newton enrichment: F, the masses and the basis must be 3n, Kxr r × r");
+  NewtonEnrichment out;
+  ReducedSolve r = minimizeReducedEnergy(shell, Phi, Kxr, Phi.transpose() * F, s);
+  VecX u = flat(r.u);
+  while (out.steps < s.newtonSteps) {
+    // Where this pattern's last step needed the projected Hessian and still a line search (α < 1),
+    // the iterate is still far from where the exact one is positive definite: the projected one at
+    // once, without the exact one's failing factorisation (half of such a step). Once a projected
+    // step is taken whole, the exact Hessian is tried again (its steps converge fast, where it holds).
+    const bool farOff = out.steps > 0 && newton.lastProjected() && newton.lastStepLength() < 1.0;
+    const VecX p = newton.step(F, u, farOff);
+    if (!(p.squaredNorm() > 0.0)) break;  // the full solution already
+    ++out.steps;
+    out.lastStep = p.norm() / std::max(u.norm(), 1e-300);
+    const bool added = appendMOrthonormal(Phi, mass3, p, s.deflationTolerance);
+    if (added) {
+      ++out.appended;
+      growReducedStiffness(newton.extraStiffness(), Phi, Kxr);
+    }
+    // Converged to the tolerance: near the solution p ≈ u* − u, and u + p lies in the span.
+    if (out.lastStep <= s.newtonTolerance) break;
+    if (s.newtonRestarts && added && out.steps < s.newtonSteps) {
+      // The Newton iterate lies in the enriched span: its coordinates start the Galerkin solve.
+      const VecX q0 = Phi.transpose() * mass3.cwiseProduct(u);
+      r = minimizeReducedEnergy(shell, Phi, Kxr, Phi.transpose() * F, s, &q0);
+      u = flat(r.u);
+    }
+  }
+  return out;
 }
 
 NonlinearSkinSettle::NonlinearSkinSettle(std::shared_ptr<const AnatomicalSkin> skin, const NonlinearSettleSettings& settings)
@@ -228,10 +288,7 @@ NonlinearSkinSettle::NonlinearSkinSettle(std::shared_ptr<const AnatomicalSkin> s
       }
     }
   }
-  auto reduceKx = [&] {
-    Kxr_ = Phi_.transpose() * (Kx_ * Phi_);
-    Kxr_ = 0.5 * (Kxr_ + Kxr_.transpose()).eval();
-  };
+  auto reduceKx = [&] { growReducedStiffness(Kx_, Phi_, Kxr_); };
   reduceKx();
   for (int round = 0; round < settings_.residualRounds; ++round) {
     std::vector<VecX> residuals;
@@ -250,24 +307,31 @@ NonlinearSkinSettle::NonlinearSkinSettle(std::shared_ptr<const AnatomicalSkin> s
   }
   if (settings_.newtonSteps > 0) {
     std::vector<MatX3> patterns;
-    for (int m = 0; m < static_cast<int>(sk.muscles().size()); ++m) patterns.push_back(sk.muscleLoad(m));
-    if (settings_.allMusclesTogether && patterns.size() > 1) {
+    const int muscles = static_cast<int>(sk.muscles().size());
+    for (int m = 0; m < muscles; ++m) patterns.push_back(sk.muscleLoad(m));
+    if (settings_.eachSideTogether)
+      for (const char* side : {"left", "right"}) {
+        MatX3 together = MatX3::Zero(n, 3);
+        int count = 0;
+        for (int m = 0; m < muscles; ++m)
+          if (sk.muscles()[static_cast<size_t>(m)].muscle.def.side == side) {
+            together += sk.muscleLoad(m);
+            ++count;
+          }
+        if (count > 1 && count < muscles) patterns.push_back(together);
+      }
+    if (settings_.allMusclesTogether && muscles > 1) {
       MatX3 all = MatX3::Zero(n, 3);
-      for (const MatX3& F : patterns) all += F;
+      for (int m = 0; m < muscles; ++m) all += sk.muscleLoad(m);
       patterns.push_back(all);
     }
     FullSpaceNewton newton(shell, Kx_);
     // One pattern after another, so each starts from a reduced solution in the basis the ones
     // before it enriched (the muscles together last, from the basis of every muscle alone).
     for (const MatX3& F : patterns) {
-      const ReducedSolve r = minimizeReducedEnergy(shell, Phi_, Kxr_, Phi_.transpose() * flat(F), settings_);
-      VecX u = flat(r.u);
-      for (int k = 0; k < settings_.newtonSteps; ++k) {
-        const VecX p = newton.step(flat(F), u);
-        if (!(p.squaredNorm() > 0.0)) break;  // the full solution already
-        if (appendMOrthonormal(Phi_, mass3, p, settings_.deflationTolerance)) ++corrections_;
-      }
-      reduceKx();
+      const NewtonEnrichment e = enrichWithNewtonSteps(newton, mass3, flat(F), settings_, Phi_, Kxr_);
+      corrections_ += e.appended;
+      newtonStepsTaken_.push_back(e.steps);
     }
   }
   buildSeconds_ = clock.seconds();

@@ -6,7 +6,9 @@
 
 #include <Eigen/QR>
 #include <Eigen/SparseCholesky>
+#include <cmath>
 #include <random>
+#include <utility>
 #include <string>
 
 #include "myoshell/core/errors.h"
@@ -192,6 +194,81 @@ TEST(NonlinearSettle, NewtonDirectionsFromTheReducedSolutionEnrichTheBasis) {
   RecordProperty("newton_enriched_error", std::to_string(after));
   EXPECT_GE(before, 0.01);
   EXPECT_LE(after, 1e-3 * before);  // measured: 11 % → 2e-9
+}
+
+// Newton enrichment through enrichWithNewtonSteps on the sphere, from the basis of the linear
+// response alone (M = I here): the Galerkin minimum in the enriched basis is at least as good as the
+// Newton iterate, so Newton steps restarted from it (newtonRestarts) get closer to the full solution
+// in as many steps as steps along the raw iterates (measured, 2 steps: 1.4e-5 against 3.6e-5); and
+// with newtonTolerance the steps stop by themselves once a step is that small against u, the reduced
+// solve then within that of the full solution (measured: 3 steps, error below 1e-6).
+struct SphereEnrichment {
+  PulledSphere ps;
+  VecX exact, mass3;
+  MatX Phi0;
+  SphereEnrichment() : mass3(VecX::Ones(ps.s.n3())) {
+    FullSpaceNewton newton(ps.s.shell, ps.Kx);
+    exact = VecX::Zero(ps.s.n3());
+    while (newton.step(ps.F, exact).squaredNorm() > 0.0) {
+    }
+    const Eigen::SimplicialLDLT<SparseMat> K(SparseMat(ps.s.shell.stiffnessAtRest() + ps.Kx));
+    const VecX lin = K.solve(ps.F);
+    Phi0 = lin / lin.norm();
+  }
+  // The reduced solve's error after enrichment with these settings, and the enrichment's record.
+  std::pair<double, NewtonEnrichment> run(const NonlinearSettleSettings& ns) const {
+    FullSpaceNewton newton(ps.s.shell, ps.Kx);
+    MatX Phi = Phi0;
+    MatX Kxr = Phi.transpose() * (ps.Kx * Phi);
+    const NewtonEnrichment e = enrichWithNewtonSteps(newton, mass3, ps.F, ns, Phi, Kxr);
+    EXPECT_LE((Phi.transpose() * Phi - MatX::Identity(Phi.cols(), Phi.cols())).norm(), 1e-10);
+    EXPECT_LE((Kxr - Phi.transpose() * (ps.Kx * Phi)).norm(), 1e-10 * Kxr.norm());
+    const ReducedSolve r = minimizeReducedEnergy(ps.s.shell, Phi, Kxr, Phi.transpose() * ps.F, ns);
+    EXPECT_TRUE(r.converged);
+    return {(flat(r.u) - exact).norm() / exact.norm(), e};
+  }
+};
+
+TEST(NonlinearSettle, NewtonStepsRestartedFromTheGalerkinMinimumConvergeFaster) {
+  const SphereEnrichment se;
+  NonlinearSettleSettings ns;
+  ns.newtonTolerance = 0.0;
+  ns.newtonSteps = 2;
+  ns.newtonRestarts = false;
+  const auto [raw, rawSteps] = se.run(ns);
+  ns.newtonRestarts = true;
+  const auto [restarted, restartedSteps] = se.run(ns);
+  RecordProperty("raw_iterates_error", std::to_string(raw));
+  RecordProperty("restarted_error", std::to_string(restarted));
+  EXPECT_EQ(rawSteps.steps, 2);
+  EXPECT_EQ(restartedSteps.steps, 2);
+  EXPECT_LE(restarted, 0.5 * raw);
+}
+
+TEST(NonlinearSettle, NewtonEnrichmentStopsOnceTheStepIsSmall) {
+  const SphereEnrichment se;
+  NonlinearSettleSettings ns;
+  ns.newtonSteps = 30;
+  ns.newtonTolerance = 1e-3;
+  const auto [err, e] = se.run(ns);
+  RecordProperty("steps", std::to_string(e.steps));
+  RecordProperty("error", std::to_string(err));
+  EXPECT_LT(e.steps, ns.newtonSteps);
+  EXPECT_LE(e.lastStep, ns.newtonTolerance);
+  EXPECT_LE(err, ns.newtonTolerance);
+}
+
+TEST(NonlinearSettle, ANewtonToleranceOutsideZeroOneIsRefusedNamingTheField) {
+  for (const double bad : {-0.1, 1.0, std::nan("")}) {
+    NonlinearSettleSettings ns;
+    ns.newtonTolerance = bad;
+    try {
+      ns.validate();
+      FAIL() << "no error for " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("newtonTolerance"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(NonlinearSettle, ANegativeNewtonStepCountIsRefusedNamingTheField) {

@@ -28,13 +28,11 @@
 // which converge to its full solution where the rest-stiffness corrections K⁻¹r (residualRounds,
 // a modified Newton; off by default) crawl: the zygomaticus stretches the skin beside the mouth
 // corner by 36 % and compresses a triangle there to 15 % of its area, far from the rest tangent.
-// Measured on ICT (docs/anatomical_model.md, "The reduced nonlinear settle"), with the thesis's
-// placement of the eight and 4 steps: zygomaticus 2.9 %, with the depressor anguli 3.5 %, all eight
-// 0.4 % (a training pattern), gravity face-down 0.14 %. With the anatomical eight (a 6.4 cm
-// zygomaticus) the steps converge more slowly: 4 steps leave the zygomaticus's reduced solve
-// unconverged at 8.0 %; 6 steps (the default) give 6.4 % and 6.9 % (with the depressor anguli;
-// all eight at a = ½, no pattern, 0.77 %; gravity 0.13 %; built in 106 s), 8 steps 5.4 % and 5.7 %
-// (181 s on a shared machine): above the 5 %.
+// The patterns: each muscle alone, each side's muscles together, all of them together; a pattern's
+// steps stop once a step is 1 % of its displacement (newtonTolerance), at most 10. Measured on ICT
+// with the anatomical eight (docs/anatomical_model.md, "The reduced nonlinear settle"): zygomaticus
+// 2.4 %, with the depressor anguli 0.8 %; the former fixed 6 steps without the sides gave 6.4 % and
+// 6.9 %.
 #pragma once
 
 #include <Eigen/SparseCholesky>
@@ -65,12 +63,27 @@ struct NonlinearSettleSettings {
   // 246 s), so the default is Newton enrichment (newtonSteps) instead.
   int residualRounds = 0;
   // Newton enrichment, after the residual rounds: for each enrichment pattern in turn (each muscle
-  // alone at a = 1, then all muscles together at a = 1 when allMusclesTogether), from its reduced
-  // solution in the basis so far, this many full-space Newton steps (FullSpaceNewton: the tangent
-  // stiffness, not the rest one); each step's direction joins the basis. 0: none. Each step is one
-  // factorisation of the 34k-DOF tangent on ICT (about 2 s). 6: the fewest with which every solve
-  // of the anatomical eight converges (4 leave the zygomaticus's unconverged).
-  int newtonSteps = 6;
+  // alone at a = 1, each side's muscles together when eachSideTogether, then all muscles together
+  // when allMusclesTogether), from its reduced solution in the basis so far, at most this many
+  // full-space Newton steps (FullSpaceNewton: the tangent stiffness, not the rest one); each step's
+  // direction joins the basis. 0: none. Each step is one or two factorisations of the 34k-DOF
+  // tangent on ICT (about 2 s each). 10: the zygomaticus's steps take 8–10 (ICT, the anatomical eight).
+  int newtonSteps = 10;
+  // A pattern's Newton steps stop once a step is this small against the displacement,
+  // |p| ≤ newtonTolerance · |u| (Euclidean, all vertices; near the solution p ≈ u* − u, and u + p
+  // lies in the enriched span). 0: always newtonSteps steps. 0.01: the corrugators and depressors
+  // labii stop after 2 steps, the depressors anguli after 4–5, the zygomatici after 8–10.
+  double newtonTolerance = 0.01;
+  // Newton–Galerkin restarts: after each Newton direction joins the basis, the pattern's reduced
+  // problem is solved again in the enriched basis (from the Newton iterate, which lies in it, without
+  // continuation) and the next Newton step starts from that Galerkin minimum, whose energy is at
+  // most the iterate's. Off: on ICT the restarted reduced solves stalled far from equilibrium and
+  // cost more than the steps they saved (docs/anatomical_model.md).
+  bool newtonRestarts = false;
+  // Each side's muscles together at a = 1 (MuscleDef::side "left", "right"; a side with two or more
+  // muscles, not all of them) as enrichment patterns, after the single muscles and before all of
+  // them: the combinations on one side of the mouth (zygomaticus + depressor anguli: 5.9 % → 0.8 %).
+  bool eachSideTogether = true;
   bool allMusclesTogether = true;
   double deflationTolerance = 1e-8;  // as RitzSettings: a correction already in the span is dropped
   int loadSteps = 3;                 // continuation (the full-space reference takes 10)
@@ -88,7 +101,8 @@ double reducedShellEnergy(const DiscreteShell& shell, const MatX& Phi, const Mat
 // internal force, (H(X + εa) − H(X − εa)) b / 2ε with ε·max|a| = `step` (cm).
 VecX secondOrderForce(const DiscreteShell& shell, const MatX3& a, const MatX3& b, double step = 1e-4);
 
-// Minimises E_r on Phi from q = 0 (Newton, continuation, line search). u = Φq.
+// Minimises E_r on Phi from q = 0 (Newton, continuation, line search), or from start (r, or
+// shorter: padded with zeros) at the full load without continuation. u = Φq.
 struct ReducedSolve {
   VecX q;
   MatX3 u;
@@ -97,7 +111,7 @@ struct ReducedSolve {
   bool converged = false;
 };
 ReducedSolve minimizeReducedEnergy(const DiscreteShell& shell, const MatX& Phi, const MatX& Kxr, const VecX& fr,
-                                   const NonlinearSettleSettings& settings);
+                                   const NonlinearSettleSettings& settings, const VecX* start = nullptr);
 
 // Newton's method on the full-space energy E(u) = E_shell(X + u) + ½uᵀK_x u − Fᵀu, one step at a
 // time, as the full-space reference iterates (tests/face/anatomical_test.cpp): the exact Hessian
@@ -110,15 +124,38 @@ class FullSpaceNewton {
   // E at u (3n) under the load F (3n); grad and hess when non-null.
   double energy(const VecX& F, const VecX& u, VecX* grad, SparseMat* hess, HessianMode mode) const;
   // The Newton direction p at u (zero when |∇E| ≤ 1e-8 |F|); u ← u + αp with the first α = 2⁻ᵏ
-  // (k < 30) that decreases E enough, u unchanged when none does.
-  VecX step(const VecX& F, VecX& u);
+  // (k < 30) that decreases E enough, u unchanged when none does. projectedOnly: the projected
+  // Hessian without trying the exact one first (one factorisation instead of two where it is
+  // indefinite).
+  VecX step(const VecX& F, VecX& u, bool projectedOnly = false);
+  // Whether the last step used the projected Hessian (the exact one was not positive definite).
+  bool lastProjected() const { return lastProjected_; }
+  // The last step's α (0: no step decreased E).
+  double lastStepLength() const { return lastStepLength_; }
+  const DiscreteShell& shell() const { return shell_; }
+  const SparseMat& extraStiffness() const { return Kx_; }
 
  private:
   const DiscreteShell& shell_;
   SparseMat Kx_;
   Eigen::SimplicialLDLT<SparseMat> ldlt_;
   bool analysed_ = false;
+  bool lastProjected_ = false;
+  double lastStepLength_ = 0.0;
 };
+
+// Newton enrichment for one load pattern F (3n): from its reduced solution on Phi (3n × r,
+// M-orthonormal; mass3 (3n) the lumped mass per DOF, g), at most settings.newtonSteps full-space
+// Newton steps, each direction appended to Phi (M-orthonormalised, deflated) and Kxr = ΦᵀK_xΦ grown
+// to match; with settings.newtonRestarts each step after the first starts from the Galerkin minimum
+// in the enriched basis; the steps stop once |p| ≤ settings.newtonTolerance · |u|.
+struct NewtonEnrichment {
+  int steps = 0;          // Newton steps taken
+  int appended = 0;       // directions that joined the basis (the others were in it already)
+  double lastStep = 0.0;  // |p| / |u| of the last step
+};
+NewtonEnrichment enrichWithNewtonSteps(FullSpaceNewton& newton, const VecX& mass3, const VecX& F,
+                                       const NonlinearSettleSettings& settings, MatX& Phi, MatX& Kxr);
 
 // The skin's nonlinear settle: its Ritz basis with the second-order corrections, the residual and
 // the Newton enrichment (built once, in the constructor: one full-space solve per correction, one
@@ -133,6 +170,8 @@ class NonlinearSkinSettle {
   SettledSkin settle(const MatX3& worldLoad) const;
   const MatX& basis() const { return Phi_; }   // 3n × r, M-orthonormal
   int corrections() const { return corrections_; }  // vectors appended to the skin's basis
+  // Newton steps taken per enrichment pattern (each muscle, then all of them together).
+  const std::vector<int>& newtonStepsTaken() const { return newtonStepsTaken_; }
   double buildSeconds() const { return buildSeconds_; }
   const NonlinearSettleSettings& settings() const { return settings_; }
 
@@ -142,6 +181,7 @@ class NonlinearSkinSettle {
   SparseMat Kx_;
   MatX Phi_, Kxr_;
   int corrections_ = 0;
+  std::vector<int> newtonStepsTaken_;
   double buildSeconds_ = 0.0;
 };
 
