@@ -280,6 +280,8 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
       {"zyg_dao", loads({{"zygomaticus_major_left", 1.0}, {"depressor_anguli_oris_left", 1.0}})},
       {"all_eight", loads(all)},
       {"all_eight_half", loads(half)},  // not one of the enrichment's patterns
+      // Across the mouth: no pattern holds these two alone (zyg_dao is a part of the left side's).
+      {"zyg_dao_across", loads({{"zygomaticus_major_left", 1.0}, {"depressor_anguli_oris_right", 1.0}})},
       {"gravity_face_down", loads({}, Vec3(90, 0, 0))}};
   // The reduced nonlinear settle (nonlinear_settle.h, default settings: the Ritz basis with the
   // second-order corrections, self and crossed, and Newton enrichment, at most 10 full-space Newton
