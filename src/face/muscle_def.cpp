@@ -221,13 +221,21 @@ const std::vector<MuscleDef>& faceMuscleDefs() {
   return defs;
 }
 
+namespace {
+// The whole face's entry of that name, or nullptr.
+const MuscleDef* faceMuscleNamed(const std::string& name) {
+  const std::vector<MuscleDef>& face = faceMuscleDefs();
+  const auto it = std::find_if(face.begin(), face.end(), [&](const MuscleDef& d) { return d.name == name; });
+  return it != face.end() ? &*it : nullptr;
+}
+}  // namespace
+
 const std::vector<MuscleDef>& anatomicalEightDefs() {
   static const std::vector<MuscleDef> defs = [] {
     std::vector<MuscleDef> eight;
-    const std::vector<MuscleDef>& face = faceMuscleDefs();
     for (const MuscleDef& thesis : thesisMuscleDefs()) {
-      const auto it = std::find_if(face.begin(), face.end(), [&](const MuscleDef& d) { return d.name == thesis.name; });
-      eight.push_back(it != face.end() ? *it : thesis);
+      const MuscleDef* face = faceMuscleNamed(thesis.name);
+      eight.push_back(face ? *face : thesis);
     }
     return eight;
   }();
@@ -238,10 +246,9 @@ const std::vector<MuscleDef>& anatomicalBuiltinDefs() {
   static const std::vector<MuscleDef> defs = [] {
     std::vector<MuscleDef> lib = anatomicalEightDefs();
     for (const char* ring : {"orbicularis_oris_upper", "orbicularis_oris_lower"}) {
-      const std::vector<MuscleDef>& face = faceMuscleDefs();
-      const auto it = std::find_if(face.begin(), face.end(), [&](const MuscleDef& d) { return d.name == ring; });
-      MYO_CHECK(it != face.end(), "face_muscles.json has no " << ring);
-      lib.push_back(*it);
+      const MuscleDef* face = faceMuscleNamed(ring);
+      MYO_CHECK(face, "face_muscles.json has no " << ring);
+      lib.push_back(*face);
     }
     return lib;
   }();
