@@ -63,9 +63,18 @@ double insertionShortening(const Muscle& mu, const MatX3& U, const Vec3& axis) {
 // into or out of the face is gone: a curved muscle follows the face's curve instead of straightening
 // through the deep tissue under it. The short steps keep the walk on the skin beside c_v, never
 // across a lip's seam or a fold.
+// A node whose walk does not carry its skin point ¾ as far as its motion across the skin is not
+// under the face's skin but beside a rim (near the mouth's corner its closest skin is the lip's
+// inner side, which turns into the mouth, and the walk stalls there): it moves as its walked
+// neighbours on the muscle's mesh do, by the mean of their slid motions ("A node beside the mouth's
+// rim", docs/anatomical_model.md). Its own motion would not do: its skin normal is the lip's, so the
+// bed's correction there sinks it into the face. Without this, stalled nodes of the insertion ring
+// left the others to carry the ring's mean shortening: up to twice σ × length.
 MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePoint>& restFoot,
                    const ClosestOnSkin& onSkin) {
+  constexpr double kStalled = 0.75;  // a walk whose chord is shorter than this fraction of the motion across the skin
   MatX3 slid = U;
+  std::vector<char> walked(static_cast<size_t>(U.rows()), 1);
   for (Eigen::Index v = 0; v < U.rows(); ++v) {
     if (U.row(v).squaredNorm() == 0.0) continue;  // the pinned origin
     const SurfacePoint& c = restFoot[static_cast<size_t>(v)];
@@ -80,7 +89,39 @@ MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePo
       foot = onSkin(foot.point + step - step.dot(foot.normal) * foot.normal);
     }
     slid.row(v) = ((foot.point - c.point) + below * (foot.normal - c.normal)).transpose();
+    walked[static_cast<size_t>(v)] = (foot.point - c.point).norm() >= kStalled * along.norm();
   }
+  if (std::all_of(walked.begin(), walked.end(), [](char w) { return w != 0; })) return slid;
+  // Stalled nodes take the mean slid motion of their walked (or already filled) mesh neighbours,
+  // ring after ring outwards; with none anywhere they keep their own motion.
+  std::vector<std::vector<int>> neighbours(static_cast<size_t>(U.rows()));
+  for (Eigen::Index f = 0; f < mu.mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mu.mesh.F(f, k), b = mu.mesh.F(f, (k + 1) % 3);
+      neighbours[static_cast<size_t>(a)].push_back(b);
+      neighbours[static_cast<size_t>(b)].push_back(a);
+    }
+  for (bool filled = true; filled;) {
+    filled = false;
+    std::vector<char> next = walked;
+    for (Eigen::Index v = 0; v < U.rows(); ++v) {
+      if (walked[static_cast<size_t>(v)]) continue;
+      Vec3 motion = Vec3::Zero();
+      int count = 0;
+      for (int w : neighbours[static_cast<size_t>(v)])
+        if (walked[static_cast<size_t>(w)] && U.row(w).squaredNorm() > 0.0) {
+          motion += slid.row(w).transpose();
+          ++count;
+        }
+      if (count == 0) continue;
+      slid.row(v) = (motion / count).transpose();
+      next[static_cast<size_t>(v)] = 1;
+      filled = true;
+    }
+    walked = std::move(next);
+  }
+  for (Eigen::Index v = 0; v < U.rows(); ++v)
+    if (!walked[static_cast<size_t>(v)]) slid.row(v) = U.row(v);
   return slid;
 }
 
