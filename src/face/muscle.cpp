@@ -2,12 +2,15 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/mesh/ray_cast.h"
 
 #include <algorithm>
 
@@ -25,12 +28,30 @@ struct SkinQuery {
   const Head& head;
   const MatX3& normals;  // the skin's vertex normals
   const SurfaceLocator* locator;
+  std::vector<char> rimVertex;  // per skin vertex: on a boundary edge (a hole's rim, a mask's edge)
   SurfacePoint operator()(const Vec3& p) const {
     return locator ? locator->closest(p) : closestSurfacePoint(head.mesh.V, head.mesh.F, normals, p);
   }
+  // Whether a closest point lies on the rim: every vertex that carries it is a rim vertex.
+  bool onRim(const SurfacePoint& c) const {
+    for (int k = 0; k < 3; ++k)
+      if (c.barycentric(k) > 1e-9 && !rimVertex[static_cast<size_t>(head.mesh.F(c.triangle, k))]) return false;
+    return true;
+  }
 };
 
-// The anchor's point on the skin: the landmark moved by the frame offset, then projected.
+std::vector<char> rimVertices(const TriMesh& mesh) {
+  std::vector<char> rim(static_cast<size_t>(mesh.vertexCount()), 0);
+  for (const Edge& e : buildEdgeTable(mesh.F, mesh.vertexCount()).edges)
+    if (e.isBoundary()) rim[static_cast<size_t>(e.v[0])] = rim[static_cast<size_t>(e.v[1])] = 1;
+  return rim;
+}
+
+// The anchor's point on the skin: the landmark moved by the frame offset, then projected. Where
+// the closest skin is a hole's rim, the anchor lies behind skin that turns away from it (ICT's
+// upper lid over its eye opening: both levator palpebrae anchors fell on the opening's rim, a
+// 0.05 cm muscle), so it takes the skin in front of it along the face's depth axis, when a ray from
+// in front meets skin there; a mask's outer edge beyond which nothing lies keeps the rim point.
 SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const FaceFrame& frame,
                           const SkinQuery& onSkin, const std::string& muscle) {
   if (!head.landmarks.has(anchor.landmark))
@@ -38,7 +59,12 @@ SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const Fa
                      head.landmarks.sourcePath);
   const Vec3 landmark = head.mesh.V.row(head.landmarks.vertex(anchor.landmark));
   const Vec3 moved = landmark + frame.scale * frame.directionFromFrame(anchor.offset);
-  return onSkin(moved);
+  const SurfacePoint closest = onSkin(moved);
+  if (!onSkin.onRim(closest)) return closest;
+  const Vec3 out = frame.directionFromFrame(Vec3::UnitZ());
+  const std::optional<SurfacePoint> front =
+      firstRayHit(head.mesh.V, head.mesh.F, onSkin.normals, moved + 2.0 * frame.scale * out, -out);
+  return front ? *front : closest;
 }
 
 }  // namespace
@@ -134,7 +160,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
     MYO_CHECK(skin->vertices().rows() == head.mesh.V.rows() && skin->triangles().rows() == head.mesh.F.rows(),
               "muscle '" << def.name << "': the skin locator is not over this head's mesh");
   const MatX3 normals = skin ? skin->vertexNormals() : vertexNormals(head.mesh.V, head.mesh.F);
-  const SkinQuery onSkin{head, normals, skin};
+  const SkinQuery onSkin{head, normals, skin, rimVertices(head.mesh)};
   const int S = def.stations, R = def.ringNodes;
   std::vector<Vec3> centre(S), normal(S);
   const bool loop = def.isRing() && def.ring.closed;

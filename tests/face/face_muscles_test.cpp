@@ -166,6 +166,33 @@ TEST(FaceMuscles, EveryMuscleBuildsUnderTheSkinOfTheBuiltInHeadAndIct) {
   expectAllBuild(loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string()));
 }
 
+// An anchor whose closest skin is a hole's rim takes the skin in front of it (muscle.cpp,
+// anchorOnSkin): on ICT the levator palpebrae's two anchors fell on the eye opening's rim under the
+// upper lid, a 0.05 cm muscle; now it lies in the lid, about 1 cm long and under the skin above the
+// opening. A mask's outer edge, beyond which no skin lies, keeps its rim point: the built-in head's
+// frontalis arises above its top edge and keeps its length.
+TEST(FaceMuscles, AnAnchorOnAHolesRimTakesTheSkinInFrontOfIt) {
+  auto named = [](const std::string& name) {
+    return *std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == name; });
+  };
+  const Head builtIn = loadDefaultHead();
+  const Muscle frontalis = buildMuscle(named("frontalis_medial_left"), builtIn, TubeOrientation::MirrorRightSide);
+  EXPECT_NEAR(frontalis.restLength, 2.90, 0.01) << "the mask's edge keeps its anchor";
+  MYO_REQUIRE_SHARED_DATA();
+  const auto dir = test::sharedDataDir() / "ict";
+  const Head ict = loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
+  for (const std::string side : {"left", "right"}) {
+    const Muscle lps = buildMuscle(named("levator_palpebrae_superioris_" + side), ict, TubeOrientation::MirrorRightSide);
+    RecordProperty("levator_palpebrae_" + side + "_length_cm", std::to_string(lps.restLength));
+    EXPECT_GT(lps.restLength, 0.8) << side;
+    EXPECT_LT(lps.restLength, 1.3) << side;
+    // The insertion lies above the eye's inner corner, in the lid, not at the opening's margin.
+    const FaceFrame fr = ict.frame();
+    const Vec3 canthus = ict.mesh.V.row(ict.landmarks.vertex(side + "_eye_inner"));
+    EXPECT_GT(fr.directionToFrame(lps.insertionPoint - canthus).y(), 0.08 * fr.scale) << side;
+  }
+}
+
 TEST(FaceMuscles, PlacementMovesTurnsAndScalesWithTheHead) {
   const Head head = loadDefaultHead();
   const double s = 0.01;
