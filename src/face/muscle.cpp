@@ -52,15 +52,17 @@ std::vector<char> rimVertices(const TriMesh& mesh) {
 // upper lid over its eye opening: both levator palpebrae anchors fell on the opening's rim, a
 // 0.05 cm muscle), so it takes the skin in front of it along the face's depth axis, when a ray from
 // in front meets skin there; a mask's outer edge beyond which nothing lies keeps the rim point.
+// A ring's path points keep their closest points (rimTakesFront false): the palpebral ring's
+// upper arc, moved into the lid, left the contact settle unconverged (docs/muscles.md).
 SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const FaceFrame& frame,
-                          const SkinQuery& onSkin, const std::string& muscle) {
+                          const SkinQuery& onSkin, const std::string& muscle, bool rimTakesFront = true) {
   if (!head.landmarks.has(anchor.landmark))
     throw InputError("muscle '" + muscle + "': the head has no landmark '" + anchor.landmark + "'",
                      head.landmarks.sourcePath);
   const Vec3 landmark = head.mesh.V.row(head.landmarks.vertex(anchor.landmark));
   const Vec3 moved = landmark + frame.scale * frame.directionFromFrame(anchor.offset);
   const SurfacePoint closest = onSkin(moved);
-  if (!onSkin.onRim(closest)) return closest;
+  if (!rimTakesFront || !onSkin.onRim(closest)) return closest;
   const Vec3 out = frame.directionFromFrame(Vec3::UnitZ());
   const std::optional<SurfacePoint> front =
       firstRayHit(head.mesh.V, head.mesh.F, onSkin.normals, moved + 2.0 * frame.scale * out, -out);
@@ -124,7 +126,7 @@ void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& fra
   std::vector<Vec3> points;
   std::vector<double> depths;
   for (const MuscleAnchor& a : def.ring.path) {
-    points.push_back(anchorOnSkin(a, head, frame, onSkin, def.name).point);
+    points.push_back(anchorOnSkin(a, head, frame, onSkin, def.name, false).point);
     depths.push_back(frame.scale * a.depth);
   }
   if (def.ring.closed) {
@@ -168,7 +170,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
     ringCentreLine(def, head, frame, onSkin, centre, normal);
     Vec3 c = Vec3::Zero();
     for (const MuscleAnchor& a : def.ring.anchors) {
-      const SurfacePoint p = anchorOnSkin(a, head, frame, onSkin, def.name);
+      const SurfacePoint p = anchorOnSkin(a, head, frame, onSkin, def.name, false);
       c += 0.5 * (p.point - frame.scale * a.depth * p.normal);
     }
     muscle.ringCentre = c;
