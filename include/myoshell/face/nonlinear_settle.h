@@ -30,9 +30,9 @@
 // corner by 36 % and compresses a triangle there to 15 % of its area, far from the rest tangent.
 // The patterns: each muscle alone, each side's muscles together, all of them together; a pattern's
 // steps stop once a step is 1 % of its displacement (newtonTolerance), at most 10. Measured on ICT
-// with the anatomical eight (docs/anatomical_model.md, "The reduced nonlinear settle"): zygomaticus
-// 2.4 %, with the depressor anguli 0.8 %; the former fixed 6 steps without the sides gave 6.4 % and
-// 6.9 %.
+// with the built-in library (the eight and the lips' rings; docs/anatomical_model.md, "The reduced
+// nonlinear settle"): zygomaticus 0.02 %, with the depressor anguli 1.4 %, all eight 1.8 %, gravity
+// 0.14 %; the former fixed 6 steps without the sides gave 6.4 % and 6.9 % (the eight alone).
 #pragma once
 
 #include <Eigen/SparseCholesky>
