@@ -48,6 +48,7 @@ void AnatomicalSettings::validate() const {
     bad("the relaxed muscles' modulus must be ≥ 0 dyn/cm² (0: muscles hold the skin)");
   if (!(contactStiffness > 0) || !std::isfinite(contactStiffness))
     bad("the contact stiffness must be > 0 1/s² (per unit vertex mass)");
+  if (!(contactDamping >= 0) || !std::isfinite(contactDamping)) bad("the contact damping must be ≥ 0 s");
 }
 
 ShellMaterial anatomicalSkinMaterial(const AnatomicalSettings& s, double meanEdge) {
@@ -872,6 +873,8 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
         modalForce_ += contactForce_;
         contactStep_ = integrator_.stepQFromQ().cwiseProduct(q) + integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) +
                        g.cwiseProduct(modalForce_) - q;
+        // The dashpot βK_c on the step's motion Δ/h joins the stiffness (AnatomicalSettings::contactDamping).
+        contactStiffness_ *= 1.0 + skin_->settings().contactDamping / h;
         contactSystem_.noalias() = g.asDiagonal() * contactStiffness_;
         contactSystem_.diagonal().array() += 1.0;
         contactLu_.compute(contactSystem_);

@@ -178,17 +178,30 @@ double teethPenetration(const MouthContact& m, const RigidMotion& mandible, cons
     const double dsx = x / (m.a * m.a * s), dsz = z / (m.b * m.b * s);
     return Vec3((1.0 / s - 1.0) * x / rho - rho / (s * s) * dsx, 0.0, (1.0 / s - 1.0) * z / rho - rho / (s * s) * dsz);
   };
+  // The depth fades to 0 over the last tenth of a proxy's height before its outer cap (its top, the
+  // lower one's bottom): w(t) = 3τ² − 2τ³, τ = t/β, t the distance inside the cap. Cut off at the
+  // cap, a vertex inside the arch would drop its whole penalty crossing it, and the penalty's energy
+  // would jump there: its Newton stalled on such a jump (the platysma, ICT; docs/mouth_contact.md).
+  // Returns w·d with ∇(w·d) = w ∇d + d w'(t) ∇t, ∇t = ∓ the frame's y (in the lower proxy's frame).
+  auto faded = [&](double d, double t, double height, const Vec3& radialGrad, const Vec3& capGrad) {
+    const double beta = 0.1 * height, tau = std::clamp(t / beta, 0.0, 1.0);
+    const double w = tau * tau * (3.0 - 2.0 * tau), dw = t < beta ? 6.0 * tau * (1.0 - tau) / beta : 0.0;
+    if (gradient) *gradient = w * radialGrad + d * dw * capGrad;
+    return w * d;
+  };
+  const Vec3 y = m.frame.axes.col(1);
   const Vec3 q = local(m.frame, p);
   if (proxyAt(m, q) == Proxy::Upper) {
     const double d = archDepth(m, q, nullptr);
-    if (d > 0.0 && gradient) *gradient = m.frame.axes * grad(q);
-    return std::max(d, 0.0);
+    if (d <= 0.0) return 0.0;
+    return faded(d, m.upperTop - q.y(), m.upperTop - m.yOcclusal, m.frame.axes * grad(q), -y);
   }
   const Vec3 r = local(m.frame, jaw.toRest(p));
   if (proxyAt(m, r) != Proxy::Lower) return 0.0;
   const double d = archDepth(m, r, nullptr);
-  if (d > 0.0 && gradient) *gradient = mandible.R * (m.frame.axes * grad(r));
-  return std::max(d, 0.0);
+  if (d <= 0.0) return 0.0;
+  return faded(d, r.y() - m.lowerBottom, m.yOcclusal - m.lowerBottom, mandible.R * (m.frame.axes * grad(r)),
+               mandible.R * y);
 }
 
 double lipPairViolation(const MouthContact& m, size_t pair, const MatX3& positions) {

@@ -101,6 +101,53 @@ TEST(MouthContactOnIct, TheRestAndTheJawsRigidMotionTouchNothing) {
   }
 }
 
+// The penalty's depth in the teeth proxies is continuous: it fades to 0 at each proxy's outer cap
+// (the upper one's top, the lower one's bottom), so a vertex inside the arch crossing the cap drops
+// no penalty at once; and its gradient is the depth's own, checked by central differences, in the
+// fade and in the bulk, the lower proxy turned with the jaw. Cut off at the cap, the penalty's
+// Newton stalled on the jump (ICT, the platysma at a = 1: docs/mouth_contact.md).
+TEST(MouthContactOnIct, TheTeethDepthIsContinuousAtTheProxiesCapsAndItsGradientIsExact) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head head = ictHead();
+  const JawRig jaw = jawRig(head.mesh, head.landmarks);
+  const MouthContact m = mouthContact(head.mesh, head.landmarks, jaw);
+  JawPose pose;
+  pose.openDeg = 12.0;
+  const RigidMotion mandible = jawMotion(jaw, pose, 1.0);
+  const FaceFrame& f = m.frame;
+  // A local point of the arch's frame at ellipse radius s, angle θ from the front, height y.
+  auto at = [&](double s, double theta, double y, bool lower) {
+    const Vec3 p = f.origin + f.axes * Vec3(s * m.a * std::sin(theta), y, m.zCentre + s * m.b * std::cos(theta));
+    return lower ? mandible.apply(p) : p;
+  };
+  const double upperH = m.upperTop - m.yOcclusal, lowerH = m.yOcclusal - m.lowerBottom;
+  for (bool lower : {false, true}) {
+    const double cap = lower ? m.lowerBottom : m.upperTop, inward = lower ? 1.0 : -1.0;
+    const double h = lower ? lowerH : upperH;
+    // Continuity: just inside the cap the depth is nearly 0; just outside it is 0.
+    const double justInside = teethPenetration(m, mandible, at(0.8, 0.3, cap + inward * 1e-7 * h, lower), nullptr);
+    const double justOutside = teethPenetration(m, mandible, at(0.8, 0.3, cap - inward * 1e-7 * h, lower), nullptr);
+    EXPECT_EQ(justOutside, 0.0) << (lower ? "lower" : "upper");
+    EXPECT_LT(justInside, 1e-9) << (lower ? "lower" : "upper");
+    // Deep inside (half the height) the depth is the arch's full radial depth.
+    const double full = teethPenetration(m, mandible, at(0.8, 0.3, cap + inward * 0.5 * h, lower), nullptr);
+    EXPECT_GT(full, 0.1) << "cm";
+    for (double t : {0.02, 0.05, 0.08, 0.5}) {  // fractions of the height inside the cap: the fade, then the bulk
+      const Vec3 p = at(0.8, 0.3, cap + inward * t * h, lower);
+      Vec3 g;
+      const double d = teethPenetration(m, mandible, p, &g);
+      ASSERT_GT(d, 0.0) << t;
+      for (int k = 0; k < 3; ++k) {
+        const double e = 1e-6;
+        Vec3 dp = Vec3::Zero();
+        dp(k) = e;
+        const double fd = (teethPenetration(m, mandible, p + dp, nullptr) - teethPenetration(m, mandible, p - dp, nullptr)) / (2 * e);
+        EXPECT_NEAR(g(k), fd, 1e-6 * std::max(1.0, g.norm())) << (lower ? "lower" : "upper") << " t " << t << " k " << k;
+      }
+    }
+  }
+}
+
 // The lips pushed 3 mm straight back into the mouth, with the jaw at 12°.
 MatX3 lipsPushedBack(const Head& head, const JawRig& jaw, const MouthContact& mouth, const JawPose& pose) {
   MatX3 u = MatX3::Zero(head.mesh.V.rows(), 3);

@@ -96,6 +96,15 @@ struct AnatomicalSettings {
   // penalty's reduced stiffness is at most about κ, so the explicit penalty in the step is stable for
   // κ below the limit docs/mouth_contact.md ("Penalty forces") measures.
   double contactStiffness = 1.0e9;
+  // β (s): each violated constraint also has a normal dashpot c_t = β k_t in the step, taken with
+  // the step's own motion (Δ/h), so the step's force is f_c − (1 + β/h) K_c Δ. Without it the
+  // linearly implicit penalty sends a vertex that met a constraint back out as fast as it came in
+  // (a bounce with restitution 1), and the bounces of the lips on the teeth rang through the reduced
+  // modes: the built-in head's smile (demo.json) stepped to 0.29–0.41 cm mean displacement where its
+  // settle has 0.239. β = 1/240 s (66 times the critical c = 2√(k m)): soft tissue meeting teeth does
+  // not bounce. A face at rest in contact (Δ = 0) settles where the static solve does, whatever β
+  // (docs/mouth_contact.md, "Penalty forces").
+  double contactDamping = 1.0 / 240.0;
   void validate() const;            // InputError naming the field
 };
 
