@@ -288,7 +288,7 @@ TEST(SceneParser, AttachmentAndCouplingRoundTrip) {
 TEST(SceneParser, AnatomicalKeysMapOntoItsSettingsAndRoundTrip) {
   const SceneDesc a = parseScene(R"({"name": "an",
     "skin": {"young_modulus": 5e5, "thickness": 0.2, "damping_mass": 3},
-    "muscles": {"use": ["zygomaticus_major_left"], "shortening": 0.2},
+    "muscles": {"use": ["zygomaticus_major_left"], "shortening": 0.25},
     "muscle_material": {"k_b": 5e4},
     "gravity": {"acceleration": 900},
     "drags": [{"name": "d", "landmark": "nose_tip", "radius": 0.5}],
@@ -301,7 +301,7 @@ TEST(SceneParser, AnatomicalKeysMapOntoItsSettingsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(s.skinYoungModulus, 5e5);
   EXPECT_DOUBLE_EQ(s.skinThickness, 0.2);
   EXPECT_DOUBLE_EQ(s.dampingMass, 3.0);
-  EXPECT_DOUBLE_EQ(s.coupling.shortening, 0.2);
+  EXPECT_DOUBLE_EQ(s.coupling.shortening, 0.25);
   EXPECT_DOUBLE_EQ(s.coupling.muscle.kB, 5e4);
   EXPECT_DOUBLE_EQ(s.gravity, 900.0);
   EXPECT_DOUBLE_EQ(s.dt, 0.002);

@@ -75,8 +75,10 @@ TEST_F(EyelidsIct, TheLevatorWidensTheEyeAsEyeWide) {
   RecordProperty("gap_mm", std::to_string(10 * lidGap(lids(), 1, P)));
   EXPECT_GT(lidGap(lids(), 1, P), lidGap(lids(), 1, rest()) + 0.1);  // at least a millimetre wider
   EXPECT_GE(c.cosine, 0.8);
+  // The lid's turn raises the lid and the muscle's pull adds to it: 1.18 at a shortening of 14.4 %,
+  // 1.29 at 20 % (docs/eyelids.md); held to the band issue 14 sets a muscle against its artist shape.
   EXPECT_GE(c.magnitudeRatio, 0.8);
-  EXPECT_LE(c.magnitudeRatio, 1.25);
+  EXPECT_LE(c.magnitudeRatio, 1.33);
 }
 
 TEST_F(EyelidsIct, TheGapShrinksSteadilyWithTheActivation) {

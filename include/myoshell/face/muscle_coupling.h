@@ -34,9 +34,14 @@ namespace myo {
 
 struct MuscleCouplingSettings {
   CouplingProfile profile;  // for every muscle whose definition has no profile of its own (MuscleDef::coupling)
-  // Shortening at a = 1 as a fraction of the rest length: zygomaticus major in a joyful expression
-  // shortens to 85.6 % of its rest length (MRI, Rams et al. 2024, Aesthetic Plast Surg 48:2722).
-  double shortening = 0.144;
+  // Shortening at a = 1 (a maximal contraction) as a fraction of the rest length. Measured maximal
+  // smiles move the mouth corner 13.7 mm (Bae et al. 2003, J Korean Soc Plast Reconstr Surg 30:393,
+  // 50 subjects) and 9.28 mm (Vicon, 12 subjects, Braz J Otorhinolaryngol), 12.8 mm weighted by
+  // their subjects; the zygomaticus major, 6.38 cm on ICT's generic neutral head, carries the corner
+  // with its insertion, so a maximal smile is 12.8 / 63.8 = 0.20 of its length. A posed joyful
+  // expression held in an MRI scanner shortens it by 14.4 % (Rams et al. 2024, Aesthetic Plast
+  // Surg 48:2722), the value before 2026-11-27 (docs/anatomical_model.md, "The shortening at a = 1").
+  double shortening = 0.20;
   // The footprint: skin vertices within footprintReach × the muscle's depth (at the point below
   // them) of the muscle's surface, the muscle beneath them. 2: the fibres fan out to about 1.7
   // depths beyond the muscle's edge (docs/anatomical_model.md, "Couplings").
