@@ -341,11 +341,23 @@ SettledSkin NonlinearSkinSettle::settle(const SkinLoads& loads) const { return s
 
 SettledSkin NonlinearSkinSettle::settle(const MatX3& F) const {
   const VecX fr = Phi_.transpose() * flat(F);
-  const ReducedSolve r = minimizeReducedEnergy(skin_->shell(), Phi_, Kxr_, fr, settings_);
+  ReducedSolve r = minimizeReducedEnergy(skin_->shell(), Phi_, Kxr_, fr, settings_);
+  // A continuation that stalls is run again with finer load steps (4×, then 16×), and the closer
+  // solve is kept: on ICT at a shortening of 20 % the zygomaticus L with the depressor anguli R
+  // stopped at a relative residual of 10 after 30 Newton iterations of its last third.
+  int iterations = r.iterations;
+  for (int finer : {4, 16}) {
+    if (r.converged) break;
+    NonlinearSettleSettings s = settings_;
+    s.loadSteps *= finer;
+    ReducedSolve again = minimizeReducedEnergy(skin_->shell(), Phi_, Kxr_, fr, s);
+    iterations += again.iterations;
+    if (again.residual < r.residual) r = std::move(again);
+  }
   SettledSkin out;
   out.u = r.u;
   out.q = r.q;
-  out.iterations = r.iterations;
+  out.iterations = iterations;
   out.residual = r.residual;
   out.converged = r.converged;
   return out;
