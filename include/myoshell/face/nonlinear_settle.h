@@ -31,8 +31,9 @@
 // The patterns: each muscle alone, each side's muscles together, all of them together; a pattern's
 // steps stop once a step is 1 % of its displacement (newtonTolerance), at most 10. Measured on ICT
 // with the built-in library (the eight and the lips' rings; docs/anatomical_model.md, "The reduced
-// nonlinear settle"): zygomaticus 0.02 %, with the depressor anguli 1.4 %, all eight 1.8 %, gravity
-// 0.14 %; the former fixed 6 steps without the sides gave 6.4 % and 6.9 % (the eight alone).
+// nonlinear settle") at a shortening of 20 %: zygomaticus 0.4 %, with the depressor anguli 3.3 %,
+// all eight 2.4 %, gravity 0.14 %; the former fixed 6 steps without the sides gave 6.4 % and 6.9 %
+// (the eight alone, a shortening of 14.4 %).
 #pragma once
 
 #include <Eigen/SparseCholesky>
