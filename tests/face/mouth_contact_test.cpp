@@ -10,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "myoshell/face/anatomical_face.h"
@@ -35,6 +36,18 @@ bool isMouthMuscle(const std::string& name) {
                            "mentalis", "platysma", "levator_labii_superioris_left", "levator_labii_superioris_right"})
     if (name.find(part) != std::string::npos) return true;
   return false;
+}
+
+// A head with its jaw rig and its mouth's contact, as the face builds them.
+struct HeadMouth {
+  Head head;
+  JawRig jaw;
+  MouthContact mouth;
+};
+HeadMouth mouthOf(Head head) {
+  JawRig jaw = jawRig(head.mesh, head.landmarks);
+  MouthContact mouth = mouthContact(head.mesh, head.landmarks, jaw);
+  return {std::move(head), std::move(jaw), std::move(mouth)};
 }
 
 class MouthContactIct : public test::WholeFaceSuite<test::ictHead> {
@@ -83,9 +96,7 @@ TEST_F(MouthContactIct, NoSweepOfTheJawAndTheMouthMusclesLeavesALipInTheTeethOrT
 
 TEST(MouthContactOnIct, TheRestAndTheJawsRigidMotionTouchNothing) {
   MYO_REQUIRE_SHARED_DATA();
-  const Head head = ictHead();
-  const JawRig jaw = jawRig(head.mesh, head.landmarks);
-  const MouthContact mouth = mouthContact(head.mesh, head.landmarks, jaw);
+  const auto [head, jaw, mouth] = mouthOf(ictHead());
   RecordProperty("teeth_shrink", std::to_string(mouth.shrink));
   RecordProperty("lip_pairs", std::to_string(mouth.lipPairs.size()));
   EXPECT_GT(mouth.shrink, 0.9);  // the arch placed from the landmarks lies behind ICT's lips
@@ -108,9 +119,7 @@ TEST(MouthContactOnIct, TheRestAndTheJawsRigidMotionTouchNothing) {
 // Newton stalled on the jump (ICT, the platysma at a = 1: docs/mouth_contact.md).
 TEST(MouthContactOnIct, TheTeethDepthIsContinuousAtTheProxiesCapsAndItsGradientIsExact) {
   MYO_REQUIRE_SHARED_DATA();
-  const Head head = ictHead();
-  const JawRig jaw = jawRig(head.mesh, head.landmarks);
-  const MouthContact m = mouthContact(head.mesh, head.landmarks, jaw);
+  const auto [head, jaw, m] = mouthOf(ictHead());
   JawPose pose;
   pose.openDeg = 12.0;
   const RigidMotion mandible = jawMotion(jaw, pose, 1.0);
@@ -160,9 +169,7 @@ MatX3 lipsPushedBack(const Head& head, const JawRig& jaw, const MouthContact& mo
 
 TEST(MouthContactOnIct, ALipPushedIntoTheTeethLandsOnTheArchAndMovesWithTheHead) {
   MYO_REQUIRE_SHARED_DATA();
-  const Head head = ictHead();
-  const JawRig jaw = jawRig(head.mesh, head.landmarks);
-  const MouthContact mouth = mouthContact(head.mesh, head.landmarks, jaw);
+  const auto [head, jaw, mouth] = mouthOf(ictHead());
   JawPose pose;
   pose.openDeg = 12.0;
   MatX3 P = lipsPushedBack(head, jaw, mouth, pose);
@@ -180,10 +187,9 @@ TEST(MouthContactOnIct, ALipPushedIntoTheTeethLandsOnTheArchAndMovesWithTheHead)
   Head moved = head;
   for (Eigen::Index i = 0; i < moved.mesh.V.rows(); ++i)
     moved.mesh.V.row(i) = (s * R * head.mesh.V.row(i).transpose() + t).transpose();
-  const JawRig jaw2 = jawRig(moved.mesh, moved.landmarks);
-  const MouthContact mouth2 = mouthContact(moved.mesh, moved.landmarks, jaw2);
+  const auto [head2, jaw2, mouth2] = mouthOf(moved);
   JawPose pose2 = pose;
-  MatX3 Q = lipsPushedBack(moved, jaw2, mouth2, pose2);
+  MatX3 Q = lipsPushedBack(head2, jaw2, mouth2, pose2);
   applyMouthContact(mouth2, jaw2, pose2, Q);
   double worst = 0.0;
   for (Eigen::Index i = 0; i < P.rows(); ++i)
