@@ -1,9 +1,9 @@
-// What placing a shape costs with the lids and the contact projections (face/eyelids.h,
-// face/mouth_contact.h) against placing it without them, on ICT's whole face: the rest + u copy
+// What placing a shape costs with the lids and the contact projections (anatomy/eyelids.h,
+// anatomy/mouth_contact.h) against placing it without them, on ICT's whole face: the rest + u copy
 // alone (every shape pays it), + the jaw, + the lids turned and the eyeballs, + the teeth and the
 // lips. The shape is a settled blink with the mouth's ring pressed and the jaw at 10°, so every
 // projection has work. Placement runs at output, not in the step: this is the price per written
-// frame. docs/PERFORMANCE.md ("Contact") has the figures. The penalty forces (face/contact_penalty.h)
+// frame. docs/PERFORMANCE.md ("Contact") has the figures. The penalty forces (anatomy/contact_penalty.h)
 // run in the step: penaltyForce/0 (the reduced force at the pressed shape's q), penaltyForce/1
 // (with the Gauss–Newton K_c the step's implicit solve needs), and one AnatomicalStepper step with
 // the contact on against off, in that pressed state (docs/mouth_contact.md, "Penalty forces").
@@ -16,10 +16,10 @@
 #include <filesystem>
 #include <memory>
 
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace {
 

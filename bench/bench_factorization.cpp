@@ -16,10 +16,10 @@
 #include <filesystem>
 #include <memory>
 
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace {
 

@@ -18,13 +18,13 @@
 #include <map>
 #include <memory>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/parallel.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/subdivision.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace {
 

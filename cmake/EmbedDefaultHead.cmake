@@ -1,4 +1,4 @@
-# Embeds the default head into the face layer: the MediaPipe canonical face mesh slice fetched and
+# Embeds the default head into the head layer: the MediaPipe canonical face mesh slice fetched and
 # verified by scripts/fetch_default_head (.cache/default_head/, gitignored) and the landmark file
 # assets/default_head/landmarks_multipie68.json, as byte arrays in a generated C++ file.
 #

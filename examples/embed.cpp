@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "myoshell/face/face_model.h"
-#include "myoshell/face/simulator.h"
+#include "myoshell/thesis/face_model.h"
+#include "myoshell/thesis/simulator.h"
 
 int main() {
   using namespace myo;

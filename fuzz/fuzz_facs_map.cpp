@@ -1,4 +1,4 @@
-// Fuzzes the FACS map reader (face/facs_map.h), without and with a list of known muscles, and plays
+// Fuzzes the FACS map reader (fit/facs_map.h), without and with a list of known muscles, and plays
 // what reads through activationsForAus. A map that reads has each AU once, a positive number, a name,
 // the openface flag of OpenFace 2.0's list, weights in [0, 1], only known muscles when a list is
 // given, and muscles or a `needs`, never both; every AU at full intensity gives activations in
@@ -8,7 +8,7 @@
 
 #include "fuzz_common.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/facs_map.h"
+#include "myoshell/fit/facs_map.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text = myo::fuzz::text(data, size);

@@ -5,7 +5,7 @@
 
 #include "fuzz_common.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/landmarks.h"
+#include "myoshell/head/landmarks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text = myo::fuzz::text(data, size);

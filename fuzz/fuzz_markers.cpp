@@ -8,7 +8,7 @@
 
 #include "fuzz_common.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/marker_target.h"
+#include "myoshell/fit/marker_target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text = myo::fuzz::text(data, size);

@@ -1,4 +1,4 @@
-// Fuzzes the retargeting-map reader (`myoshell rig --map`, face/retarget_map.h), without and with a
+// Fuzzes the retargeting-map reader (`myoshell rig --map`, fit/retarget_map.h), without and with a
 // list of known muscles. A map that reads has each ARKit name once; activations in [0, 1] ([-1, 1]
 // for a corrective, whose total with its base is in [0, 1]); unreachable shapes with a reason and no
 // activations; and written back it reads the same again.
@@ -7,8 +7,8 @@
 
 #include "fuzz_common.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/arkit_names.h"
-#include "myoshell/face/retarget_map.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/retarget_map.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text = myo::fuzz::text(data, size);

@@ -1,12 +1,12 @@
 // `myoshell fit TARGET [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--muscles A,B,…]
 // [--align none|rigid|similarity] [--lambda L] [--out ACTIVATIONS.json] [--cache DIR] [--json]`:
 // the activations in [0, 1] of the anatomical face whose settled shape best matches a target
-// (face/activation_fit.h; docs/fitting.md). TARGET is
+// (fit/activation_fit.h; docs/fitting.md). TARGET is
 // - an OBJ of the head's topology, in the head's units (an expression shape of that head);
 // - `RIG.glb#shape`, a morph target of a glTF rig (io/rig_file.h): its delta from the rig's base is
 //   the target. Without a head option the head is the rig's base mesh, and --landmarks is required
 //   (a glTF file carries none);
-// - a marker file (face/marker_target.h): where a few vertices should be, e.g. tracked landmarks;
+// - a marker file (fit/marker_target.h): where a few vertices should be, e.g. tracked landmarks;
 //   --align rigid or similarity removes the head's motion first.
 // Every argument, the head and the target are read and checked before the model is built.
 #include <fmt/core.h>
@@ -23,14 +23,14 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/io/fit_head.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/activation_fit.h"
-#include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/head_checks.h"
-#include "myoshell/face/retarget_map.h"
+#include "myoshell/fit/activation_fit.h"
+#include "myoshell/fit/retarget_map.h"
+#include "myoshell/head/head_checks.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/io/marker_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"

@@ -1,7 +1,7 @@
 // `myoshell fit-rig RIG.glb [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--lambda L]
 // [--out MAP.json] [--report DIR] [--cache DIR] [--json]`: every ARKit-named shape of a glTF rig
-// fitted to activations of the anatomical face (face/rig_fit.h), gathered into a retargeting map
-// (face/retarget_map.h) that `myoshell rig` plays on any head. The report is a Markdown table of
+// fitted to activations of the anatomical face (fit/rig_fit.h), gathered into a retargeting map
+// (fit/retarget_map.h) that `myoshell rig` plays on any head. The report is a Markdown table of
 // every shape's figures and a picture per shape (the target and the fit side by side, coloured by
 // displacement). docs/fitting.md, "Fitting a rig".
 #include <fmt/core.h>
@@ -16,14 +16,14 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/io/fit_head.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/io/rig_fitting.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
+#include "myoshell/io/rig_fitting.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/face_picture.h"
 #include "myoshell/render/png.h"

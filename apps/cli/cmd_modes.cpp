@@ -13,9 +13,9 @@
 #include "job_report.h"
 #include "command.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/vertex_set_file.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/obj_reader.h"
-#include "myoshell/mesh/vertex_set.h"
 #include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/shell/discrete_shell.h"
 

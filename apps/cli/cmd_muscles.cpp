@@ -14,8 +14,8 @@
 #include "command.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/fit_head.h"
-#include "myoshell/face/muscle.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/muscles/muscle.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo::cli {
 namespace {

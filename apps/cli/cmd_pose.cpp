@@ -10,7 +10,7 @@
 // head). With --scene it is that scene's face (head, muscles, settings, drags registered but not
 // pulled); its timeline is not played. The head options and --scene exclude each other: a scene names
 // its own head (key `head`), and a second head would leave its drag vertices meaningless.
-// --jaw opens the jaw (degrees), protrudes and shifts it (cm; face/jaw.h, docs/jaw.md): the settled
+// --jaw opens the jaw (degrees), protrudes and shifts it (cm; head/jaw.h, docs/jaw.md): the settled
 // displacement is the residual, relative to the jawed rest, and turns with the blended jaw rotation.
 // --contact off settles and places without contact (no penalty forces, no projection out of the
 // eyeballs and teeth; docs/mouth_contact.md): the shape that passes through, exactly linear in the loads.
@@ -30,10 +30,10 @@
 #include "job_report.h"
 #include "command.h"
 #include "resources.h"
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/head_checks.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/obj_writer.h"
 #include "myoshell/io/scene_face.h"
@@ -227,8 +227,8 @@ int runPose(const PoseArgs& a) {
                                      "iterations)",
                                      settled.residual, settled.iterations));
 
-  // The shape: rest + u, or with the jaw the jawed rest + u turned with it (face/jaw.h), then the
-  // lids and the eyeball contact (face/eyelids.h).
+  // The shape: rest + u, or with the jaw the jawed rest + u turned with it (head/jaw.h), then the
+  // lids and the eyeball contact (anatomy/eyelids.h).
   MatX3 positions;
   const ContactReport contact = face->placeSkin(settled.u, jaw, act, positions);
   Eigen::Index peakVertex = 0;

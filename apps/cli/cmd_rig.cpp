@@ -1,6 +1,6 @@
 // `myoshell rig [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] --map MAP.json --out RIG.glb
 // [--cache DIR] [--json]`: a blendshape rig made by physics for any head. Each shape of a
-// retargeting map (face/retarget_map.h; `fit-rig` writes them, assets/retarget/arkit_ict.json is
+// retargeting map (fit/retarget_map.h; `fit-rig` writes them, assets/retarget/arkit_ict.json is
 // fitted on ICT) is settled on the head's anatomical face, and the 52 ARKit shapes are written as
 // glTF morph targets (io/rig_export.h) in ARKit's order: zero deltas where the map has none or the
 // shape is unreachable. A corrective (mouthClose on jawOpen) is written as what it adds to its base.
@@ -15,8 +15,8 @@
 #include "job_report.h"
 #include "command.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/io/fit_head.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/io/rig_making.h"
 #include "resources.h"
 

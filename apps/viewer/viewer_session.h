@@ -12,9 +12,9 @@
 
 #include "myoshell/anim/scene.h"
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/simulator.h"
+#include "myoshell/head/jaw.h"
 #include "myoshell/reduce/basis_cache.h"
+#include "myoshell/thesis/simulator.h"
 
 namespace myo::viewer {
 
@@ -55,7 +55,7 @@ class ViewerSession {
   // --- the jaw (anatomical model; docs/jaw.md) ---------------------------------------------------
   bool hasJaw() const { return thesisModel() == nullptr; }
   // The jaw's sliders: opening (degrees), protrusion and lateral shift (cm), each clamped to the
-  // jaw's range (face/jaw.h) with a warning naming it; NaN is an InputError; the thesis model has no
+  // jaw's range (head/jaw.h) with a warning naming it; NaN is an InputError; the thesis model has no
   // jaw (InputError naming the model). While the timeline plays a jaw track, the sliders show it.
   void setJawSlider(const JawPose& pose);
   const JawPose& jawSlider() const { return jaw_; }

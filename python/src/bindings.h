@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/types.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
 #include "myoshell/reduce/basis_cache.h"
 
 namespace myo::python {

@@ -14,8 +14,8 @@
 #include "myoshell/anim/scene.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/activation_fit.h"
-#include "myoshell/face/jaw.h"
+#include "myoshell/fit/activation_fit.h"
+#include "myoshell/head/jaw.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/muscle_library_file.h"
 

@@ -7,11 +7,11 @@
 
 #include "bindings.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head_checks.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/obj_writer.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo::python {
 namespace {

@@ -10,7 +10,7 @@
 #include "activations.h"
 #include "bindings.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/jaw.h"
+#include "myoshell/head/jaw.h"
 
 namespace myo::python {
 namespace {

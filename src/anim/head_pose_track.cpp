@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "myoshell/face/anatomical_face.h"
+#include "myoshell/anatomy/anatomical_face.h"
 
 namespace myo {
 

@@ -21,7 +21,7 @@
 
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/arkit_names.h"
+#include "myoshell/fit/arkit_names.h"
 #include "performance_frames.h"
 
 namespace myo::performance_detail {

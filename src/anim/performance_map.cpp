@@ -8,8 +8,8 @@
 #include "myoshell/core/check.h"
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/arkit_names.h"
-#include "myoshell/face/jaw.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/head/jaw.h"
 
 namespace myo {
 namespace {
@@ -86,7 +86,7 @@ std::string numberText(double v) {
   return os.str();
 }
 
-// The jaw within its anatomical ranges (face/jaw.h): where inputs add past them, the jaw stops.
+// The jaw within its anatomical ranges (head/jaw.h): where inputs add past them, the jaw stops.
 Vec3 clampJaw(const Vec3& j) {
   return Vec3(std::clamp(j.x(), kJawOpenMinDeg, kJawOpenMaxDeg), std::clamp(j.y(), kJawForwardMinCm, kJawForwardMaxCm),
               std::clamp(j.z(), -kJawLateralMaxCm, kJawLateralMaxCm));

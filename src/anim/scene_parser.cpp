@@ -7,8 +7,8 @@
 
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head_checks.h"
-#include "myoshell/face/jaw.h"
+#include "myoshell/head/head_checks.h"
+#include "myoshell/head/jaw.h"
 
 namespace myo {
 

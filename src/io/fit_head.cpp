@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head_checks.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"
 
 namespace myo {

@@ -4,9 +4,9 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
-#include "myoshell/face/head_checks.h"
+#include "myoshell/head/head_checks.h"
+#include "myoshell/io/vertex_set_file.h"
 #include "myoshell/mesh/obj_reader.h"
-#include "myoshell/mesh/vertex_set.h"
 
 namespace myo {
 

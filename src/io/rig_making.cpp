@@ -5,14 +5,14 @@
 #include <filesystem>
 #include <optional>
 
+#include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/arkit_rig.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/fit/arkit_rig.h"
+#include "myoshell/head/jaw.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/io/retarget_map_file.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 namespace {

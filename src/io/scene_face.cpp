@@ -2,18 +2,18 @@
 
 #include <filesystem>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/performance_map.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/head_checks.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/attachment_file.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/performance_file.h"
 #include "myoshell/io/retarget_map_file.h"
+#include "myoshell/io/vertex_set_file.h"
 #include "myoshell/mesh/obj_reader.h"
-#include "myoshell/mesh/vertex_set.h"
 
 namespace myo {
 

@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/core/whole_file.h"
 
 namespace myo {
 
@@ -155,10 +154,6 @@ std::vector<int> parseVertexSet(const std::string& jsonText, int vertexCount, co
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
-}
-
-std::vector<int> readVertexSet(const std::string& path, int vertexCount) {
-  return parseVertexSet(readWholeFile(path), vertexCount, path);
 }
 
 }  // namespace myo

@@ -8,8 +8,8 @@
 #include <algorithm>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/arkit_names.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 namespace {

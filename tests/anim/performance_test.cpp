@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/performance.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_face.h"
 #include "myoshell/io/performance_file.h"
 #include "support/test_data.h"
 

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <numeric>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_face.h"
 #include "myoshell/io/scene_face.h"
 
 namespace myo {

@@ -1,12 +1,12 @@
 // timeline.jaw (docs/scene_format.md, docs/jaw.md): parsed, round-tripped, refused under the thesis
 // model, and applied by ScenePlayer every step (the played positions are the jawed rest + the turned
-// residual of face/jaw.h).
+// residual of head/jaw.h).
 #include <gtest/gtest.h>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_face.h"
 #include "myoshell/io/scene_face.h"
 #include "support/basis_cache.h"
 

@@ -6,10 +6,10 @@
 #include <atomic>
 
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/io/scene_face.h"  // buildSceneFace for the fixture
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/simulator.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/scene_face.h"  // buildSceneFace for the fixture
+#include "myoshell/thesis/simulator.h"
 #include "support/basis_cache.h"
 
 namespace myo {

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/head_pose_track.h"
 #include "myoshell/anim/timeline.h"
-#include "myoshell/face/anatomical_face.h"
 #include "myoshell/core/errors.h"
 
 namespace myo {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/eyelids.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/scene_face.h"
 #include "support/cli_runner.h"

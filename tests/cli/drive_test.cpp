@@ -11,13 +11,13 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/anim/performance.h"
-#include "myoshell/face/head.h"
+#include "myoshell/face/face_system.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/head_files.h"
-#include "myoshell/face/arkit_names.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/face_system.h"
 #include "myoshell/io/performance_file.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"

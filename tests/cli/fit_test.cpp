@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
 #include "support/test_data.h"

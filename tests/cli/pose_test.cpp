@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "myoshell/face/head.h"
-#include "myoshell/face/shape_metric.h"
-#include "myoshell/io/rig_file.h"
+#include "myoshell/fit/shape_metric.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/obj_writer.h"
+#include "myoshell/io/rig_file.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
 
@@ -207,7 +207,7 @@ TEST(Pose, IctFolderKeepsTheFilesFacesAndUvs) {
 }
 
 // `pose --jaw 25.3` on ICT against ICT's jawOpen (docs/jaw.md): the goal is cosine ≥ 0.9 and a
-// magnitude ratio within 0.8–1.25 (the shape metric, face/shape_metric.h). The jaw is kinematic and
+// magnitude ratio within 0.8–1.25 (the shape metric, fit/shape_metric.h). The jaw is kinematic and
 // no muscle is active: the shape is the jawed rest, turned about the pivot the landmarks give.
 TEST(Pose, IctJawOpenMatchesIctsJawOpen) {
   MYO_REQUIRE_SHARED_DATA();

@@ -13,12 +13,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "myoshell/face/arkit_names.h"
-#include "myoshell/face/retarget_map.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/retarget_map.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/cli_runner.h"
 #include "support/test_data.h"
 

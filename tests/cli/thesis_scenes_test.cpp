@@ -13,10 +13,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "myoshell/io/scene_face.h"
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/simulator.h"
 #include "myoshell/io/basis_cache_file.h"
+#include "myoshell/io/scene_face.h"
+#include "myoshell/thesis/simulator.h"
 #include "support/cli_runner.h"
 
 namespace myo {

@@ -1,4 +1,4 @@
-// Fitting activations (face/activation_fit.h, docs/fitting.md): the bounded solver against brute
+// Fitting activations (fit/activation_fit.h, docs/fitting.md): the bounded solver against brute
 // force, the alignment against a known transform, recovery of shapes the model made itself (dense
 // and from 68 moved and turned markers), the bounds, the sparsity term, exact errors; on ICT
 // (../shared/data; skipped when absent) the two artist shapes, figures recorded as test properties.
@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/activation_fit.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/muscle_def.h"
-#include "myoshell/face/retarget_map.h"
-#include "myoshell/face/rig_fit.h"
+#include "myoshell/fit/activation_fit.h"
+#include "myoshell/fit/retarget_map.h"
+#include "myoshell/fit/rig_fit.h"
+#include "myoshell/head/jaw.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/test_data.h"
 
 namespace myo {

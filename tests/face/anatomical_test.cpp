@@ -1,4 +1,4 @@
-// The anatomical face's one skin system (face/anatomical_skin.h) on the built-in head and on
+// The anatomical face's one skin system (anatomy/anatomical_skin.h) on the built-in head and on
 // ICT-FaceKit's head (../shared/data/ict; those tests skip when it is absent): artist shapes,
 // linearity, gravity relative to the rest pose, the settled shape against a dynamic run and
 // against the full-space nonlinear reference, drags. Numbers are recorded as test properties and
@@ -14,15 +14,15 @@
 #include <sstream>
 #include <thread>
 
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/anatomical_stepper.h"
+#include "myoshell/anatomy/nonlinear_settle.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/muscle_def.h"
-#include "myoshell/face/nonlinear_settle.h"
-#include "myoshell/face/shape_metric.h"
+#include "myoshell/fit/shape_metric.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "myoshell/reduce/rotation_operator.h"
 #include "support/free_vertex.h"
 #include "support/ict.h"

@@ -1,10 +1,10 @@
-// Per-vertex overrides of the attachment stiffness (face/attachment_overrides.h, the scene key
+// Per-vertex overrides of the attachment stiffness (muscles/attachment_overrides.h, the scene key
 // skin.attachment): the file's entries, its errors, and the tissue map they change.
 #include <gtest/gtest.h>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/attachment_overrides.h"
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
+#include "myoshell/muscles/attachment_overrides.h"
 
 namespace myo {
 namespace {

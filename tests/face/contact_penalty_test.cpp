@@ -1,4 +1,4 @@
-// The contact's reduced penalty forces (face/contact_penalty.h; docs/mouth_contact.md and
+// The contact's reduced penalty forces (anatomy/contact_penalty.h; docs/mouth_contact.md and
 // docs/eyelids.md, "Penalty forces") on ICT's whole face: the basis holds the contact patterns'
 // static responses; the reduced force is the gradient of the penalty energy (finite differences);
 // with nothing touching it is exactly zero and the settle is the linear one bit for bit; over the
@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/contact_penalty.h"
+#include "myoshell/anatomy/mouth_contact.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/contact_penalty.h"
-#include "myoshell/face/mouth_contact.h"
-#include "myoshell/face/muscle_def.h"
 #include "myoshell/io/scene_face.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/basis_cache.h"
 #include "support/ict.h"
 #include "support/lid_poses.h"

@@ -17,17 +17,17 @@
 #include <string>
 #include <vector>
 
-#include "myoshell/face/activation_fit.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/eyelids.h"
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/face/face_system.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/mediapipe_mesh.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/fit/activation_fit.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/jaw.h"
+#include "myoshell/head/mediapipe_mesh.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/basis_cache.h"
 #include "support/lid_poses.h"
 

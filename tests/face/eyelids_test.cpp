@@ -1,4 +1,4 @@
-// The eyelids (face/eyelids.h, docs/eyelids.md): on ICT a blink by orbicularis_oculi_palpebral at
+// The eyelids (anatomy/eyelids.h, docs/eyelids.md): on ICT a blink by orbicularis_oculi_palpebral at
 // a = 1 closes the eye (lid gap < 1 mm, no vertex inside the eyeball proxy) and is compared with
 // ICT's eyeBlink_L, the levator with eyeWide_L; the closure grows with the activation; a sweep of
 // the eye's muscles never leaves skin inside an eyeball; the right eye mirrors the left; the lids
@@ -13,15 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/muscle_def.h"
-#include "myoshell/face/shape_metric.h"
+#include "myoshell/fit/shape_metric.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/rig_file.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/basis_cache.h"
 #include "support/ict.h"
 #include "support/lid_poses.h"

@@ -2,8 +2,8 @@
 
 #include <numbers>
 
-#include "myoshell/face/face_frame.h"
-#include "myoshell/face/head.h"
+#include "myoshell/head/face_frame.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/head_files.h"
 #include "support/test_data.h"
 

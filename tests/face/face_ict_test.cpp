@@ -7,12 +7,12 @@
 #include <memory>
 #include <sstream>
 
-#include "myoshell/face/face_model.h"
-#include "myoshell/face/simulator.h"
+#include "myoshell/io/head_files.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
-#include "myoshell/io/head_files.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "myoshell/thesis/face_model.h"
+#include "myoshell/thesis/simulator.h"
 #include "support/basis_cache.h"
 #include "support/test_data.h"
 

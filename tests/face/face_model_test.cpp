@@ -6,12 +6,12 @@
 #include <memory>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/face_model.h"
-#include "myoshell/face/simulator.h"
-#include "myoshell/mesh/edge_table.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/obj_writer.h"
+#include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "myoshell/thesis/face_model.h"
+#include "myoshell/thesis/simulator.h"
 
 #include <filesystem>
 #include <fstream>

@@ -14,14 +14,14 @@
 #include <set>
 #include <string>
 
+#include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_skin.h"
 #include "myoshell/face/face_system.h"
-#include "myoshell/face/muscle.h"
-#include "myoshell/face/muscle_def.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/muscles/muscle.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/test_data.h"
 
 namespace myo {

@@ -1,4 +1,4 @@
-// The FACS map (face/facs_map.h, assets/facs/au_map.json, docs/facs.md): the shipped map reads
+// The FACS map (fit/facs_map.h, assets/facs/au_map.json, docs/facs.md): the shipped map reads
 // against the face's muscles, holds every OpenFace AU, drives every muscle of the face exactly by the
 // AUs its definition names, and leaves only the jaw's and the lids' AUs unplayed; a map reads back to
 // itself; every fault is refused with file:line:col; intensities become activations by weighted sums
@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/facs_map.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/fit/facs_map.h"
 #include "myoshell/io/facs_map_file.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/test_data.h"
 
 namespace myo {

@@ -1,4 +1,4 @@
-// Head checks on load (face/head_checks.h): scale plausibility and landmarks that fit the mesh, on a
+// Head checks on load (head/head_checks.h): scale plausibility and landmarks that fit the mesh, on a
 // small synthetic face and on the real heads (default; ICT when ../shared/data is present).
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <string>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/head_checks.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/closest_point.h"
 #include "support/test_data.h"

@@ -3,9 +3,9 @@
 #include <set>
 
 #include "myoshell/face/face_system.h"
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/mediapipe_mesh.h"
 #include "myoshell/io/head_files.h"
-#include "myoshell/face/mediapipe_mesh.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
 #include "support/test_data.h"

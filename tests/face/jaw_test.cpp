@@ -1,4 +1,4 @@
-// The kinematic jaw (face/jaw.h, docs/jaw.md): the pivot on ICT against the axis measured on its
+// The kinematic jaw (head/jaw.h, docs/jaw.md): the pivot on ICT against the axis measured on its
 // teeth, the jaw's shapes against ICT's artist shapes (jawOpen, jawForward, jawLeft), exact rigid
 // motion at weight 1, invariance under moving and turning the head, and the zero pose giving rest + u
 // bit for bit. The ICT tests skip when ../shared/data is absent. Figures are recorded as test
@@ -8,17 +8,17 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/face_model.h"
-#include "myoshell/face/simulator.h"
-#include "myoshell/face/muscle_def.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/shape_metric.h"
+#include "myoshell/fit/shape_metric.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/jaw.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/rig_file.h"
+#include "myoshell/muscles/muscle_def.h"
+#include "myoshell/thesis/face_model.h"
+#include "myoshell/thesis/simulator.h"
 #include "support/ict.h"
 #include "support/test_data.h"
 

@@ -3,9 +3,9 @@
 #include <fstream>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/landmarks.h"
 #include "myoshell/io/head_files.h"
-#include "myoshell/face/landmarks.h"
 #include "support/test_data.h"
 
 namespace myo {

@@ -1,9 +1,9 @@
-// Marker targets for `myoshell fit` (face/marker_target.h): units converted to cm, and every fault
+// Marker targets for `myoshell fit` (fit/marker_target.h): units converted to cm, and every fault
 // named with the file, line, column and key.
 #include <gtest/gtest.h>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/marker_target.h"
+#include "myoshell/fit/marker_target.h"
 
 namespace myo {
 namespace {

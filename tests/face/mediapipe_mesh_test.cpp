@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/mediapipe_mesh.h"
+#include "myoshell/head/mediapipe_mesh.h"
 
 namespace myo {
 namespace {

@@ -1,4 +1,4 @@
-// The lips' contact (face/mouth_contact.h, docs/mouth_contact.md): on ICT a sweep of the jaw (0–30°)
+// The lips' contact (anatomy/mouth_contact.h, docs/mouth_contact.md): on ICT a sweep of the jaw (0–30°)
 // with every mouth muscle alone and all together at a = 1 leaves no lip vertex inside the teeth
 // proxies or the other lip after projection; the rest and the jaw's rigid motion touch nothing; a
 // lip pushed into the teeth lands on the arch; the projection moves with the head (moved, turned,
@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/jaw.h"
-#include "myoshell/face/mouth_contact.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/mouth_contact.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/jaw.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/basis_cache.h"
 #include "support/lid_poses.h"
 #include "support/ict.h"

@@ -1,4 +1,4 @@
-// Muscles slide over their bed (face/muscle_coupling.h, MuscleCouplingSettings::slideOverBed;
+// Muscles slide over their bed (muscles/muscle_coupling.h, MuscleCouplingSettings::slideOverBed;
 // docs/anatomical_model.md "Muscles slide over their bed"): a linear muscle's shape at a = 1 keeps
 // every node at its rest depth under the skin, and its insertion still shortens by σ × length.
 #include <gtest/gtest.h>
@@ -7,10 +7,10 @@
 #include <cmath>
 #include <limits>
 
-#include "myoshell/face/muscle_coupling.h"
-#include "myoshell/face/muscle_def.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/muscles/muscle_coupling.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/ict.h"
 #include "support/test_data.h"
 

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/muscle_coupling.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/head/head.h"
+#include "myoshell/muscles/muscle_coupling.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 namespace {

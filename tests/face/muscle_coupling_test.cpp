@@ -1,12 +1,12 @@
-// Muscle–skin coupling of the anatomical model (face/muscle_coupling.h) on the built-in head:
+// Muscle–skin coupling of the anatomical model (muscles/muscle_coupling.h) on the built-in head:
 // the skin over a muscle is tied to the muscle's surface point below it.
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "myoshell/face/muscle_coupling.h"
-#include "myoshell/face/muscle_def.h"
-#include "myoshell/face/tissue_attachment.h"
+#include "myoshell/muscles/muscle_coupling.h"
+#include "myoshell/muscles/muscle_def.h"
+#include "myoshell/muscles/tissue_attachment.h"
 
 namespace myo {
 namespace {

@@ -1,4 +1,4 @@
-// The reduced nonlinear settle (face/nonlinear_settle.h) on a small shell: the reduced energy's
+// The reduced nonlinear settle (anatomy/nonlinear_settle.h) on a small shell: the reduced energy's
 // gradient and Hessian against finite differences, the second-order force against the gradient's
 // second difference, and a reduced solve in a basis that spans everything against the full
 // nonlinear equilibrium.
@@ -11,12 +11,12 @@
 #include <utility>
 #include <string>
 
+#include "myoshell/anatomy/nonlinear_settle.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/muscle_def.h"
-#include "myoshell/face/nonlinear_settle.h"
+#include "myoshell/head/head.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/primitives.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 namespace {

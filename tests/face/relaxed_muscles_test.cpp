@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/muscle_def.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 namespace {

@@ -1,4 +1,4 @@
-// Retargeting maps (face/retarget_map.h): a map reads back to itself, ICT spellings become ARKit's,
+// Retargeting maps (fit/retarget_map.h): a map reads back to itself, ICT spellings become ARKit's,
 // a corrective's total is its base's plus its difference, the unreachable list is the shipped one,
 // and every fault of a map file is refused with file:line:col and the fault.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/arkit_names.h"
-#include "myoshell/face/retarget_map.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/retarget_map.h"
 
 namespace myo {
 namespace {

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/shape_metric.h"
+#include "myoshell/fit/shape_metric.h"
 
 namespace myo {
 namespace {

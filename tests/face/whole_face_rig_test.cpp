@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "myoshell/face/rig_fit.h"
+#include "myoshell/fit/rig_fit.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/io/rig_fitting.h"
 #include "support/basis_cache.h"

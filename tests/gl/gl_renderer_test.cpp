@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "myoshell/core/errors.h"
-#include "myoshell/face/head.h"
 #include "myoshell/gl/gl_context.h"
 #include "myoshell/gl/gl_renderer.h"
+#include "myoshell/head/head.h"
 #include "myoshell/mesh/primitives.h"
 #include "myoshell/render/markers.h"
 #include "myoshell/render/render_mesh.h"

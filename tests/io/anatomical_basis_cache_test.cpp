@@ -11,10 +11,10 @@
 #include <fstream>
 #include <random>
 
-#include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/anatomy/anatomical_stepper.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 namespace {

@@ -1,5 +1,5 @@
-// The ARKit/ICT alias table (face/arkit_names.h), checked against ICT's rig where it is present.
-#include "myoshell/face/arkit_names.h"
+// The ARKit/ICT alias table (fit/arkit_names.h), checked against ICT's rig where it is present.
+#include "myoshell/fit/arkit_names.h"
 
 #include <gtest/gtest.h>
 

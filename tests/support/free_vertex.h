@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
 
 namespace myo::test {
 

@@ -2,7 +2,7 @@
 // tests that compare the face with ICT's artist shapes. Call MYO_REQUIRE_SHARED_DATA() first.
 #pragma once
 
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/rig_file.h"
 #include "support/test_data.h"

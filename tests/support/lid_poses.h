@@ -13,9 +13,9 @@
 
 #include <memory>
 
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/eyelids.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/eyelids.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "support/basis_cache.h"
 
 namespace myo::test {

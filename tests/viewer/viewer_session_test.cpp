@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "myoshell/io/scene_face.h"
+#include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
-#include "myoshell/face/anatomical_face.h"
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/scene_face.h"
 #include "support/free_vertex.h"
 #include "viewer_script.h"
 #include "viewer_session.h"

@@ -5,7 +5,7 @@
 
 #include "myoshell/anim/head_pose_track.h"
 #include "myoshell/core/types.h"
-#include "myoshell/face/face_frame.h"
+#include "myoshell/head/face_frame.h"
 
 namespace myo {
 

@@ -1,9 +1,9 @@
 // From a recorded performance (anim/performance.h) to the muscles' activation curves a scene plays
 // (docs/performance_input.md, "Mapping"):
-//   - OpenFace action units through the FACS map (face/facs_map.h): muscle += intensity · weight;
-//   - ARKit weights (Live Link Face, MediaPipe) through a retargeting map (face/retarget_map.h):
+//   - OpenFace action units through the FACS map (fit/facs_map.h): muscle += intensity · weight;
+//   - ARKit weights (Live Link Face, MediaPipe) through a retargeting map (fit/retarget_map.h):
 //     muscle += weight · the shape's activations; a name the map cannot make (no entry, or
-//     unreachable) goes through its FACS units and side (face/arkit_names.h, ArkitFacs) and the
+//     unreachable) goes through its FACS units and side (fit/arkit_names.h, ArkitFacs) and the
 //     FACS map — a sided name drives its side's muscles fully and midline muscles at half weight;
 // every input curve first through the One-Euro filter (anim/one_euro_filter.h). Contributions add
 // and the sum is clamped to [0, 1]. An input curve that maps to nothing the model has is warned
@@ -17,8 +17,8 @@
 #include "myoshell/anim/one_euro_filter.h"
 #include "myoshell/anim/performance.h"
 #include "myoshell/anim/scene.h"
-#include "myoshell/face/facs_map.h"
-#include "myoshell/face/retarget_map.h"
+#include "myoshell/fit/facs_map.h"
+#include "myoshell/fit/retarget_map.h"
 
 namespace myo {
 
@@ -28,7 +28,7 @@ struct MappedPerformance {
   std::vector<std::string> muscles;              // the model's muscle names, in the given order
   std::vector<std::vector<double>> activations;  // [muscle][frame], in [0, 1]
   std::vector<Vec3> headPose;                    // [pitch, yaw, roll] degrees per frame (filtered); empty if none
-  // The jaw per frame, [open degrees, forward cm, lateral cm] within face/jaw.h's ranges; empty when
+  // The jaw per frame, [open degrees, forward cm, lateral cm] within head/jaw.h's ranges; empty when
   // no input moves it (AU25–27, AU29, AU30 through the FACS map; ARKit's jaw shapes).
   std::vector<Vec3> jaw;
   std::vector<std::string> unmapped;             // input curves that drive nothing, in input order

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/anim/head_pose_track.h"
 #include "myoshell/anim/one_euro_filter.h"
 #include "myoshell/anim/performance.h"
 #include "myoshell/anim/timeline.h"
-#include "myoshell/face/anatomical_skin.h"
-#include "myoshell/face/face_model.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/muscles/muscle_def.h"
+#include "myoshell/thesis/face_model.h"
 
 namespace myo {
 
@@ -82,7 +82,7 @@ struct SceneDesc {
   std::vector<MuscleDef> extraMuscles;
   FaceModelSettings model;          // thesis: materials, modes, ROI α, springs, dt, stepper, warping, damping
   AnatomicalSettings anatomical;    // anatomical: skin E and h, modes, dt, warping, damping, gravity
-  // anatomical: a file of per-vertex k_att overrides (face/attachment_overrides.h), read by io into
+  // anatomical: a file of per-vertex k_att overrides (muscles/attachment_overrides.h), read by io into
   // anatomical.attachmentOverrides when the head is known; "" = the region map alone.
   std::string skinAttachment;
   std::vector<DragDesc> drags;

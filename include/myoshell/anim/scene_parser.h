@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene.h"
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 

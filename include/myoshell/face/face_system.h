@@ -13,8 +13,8 @@
 
 #include "myoshell/core/types.h"
 #include "myoshell/face/face_model_kind.h"
-#include "myoshell/face/head.h"
-#include "myoshell/face/jaw.h"
+#include "myoshell/head/head.h"
+#include "myoshell/head/jaw.h"
 
 namespace myo {
 
@@ -83,7 +83,7 @@ class FaceStepper {
   // degrees, anatomical_face.h); it turns gravity (gravityForRotation). The thesis model has no
   // head pose: InputError naming the model.
   virtual void setHeadPose(const Eigen::Quaterniond& rotation) = 0;
-  // The jaw's pose (face/jaw.h; docs/jaw.md), from the next positions on: opening (degrees),
+  // The jaw's pose (head/jaw.h; docs/jaw.md), from the next positions on: opening (degrees),
   // protrusion and lateral shift (cm); validateJawPose's ranges, else InputError. The anatomical
   // model turns the rest state with the mandible and the skin's displacement with it (the physics acts
   // on the residual); the thesis model has no jaw: a nonzero pose is an InputError naming the model.

@@ -1,11 +1,11 @@
 // Attachment overrides from a file (the scene key `skin.attachment`; the face layer parses the text:
-// face/attachment_overrides.h).
+// muscles/attachment_overrides.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "myoshell/face/attachment_overrides.h"
+#include "myoshell/muscles/attachment_overrides.h"
 
 namespace myo {
 

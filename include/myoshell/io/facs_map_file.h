@@ -1,10 +1,10 @@
-// FACS map files (action units → muscles; the face layer parses the text: face/facs_map.h).
+// FACS map files (action units → muscles; the face layer parses the text: fit/facs_map.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "myoshell/face/facs_map.h"
+#include "myoshell/fit/facs_map.h"
 
 namespace myo {
 

@@ -1,9 +1,9 @@
-// Marker files (`myoshell fit MARKERS.json`; the face layer parses the text: face/marker_target.h).
+// Marker files (`myoshell fit MARKERS.json`; the face layer parses the text: fit/marker_target.h).
 #pragma once
 
 #include <string>
 
-#include "myoshell/face/marker_target.h"
+#include "myoshell/fit/marker_target.h"
 
 namespace myo {
 

@@ -1,11 +1,11 @@
 // Muscle libraries and imported muscle shells from files (the face layer parses library text and
-// builds muscles from data: face/muscle_def.h, muscle.h).
+// builds muscles from data: muscles/muscle_def.h, muscle.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "myoshell/face/muscle_def.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 

@@ -1,11 +1,11 @@
 // Retargeting map files (`myoshell fit-rig --out`, `myoshell rig --map`; the face layer parses the
-// text: face/retarget_map.h).
+// text: fit/retarget_map.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "myoshell/face/retarget_map.h"
+#include "myoshell/fit/retarget_map.h"
 
 namespace myo {
 

@@ -1,13 +1,13 @@
 // Fitting a glTF rig's shapes on a head (`myoshell fit-rig`, Python's myoshell.fit_rig;
 // docs/fitting.md, "Fitting a rig"): the head chosen as io/fit_head.h says (the rig's base by
-// default), the anatomical face built on it, every ARKit-named shape fitted (face/rig_fit.h) and
+// default), the anatomical face built on it, every ARKit-named shape fitted (fit/rig_fit.h) and
 // gathered into a retargeting map with its provenance filled in.
 #pragma once
 
 #include <memory>
 
-#include "myoshell/face/anatomical_face.h"
-#include "myoshell/face/rig_fit.h"
+#include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/fit/rig_fit.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/reduce/basis_cache.h"

@@ -1,13 +1,13 @@
 // Making an ARKit blendshape rig for a head (`myoshell rig`, Python's myoshell.rig; docs/fitting.md,
 // "Making a rig"): the map read with the head's muscles, the anatomical face built, every shape
-// settled (face/arkit_rig.h) and gathered as the glTF rig io/rig_export.h writes.
+// settled (fit/arkit_rig.h) and gathered as the glTF rig io/rig_export.h writes.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "myoshell/face/arkit_rig.h"
-#include "myoshell/face/retarget_map.h"
+#include "myoshell/fit/arkit_rig.h"
+#include "myoshell/fit/retarget_map.h"
 #include "myoshell/io/rig_export.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/reduce/basis_cache.h"

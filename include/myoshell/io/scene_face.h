@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/face/face_model.h"
 #include "myoshell/face/face_system.h"
-#include "myoshell/face/head.h"
+#include "myoshell/head/head.h"
 #include "myoshell/reduce/basis_cache.h"
+#include "myoshell/thesis/face_model.h"
 
 namespace myo {
 

@@ -11,14 +11,14 @@
 #include <vector>
 
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/face_model.h"
 #include "myoshell/face/face_system.h"
-#include "myoshell/face/simulator.h"
 #include "myoshell/render/camera.h"
 #include "myoshell/render/colormap.h"
 #include "myoshell/render/image.h"
 #include "myoshell/render/markers.h"
 #include "myoshell/render/render_mesh.h"
+#include "myoshell/thesis/face_model.h"
+#include "myoshell/thesis/simulator.h"
 
 namespace myo {
 

@@ -1,0 +1,91 @@
+// Retargeting maps (docs/fitting.md, "Retargeting maps"): for each ARKit blendshape name, the
+// muscle activations (and jaw values, once the model has a jaw) whose settled face makes that shape.
+// `myoshell fit-rig` writes one by fitting every shape of a rig; `myoshell rig` reads one and
+// simulates every entry on any head. Maps are keyed by muscle names, so they transfer between heads.
+//
+//   {"format": "myoshell-retarget-map", "version": 1,
+//    "rig": "ict_arkit_rig.glb", "head": "ict", "model": "anatomical", "note": "…",
+//    "shapes": [
+//      {"name": "mouthSmileLeft", "activations": {"zygomaticus_major_L": 0.93}, "jaw": {},
+//       "fit": {"cosine": 0.81, "magnitude_ratio": 0.9, "rms_mm": 1.2, "max_mm": 4.1}},
+//      {"name": "mouthClose", "corrective_of": "jawOpen", "activations": {…}},
+//      {"name": "eyeLookInLeft", "reachable": false, "reason": "eye rotation: …"}, …]}
+//
+// Names may be written in ARKit's or ICT's spelling (fit/arkit_names.h) and are stored in ARKit's.
+// An activation lies in [0, 1]; a corrective's (`corrective_of`: the shape it is added to, ARKit's
+// mouthClose on jawOpen) is the difference from its base's and lies in [−1, 1]. An unreachable shape
+// (one muscles cannot make: eye rotation, air) has a reason and no activations. `fit` holds the
+// figures the fit reached (optional; informative only).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace YAML {
+class Node;
+}
+
+namespace myo {
+
+struct RetargetFitFigures {
+  double cosine = 0.0;
+  double magnitudeRatio = 0.0;
+  double rmsMm = 0.0;
+  double maxMm = 0.0;
+};
+
+// Name → value pairs in the file's order (muscle activations, jaw values).
+using NamedValues = std::vector<std::pair<std::string, double>>;
+
+struct RetargetShape {
+  std::string name;                 // ARKit spelling
+  bool reachable = true;
+  std::string reason;               // why not, when unreachable
+  std::string correctiveOf;         // ARKit name of the base shape, or ""
+  NamedValues activations;          // muscle → activation (a corrective's: the difference)
+  NamedValues jaw;                  // jaw degree of freedom → value
+  std::optional<RetargetFitFigures> fit;
+};
+
+struct RetargetMap {
+  std::string rig;                  // the rig it was fitted on (informative)
+  std::string head;                 // the head it was fitted on (informative)
+  std::string model = "anatomical";
+  std::string note;
+  std::vector<RetargetShape> shapes;  // each ARKit name at most once
+
+  // The entry for a name in any spelling, or nullptr.
+  const RetargetShape* find(const std::string& anySpelling) const;
+  // Every muscle name the map uses, sorted, each once.
+  std::vector<std::string> muscleNames() const;
+  // The activations that make `shape` on its own: its own, plus its base's for a corrective.
+  NamedValues totalActivations(const RetargetShape& shape) const;
+};
+
+// Parses a map. When `knownMuscles` is not empty, every activation must name one of them. Errors
+// (InputError) name `name:line:col`, the key path and the fault: a wrong format or version, an unknown
+// or repeated shape name (in either spelling; the close names are suggested), an activation outside
+// its range or of an unknown muscle, a non-finite jaw value, an unreachable shape without a reason or
+// with activations, a corrective of a shape the map does not make, an unknown key.
+RetargetMap parseRetargetMap(const std::string& text, const std::string& name = "<string>",
+                             const std::vector<std::string>& knownMuscles = {});
+RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name,
+                            const std::vector<std::string>& knownMuscles = {});
+
+// The map as JSON text (parseRetargetMap reads it back to the same map; numbers keep 17 digits).
+std::string serialiseRetargetMap(const RetargetMap& map);
+
+// The ARKit shapes that muscles cannot make, with the reason (assets/retarget/unreachable.json):
+// ARKit name → reason, in ARKit order.
+const std::vector<std::pair<std::string, std::string>>& unreachableArkitShapes();
+// The shipped map (assets/retarget/arkit_ict_face.json, embedded): ICT's ARKit rig fitted with the
+// whole face's muscles (`fit-rig --library face`), checked against faceMuscleDefs()'s names. The
+// default map of performance input (anim/performance_map.h).
+const RetargetMap& builtinRetargetMap();
+
+// The reason for an unreachable name (any spelling), or nothing.
+std::optional<std::string> unreachableReason(const std::string& anySpelling);
+
+}  // namespace myo

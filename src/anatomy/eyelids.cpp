@@ -1,0 +1,316 @@
+#include "myoshell/anatomy/eyelids.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "myoshell/core/check.h"
+#include "myoshell/core/curves.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/head/face_frame.h"
+#include "myoshell/mesh/subdivision.h"
+#include "myoshell/mesh/surface_paths.h"
+
+namespace myo {
+
+namespace {
+
+// The 68-point indices of one eye: the corners, the two upper and the two lower mid-lid points,
+// each mid pair ordered from the inner corner out (so upper[k] lies above lower[k]).
+struct EyeLandmarks {
+  int inner, outer;
+  std::array<int, 2> upper, lower;
+};
+constexpr std::array<EyeLandmarks, 2> kEyes = {{{39, 36, {38, 37}, {40, 41}},   // the subject's right
+                                                {42, 45, {43, 44}, {47, 46}}}};  // the subject's left
+
+void requireLandmarks(const Landmarks& landmarks) {
+  if (landmarks.multipie68.size() != 68)
+    throw InputError("the eyelids need the 68-point landmarks (eyes 36–47); " +
+                     (landmarks.sourcePath.empty() ? std::string("these landmarks") : landmarks.sourcePath) +
+                     " has none");
+}
+
+Vec3 landmark(const MatX3& V, const Landmarks& l, int k) {
+  return V.row(l.multipie68[static_cast<size_t>(k)]).transpose();
+}
+
+// Whether a boundary loop of the mesh lies inside one eye's landmark box (face-frame units, a
+// little margin above and below the lids).
+bool eyeIsOpen(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame, const EyeLandmarks& e,
+               const std::vector<std::vector<int>>& loops) {
+  const double x0 = frame.toFrame(landmark(skin.V, l, e.inner)).x(), x1 = frame.toFrame(landmark(skin.V, l, e.outer)).x();
+  double yLow = std::numeric_limits<double>::infinity(), yHigh = -yLow;
+  for (int k : {e.upper[0], e.upper[1], e.lower[0], e.lower[1], e.inner, e.outer}) {
+    const double y = frame.toFrame(landmark(skin.V, l, k)).y();
+    yLow = std::min(yLow, y);
+    yHigh = std::max(yHigh, y);
+  }
+  const double margin = 0.05;
+  for (const std::vector<int>& loop : loops) {
+    Vec3 mean = Vec3::Zero();
+    for (int v : loop) mean += skin.V.row(v).transpose();
+    const Vec3 q = frame.toFrame(Vec3(mean / static_cast<double>(loop.size())));
+    if (q.x() > std::min(x0, x1) && q.x() < std::max(x0, x1) && q.y() > yLow - margin && q.y() < yHigh + margin)
+      return true;
+  }
+  return false;
+}
+
+// The eye's local coordinates of p about centre c: (x along the axis, elevation φ = atan2(y, z)).
+struct EyeFrame {
+  Vec3 centre, x, y, z;
+  double along(const Vec3& p) const { return (p - centre).dot(x); }
+  double elevation(const Vec3& p) const { return std::atan2((p - centre).dot(y), (p - centre).dot(z)); }
+  double fromAxis(const Vec3& p) const { return std::hypot((p - centre).dot(y), (p - centre).dot(z)); }
+};
+
+// A margin path through the landmarks from..via..to, joined shortest edge paths (no repeats).
+std::vector<int> marginPath(const TriMesh& skin, const std::vector<int>& stops) {
+  std::vector<int> path{stops.front()};
+  for (size_t k = 1; k < stops.size(); ++k) {
+    const std::vector<int> leg = shortestEdgePath(skin, stops[k - 1], stops[k]);
+    if (leg.empty()) throw InputError("the eyelids: the lid landmarks are not connected along the skin");
+    path.insert(path.end(), leg.begin() + 1, leg.end());
+  }
+  return path;
+}
+
+// Distance (cm) from p to the polyline through the path's vertices.
+double distanceToPath(const MatX3& V, const std::vector<int>& path, const Vec3& p) {
+  double best = (p - V.row(path.front()).transpose()).norm();
+  for (size_t k = 1; k < path.size(); ++k) {
+    const Vec3 a = V.row(path[k - 1]).transpose(), b = V.row(path[k]).transpose();
+    const Vec3 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (p - (a + t * ab)).norm());
+  }
+  return best;
+}
+
+// A margin over x: its elevation φ(x) and its distance from the axis ρ(x), from the path's
+// vertices sorted by x (into `curve`, reusing its storage).
+void marginCurve(const MatX3& V, const std::vector<int>& path, const EyeFrame& f, LidMarginCurve& curve) {
+  curve.byX.assign(path.begin(), path.end());
+  std::sort(curve.byX.begin(), curve.byX.end(), [&](int a, int b) {
+    return f.along(V.row(a).transpose()) < f.along(V.row(b).transpose());
+  });
+  curve.elevation.clear();
+  curve.distance.clear();
+  for (int v : curve.byX) {
+    const Vec3 p = V.row(v).transpose();
+    curve.elevation.emplace_back(f.along(p), f.elevation(p));
+    curve.distance.emplace_back(f.along(p), f.fromAxis(p));
+  }
+}
+
+EyeFrame eyeFrame(const EyeLids& lids) {
+  return {lids.centre, lids.axis, lids.up, lids.axis.cross(lids.up)};
+}
+
+// The palpebral fissure of positions P: both margins over x, and the canthi's x range.
+void fissure(const MatX3& P, const EyeLids& lids, const EyeFrame& f, LidFissure& r) {
+  marginCurve(P, lids.upperMargin, f, r.upper);
+  marginCurve(P, lids.lowerMargin, f, r.lower);
+  const double inner = f.along(P.row(lids.upperMargin.front()).transpose());
+  const double outer = f.along(P.row(lids.upperMargin.back()).transpose());
+  r.xLow = std::min(inner, outer);
+  r.xHigh = std::max(inner, outer);
+}
+
+// The centre behind the mid-lid landmarks' mean m, along −z, at the depth t where their mean
+// distance to it is the radius R (bisection: the mean distance grows with t).
+Vec3 eyeballCentre(const std::vector<Vec3>& midLid, const Vec3& z, double radius) {
+  Vec3 m = Vec3::Zero();
+  for (const Vec3& p : midLid) m += p;
+  m /= static_cast<double>(midLid.size());
+  auto meanDistance = [&](double t) {
+    double sum = 0.0;
+    for (const Vec3& p : midLid) sum += (p - (m - t * z)).norm();
+    return sum / static_cast<double>(midLid.size());
+  };
+  double lo = 0.0, hi = 2.0 * radius;
+  if (meanDistance(lo) >= radius) return m;  // the lids spread wider than the eyeball: centre at their mean
+  for (int it = 0; it < 80; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (meanDistance(mid) < radius ? lo : hi) = mid;
+  }
+  return m - 0.5 * (lo + hi) * z;
+}
+
+EyeLids buildEye(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame, int eye, const LidSettings& s) {
+  const EyeLandmarks& e = kEyes[static_cast<size_t>(eye)];
+  const MatX3& V = skin.V;
+  EyeLids lids;
+  lids.side = eye == 0 ? "right" : "left";
+  lids.axis = frame.axes.col(0);
+  lids.up = frame.axes.col(1);
+  lids.radius = s.eyeballRadius * frame.scale;
+  std::vector<Vec3> midLid;
+  for (int k : {e.upper[0], e.upper[1], e.lower[0], e.lower[1]}) midLid.push_back(landmark(V, l, k));
+  lids.centre = eyeballCentre(midLid, frame.axes.col(2), lids.radius);
+  for (int k = 0; k < 2; ++k)
+    lids.gapPairs[static_cast<size_t>(k)] = {l.multipie68[static_cast<size_t>(e.upper[static_cast<size_t>(k)])],
+                                             l.multipie68[static_cast<size_t>(e.lower[static_cast<size_t>(k)])]};
+  auto id = [&](int k) { return l.multipie68[static_cast<size_t>(k)]; };
+  lids.upperMargin = marginPath(skin, {id(e.inner), id(e.upper[0]), id(e.upper[1]), id(e.outer)});
+  lids.lowerMargin = marginPath(skin, {id(e.inner), id(e.lower[0]), id(e.lower[1]), id(e.outer)});
+
+  const EyeFrame f = eyeFrame(lids);
+  LidFissure rest;
+  fissure(V, lids, f, rest);
+  const double tu = s.upperTarsus * frame.scale, fu = s.upperFalloff * frame.scale;
+  const double tl = s.lowerTarsus * frame.scale, fl = s.lowerFalloff * frame.scale;
+  const double reach = std::max(tu + fu, tl + fl);
+  const double orbit = s.orbitReach * lids.radius;
+  lids.contactRadius = lids.radius;
+  lids.lowerShare = s.lowerShare;
+  lids.nasalTurn = s.nasalSlide * frame.scale / lids.radius;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Vec3 p = V.row(i).transpose();
+    const double fromCentre = (p - lids.centre).norm();
+    if (fromCentre < orbit) {
+      lids.orbitVertices.push_back(static_cast<int>(i));
+      lids.contactRadius = std::min(lids.contactRadius, fromCentre - kRestContactClearance * frame.scale);  // the rest stays clear
+    }
+    const double x = f.along(p);
+    if (x <= rest.xLow || x >= rest.xHigh) continue;  // beyond the canthi the lids do not move
+    const double dUp = distanceToPath(V, lids.upperMargin, p), dLow = distanceToPath(V, lids.lowerMargin, p);
+    if (std::min(dUp, dLow) >= reach) continue;
+    const double phiUp = interpolateLinear(rest.upper.elevation, x), phiLow = interpolateLinear(rest.lower.elevation, x);
+    const bool isUpper = f.elevation(p) >= 0.5 * (phiUp + phiLow);
+    const double w = isUpper ? 1.0 - smoothStep((dUp - tu) / fu) : 1.0 - smoothStep((dLow - tl) / fl);
+    if (w == 0.0) continue;
+    lids.lidVertices.push_back(static_cast<int>(i));
+    lids.lidWeights.push_back(isUpper ? w : -w);
+    lids.raiseAngle.push_back(isUpper ? -s.raiseFraction * std::max(0.0, phiUp - phiLow) * w : 0.0);
+  }
+  return lids;
+}
+
+}  // namespace
+
+std::string lidCloserName(int eye) { return eye == 0 ? "orbicularis_oculi_palpebral_right" : "orbicularis_oculi_palpebral_left"; }
+std::string lidRaiserName(int eye) {
+  return eye == 0 ? "levator_palpebrae_superioris_right" : "levator_palpebrae_superioris_left";
+}
+
+bool LidDrivers::drives(int muscle) const {
+  return muscle >= 0 && (muscle == closers[0] || muscle == closers[1] || muscle == raisers[0] || muscle == raisers[1]);
+}
+
+LidPose LidDrivers::pose(const VecX& activations) const {
+  LidPose p;
+  for (size_t eye = 0; eye < 2; ++eye) {
+    if (closers[eye] >= 0) p.close[eye] = activations(closers[eye]);
+    if (raisers[eye] >= 0) p.raise[eye] = activations(raisers[eye]);
+  }
+  return p;
+}
+
+LidDrivers lidDrivers(const std::vector<std::string>& names) {
+  LidDrivers d;
+  for (size_t m = 0; m < names.size(); ++m)
+    for (int eye = 0; eye < 2; ++eye) {
+      if (names[m] == lidCloserName(eye)) d.closers[static_cast<size_t>(eye)] = static_cast<int>(m);
+      if (names[m] == lidRaiserName(eye)) d.raisers[static_cast<size_t>(eye)] = static_cast<int>(m);
+    }
+  return d;
+}
+
+bool hasOpenEyes(const TriMesh& skin, const Landmarks& landmarks) {
+  if (landmarks.multipie68.size() != 68) return false;
+  const FaceFrame frame = faceFrame(skin.V, landmarks);
+  const auto loops = boundaryLoops(skin.F, skin.vertexCount());
+  return eyeIsOpen(skin, landmarks, frame, kEyes[0], loops) && eyeIsOpen(skin, landmarks, frame, kEyes[1], loops);
+}
+
+LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings& settings) {
+  requireLandmarks(landmarks);
+  if (!hasOpenEyes(skin, landmarks))
+    throw InputError("the eyelids need open eyes (an opening in the mesh between each eye's corner landmarks); "
+                     "this head's eyes are closed",
+                     landmarks.sourcePath);
+  const FaceFrame frame = faceFrame(skin.V, landmarks);
+  LidRig rig;
+  for (int eye = 0; eye < 2; ++eye) rig.eyes[static_cast<size_t>(eye)] = buildEye(skin, landmarks, frame, eye, settings);
+  return rig;
+}
+
+void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns,
+              LidFissure* scratch) {
+  LidFissure local;
+  LidFissure& now = scratch ? *scratch : local;
+  for (size_t e = 0; e < 2; ++e) {
+    const EyeLids& eye = rig.eyes[e];
+    const double c = pose.close[e], r = pose.raise[e];
+    if (turns) (*turns)[e].assign(eye.lidVertices.size(), Mat3::Identity());
+    if (c == 0.0 && r == 0.0) continue;
+    // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
+    // margins meet whatever the physics did to them.
+    const EyeFrame f = eyeFrame(eye);
+    fissure(positions, eye, f, now);
+    // The nasal slide turns about the vertical axis through the centre, towards the inner canthus.
+    const double towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
+    for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
+      const int i = eye.lidVertices[k];
+      Vec3 d = positions.row(i).transpose() - eye.centre;
+      const double x = d.dot(eye.axis);
+      const double w = eye.lidWeights[k];  // + upper lid, − lower lid
+      double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
+      if (c != 0.0 && x > now.xLow && x < now.xHigh) {
+        const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+        const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
+        const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
+        alpha = share * gap * w;
+        kappa = share * step * w;
+      }
+      const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k];
+      const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
+      const double rho = across.norm();
+      if (rho > 0.0) d += (c * kappa / rho) * across;
+      Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
+      if (c != 0.0 && eye.nasalTurn != 0.0)
+        R = Eigen::AngleAxisd(towardsNose * c * eye.nasalTurn * std::abs(w), eye.up).toRotationMatrix() * R;
+      positions.row(i) = (eye.centre + R * d).transpose();
+      if (turns) (*turns)[e][k] = R;
+    }
+  }
+}
+
+ContactReport applyLids(const LidRig& rig, const LidPose& pose, MatX3& positions, bool project) {
+  turnLids(rig, pose, positions);
+  ContactReport contact;
+  for (size_t e = 0; e < 2; ++e) {
+    const EyeLids& eye = rig.eyes[e];
+    for (int i : eye.orbitVertices) {
+      const Vec3 d = positions.row(i).transpose() - eye.centre;
+      const double dist = d.norm();
+      if (dist >= eye.contactRadius || dist == 0.0) continue;
+      const double depth = eye.contactRadius - dist;
+      contact.maxPenetrationBefore = std::max(contact.maxPenetrationBefore, depth);
+      if (!project) {
+        contact.maxPenetrationAfter = std::max(contact.maxPenetrationAfter, depth);
+        continue;
+      }
+      positions.row(i) = (eye.centre + (eye.contactRadius / dist) * d).transpose();
+      contact.maxPenetrationAfter =
+          std::max(contact.maxPenetrationAfter, eye.contactRadius - (positions.row(i).transpose() - eye.centre).norm());
+      ++contact.projected;
+    }
+  }
+  return contact;
+}
+
+double lidGap(const LidRig& rig, int eye, const MatX3& positions) {
+  MYO_CHECK(eye == 0 || eye == 1, "eye " << eye);
+  double sum = 0.0;
+  for (const auto& [up, low] : rig.eyes[static_cast<size_t>(eye)].gapPairs)
+    sum += (positions.row(up) - positions.row(low)).norm();
+  return 0.5 * sum;
+}
+
+}  // namespace myo

@@ -1,0 +1,87 @@
+#include "myoshell/fit/arkit_rig.h"
+
+#include <fmt/core.h>
+
+#include <optional>
+#include <vector>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
+#include "myoshell/fit/arkit_names.h"
+
+namespace myo {
+
+JawPose jawPoseOf(const RetargetShape& shape) {
+  JawPose pose;
+  for (const auto& [dof, value] : shape.jaw) {
+    if (dof == "open") pose.openDeg += value;
+    else if (dof == "forward") pose.forwardCm += value;
+    else if (dof == "lateral") pose.lateralCm += value;
+    else throw InputError("shape " + shape.name + ": jaw value '" + dof + "' is not open, forward or lateral");
+  }
+  return pose;
+}
+
+ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const SkinPlacement* placement) {
+  if (!placement) placement = &skin.placement();
+  const bool warped = skin.settings().warping;
+  const MatX3& restPositions = skin.head().mesh.V;
+  // The muscles' settled displacement, placed (the jaw in `pose`, the lids, the contact).
+  auto settle = [&](const NamedValues& activations, const JawPose& pose) -> MatX3 {
+    SkinLoads loads;
+    loads.gravity = skin.restGravity();  // no gravity load: the rig's shapes are the muscles' alone
+    loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
+    loads.activations = VecX::Zero(static_cast<Eigen::Index>(skin.muscles().size()));
+    for (const auto& [name, value] : activations) loads.activations(skin.muscleIndex(name)) = value;
+    // No contact penalty: a blendshape rig is linear, and fit-rig reads it back with the fit's linear
+    // columns; the shapes are placed with the projection (docs/mouth_contact.md, "Penalty forces").
+    loads.jaw = pose;
+    const SettledSkin s = skin.settle(loads, warped);
+    if (!s.converged || !s.u.allFinite())
+      throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
+    if (placement->isPlain()) return s.u;
+    MatX3 moved;
+    placement->place(s.u, pose, loads.activations, moved);
+    return moved - restPositions;
+  };
+  const MatX3 rest = settle({}, JawPose{});  // zero with warping off; the warped solve's own rest otherwise
+
+  // Every shape's jaw first (serially: the errors in ARKit order).
+  const std::vector<std::string>& names = arkitNames();
+  std::vector<JawPose> poses(names.size());
+  for (size_t k = 0; k < names.size(); ++k) {
+    const RetargetShape* s = map.find(names[k]);
+    if (!s || !s->reachable) continue;
+    const RetargetShape* base = s->correctiveOf.empty() ? s : map.find(s->correctiveOf);
+    poses[k] = jawPoseOf(*base);  // a corrective rides on its base's jaw
+    if (poses[k].isZero()) continue;
+    if (!placement->jaw())
+      throw InputError("shape " + s->name + " sets jaw values, and the head has no jaw (its landmarks have no 68-point jaw line)");
+    validateJawPose(poses[k], "shape " + s->name + ": jaw");
+  }
+
+  const Eigen::Index n = skin.head().mesh.vertexCount();
+  ArkitRig rig;
+  rig.shapes.resize(names.size());
+  // Each shape is its own static solve on the read-only skin: side by side on parallelThreads().
+  parallelFor(static_cast<std::int64_t>(names.size()), [&](std::int64_t k) {
+    const RetargetShape* s = map.find(names[static_cast<size_t>(k)]);
+    ArkitRigShape& shape = rig.shapes[static_cast<size_t>(k)];
+    shape.name = names[static_cast<size_t>(k)];
+    shape.delta = MatX3::Zero(n, 3);
+    if (s && s->reachable) {
+      const JawPose& pose = poses[static_cast<size_t>(k)];
+      shape.delta = settle(map.totalActivations(*s), pose) - rest;
+      if (!s->correctiveOf.empty())
+        shape.delta -= settle(map.totalActivations(*map.find(s->correctiveOf)), pose) - rest;
+      shape.mapped = true;
+    }
+    Eigen::Index peakVertex = 0;
+    shape.maxDisplacementCm = shape.delta.rowwise().norm().maxCoeff(&peakVertex);
+    shape.maxDisplacementVertex = static_cast<int>(peakVertex);
+  });
+  for (const ArkitRigShape& shape : rig.shapes) rig.made += shape.mapped ? 1 : 0;
+  return rig;
+}
+
+}  // namespace myo

@@ -1,0 +1,259 @@
+#include "myoshell/fit/rig_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/core/parallel.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/shape_metric.h"
+#include "myoshell/head/jaw.h"
+
+namespace myo {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t k = values.size() / 2;
+  return values.size() % 2 ? values[k] : 0.5 * (values[k - 1] + values[k]);
+}
+
+namespace {
+
+// Activations above this are written into the map; smaller ones are round-off of the box solve.
+constexpr double kSmallestActivation = 1e-9;
+
+NamedValues namedActivations(const AnatomicalSkin& skin, const VecX& a) {
+  NamedValues out;
+  for (Eigen::Index m = 0; m < a.size(); ++m)
+    if (std::abs(a(m)) > kSmallestActivation) out.emplace_back(skin.muscles()[static_cast<size_t>(m)].muscle.def.name, a(m));
+  return out;
+}
+
+// The jaw's degree of freedom an ARKit jaw shape moves, with the range searched: jawOpen the
+// opening (degrees), jawForward the protrusion (cm), jawLeft / jawRight the lateral shift towards
+// the subject's left / right (cm). Index 0, 1, 2 of [open, forward, lateral]; −1 for other shapes.
+struct JawDof {
+  int index = -1;
+  double lo = 0.0, hi = 0.0;
+};
+JawDof jawDofOf(const std::string& arkitName) {
+  if (arkitName == "jawOpen") return {0, kJawOpenMinDeg, kJawOpenMaxDeg};
+  if (arkitName == "jawForward") return {1, 0.0, kJawForwardMaxCm};
+  if (arkitName == "jawLeft") return {2, 0.0, kJawLateralMaxCm};
+  if (arkitName == "jawRight") return {2, -kJawLateralMaxCm, 0.0};
+  return {};
+}
+
+JawPose poseOf(int dof, double value) {
+  JawPose pose;
+  if (dof == 0) pose.openDeg = value;
+  else if (dof == 1) pose.forwardCm = value;
+  else pose.lateralCm = value;
+  return pose;
+}
+
+// The value in [lo, hi] that minimises `misfit`, by golden-section search (the misfit of one jaw
+// degree of freedom is smooth and, over the jaw's range, unimodal); the ends are candidates too, so
+// a shape that does not move the jaw gets exactly 0 where 0 is an end.
+template <class Misfit>
+double goldenSection(Misfit misfit, double lo, double hi) {
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi;
+  double c = b - phi * (b - a), d = a + phi * (b - a);
+  double fc = misfit(c), fd = misfit(d);
+  for (int k = 0; k < 40 && b - a > 1e-4 * (hi - lo); ++k) {
+    if (fc < fd) {
+      b = d, d = c, fd = fc;
+      c = b - phi * (b - a), fc = misfit(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + phi * (b - a), fd = misfit(d);
+    }
+  }
+  double value = 0.5 * (a + b), best = misfit(value);
+  for (double end : {lo, hi}) {
+    const double f = misfit(end);
+    if (f <= best) value = end, best = f;
+  }
+  return value;
+}
+
+// Re-measures a fit whose shape is the jaw's rigid motion plus the muscles' settled displacement
+// (the residual is taken in the rest frame: the muscles' part is not turned with the jaw here).
+void remeasure(ActivationFit& fit, const MatX3& jawMotion, const MatX3& target, const MatX3& rest, double threshold) {
+  fit.displacement += jawMotion;
+  fit.target = target;
+  fit.metric = compareShapes(fit.displacement, target, rest, ShapeMetricSettings{threshold, 20});
+  double sum = 0.0, worst = 0.0;
+  int count = 0;
+  for (Eigen::Index i = 0; i < target.rows(); ++i)
+    if (fit.displacement.row(i).norm() > threshold || target.row(i).norm() > threshold) {
+      const double d = (fit.displacement.row(i) - target.row(i)).norm();
+      sum += d * d, worst = std::max(worst, d), ++count;
+    }
+  fit.rmsMm = count ? 10.0 * std::sqrt(sum / count) : 0.0;
+  fit.maxMm = 10.0 * worst;
+}
+
+}  // namespace
+
+RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets, const FitSettings& settings) {
+  const Stopwatch clock;
+  const Eigen::Index n = skin.head().mesh.vertexCount();
+  RigFit out;
+
+  // Gather the targets under their ARKit names (ICT halves summed).
+  std::map<std::string, RigShapeFit> byName;
+  std::map<std::string, std::string> spellingOf;  // ARKit name → first rig name seen, for errors
+  for (const RigTarget& t : targets) {
+    const std::optional<std::string> arkit = findArkitName(t.name);
+    if (!arkit) {
+      out.skipped.push_back(t.name);
+      continue;
+    }
+    if (t.displacement.rows() != n)
+      throw InputError("fit-rig: shape '" + t.name + "' has " + std::to_string(t.displacement.rows()) +
+                       " vertices, the head " + std::to_string(n));
+    if (!t.displacement.allFinite())
+      throw InputError("fit-rig: shape '" + t.name + "' has a coordinate that is not a finite number");
+    RigShapeFit& s = byName[*arkit];
+    // Twice: the same name again, another spelling of a one-shape name, or the ARKit whole beside a half.
+    const bool whole = t.name == *arkit || std::find(s.sources.begin(), s.sources.end(), *arkit) != s.sources.end();
+    if (!s.sources.empty() && (ictNamesOf(*arkit).size() == 1 || whole ||
+                               std::find(s.sources.begin(), s.sources.end(), t.name) != s.sources.end()))
+      throw InputError("fit-rig: the rig names " + *arkit + " twice ('" + s.sources.front() + "' and '" + t.name + "')");
+    s.name = *arkit;
+    if (s.sources.empty()) s.target = MatX3::Zero(n, 3);
+    s.target += t.displacement;
+    s.sources.push_back(t.name);
+  }
+  if (byName.empty()) {
+    std::string names;
+    for (const RigTarget& t : targets) names += (names.empty() ? "" : ", ") + t.name;
+    throw InputError("fit-rig: the rig has no shape with an ARKit name (it has: " + (names.empty() ? "none" : names) +
+                     "); docs/rigs.md lists the names in both spellings");
+  }
+  if (byName.count("mouthClose") && !byName.count("jawOpen"))
+    throw InputError("fit-rig: mouthClose is a corrective on jawOpen (it closes the lips of an open jaw), and the rig "
+                     "has no jawOpen");
+
+  // The jaw, when the head has the 68-point jaw line (head/jaw.h): jaw shapes fit its degree of
+  // freedom first, then the muscles on what the jaw leaves.
+  const MatX3& rest = skin.head().mesh.V;
+  // Every fit places its shape with the skin's one placement (anatomy/skin_placement.h).
+  const SkinPlacement& placement = skin.placement();
+  const JawRig* jaw = placement.jaw();
+  // Every muscle's settled column, once: each fit below (and each jaw value a jaw shape's search
+  // tries) reuses them instead of solving them again.
+  std::vector<int> everyMuscle(skin.muscles().size());
+  for (size_t k = 0; k < everyMuscle.size(); ++k) everyMuscle[k] = static_cast<int>(k);
+  const std::vector<MatX3> columns = activationColumns(skin, everyMuscle);
+
+  // The shapes the rig has, in ARKit order; a corrective (mouthClose) is fitted on its base's target.
+  std::vector<RigShapeFit> shapes;
+  for (const std::string& name : arkitNames()) {
+    auto it = byName.find(name);
+    if (it == byName.end()) continue;
+    RigShapeFit s = std::move(it->second);
+    if (const std::optional<std::string> reason = unreachableReason(name)) {
+      s.reachable = false;
+      s.reason = *reason;
+    } else if (name == "mouthClose") {
+      s.correctiveOf = "jawOpen";
+    }
+    shapes.push_back(std::move(s));
+  }
+  auto indexOf = [&](const std::string& name) {
+    return static_cast<size_t>(std::find_if(shapes.begin(), shapes.end(), [&](const RigShapeFit& f) { return f.name == name; }) -
+                               shapes.begin());
+  };
+
+  // One shape's fit. A jaw shape: its jaw degree of freedom and the muscles together — for each value
+  // the muscles are fitted to what the jaw's rigid motion leaves, and the value with the smallest
+  // total misfit wins. A corrective rides on its base's jaw (`basePose`).
+  auto fitShape = [&](RigShapeFit& s, const JawPose* basePose) {
+    auto fitWithJaw = [&](const JawPose& p) {
+      const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
+      FitTarget t;
+      t.displacement = s.target - jawMotion;
+      ActivationFit f = fitActivations(skin, t, settings, &placement, &columns);
+      if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
+      return f;
+    };
+    JawPose pose;
+    const JawDof dof = jawDofOf(s.name);
+    if (jaw && dof.index >= 0)
+      pose = poseOf(dof.index, goldenSection(
+                                   [&](double v) {
+                                     const ActivationFit f = fitWithJaw(poseOf(dof.index, v));
+                                     return (f.displacement - s.target).squaredNorm();
+                                   },
+                                   dof.lo, dof.hi));
+    if (jaw && basePose) pose = *basePose;
+    if (jaw) {
+      s.fit = fitWithJaw(pose);
+    } else {
+      FitTarget target;
+      target.displacement = s.target;
+      s.fit = fitActivations(skin, target, settings, &placement, &columns);
+    }
+    return pose;
+  };
+  // The shapes are independent of each other (the skin is read only): side by side on
+  // parallelThreads(), each into its own slot; then the corrective on its fitted base.
+  std::vector<JawPose> poses(shapes.size());
+  parallelFor(static_cast<std::int64_t>(shapes.size()), [&](std::int64_t i) {
+    RigShapeFit& s = shapes[static_cast<size_t>(i)];
+    if (s.reachable && s.correctiveOf.empty()) poses[static_cast<size_t>(i)] = fitShape(s, nullptr);
+  });
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    RigShapeFit& s = shapes[i];
+    if (!s.reachable || s.correctiveOf.empty()) continue;
+    const size_t base = indexOf(s.correctiveOf);
+    s.target += shapes[base].target;  // the corrective only makes sense on its base
+    poses[i] = fitShape(s, &poses[base]);
+  }
+
+  std::vector<double> cosines, rms;
+  out.map.model = "anatomical";
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    RigShapeFit& s = shapes[i];
+    RetargetShape entry;
+    entry.name = s.name;
+    if (!s.reachable) {
+      entry.reachable = false;
+      entry.reason = s.reason;
+    } else {
+      const RigShapeFit* base = s.correctiveOf.empty() ? nullptr : &shapes[indexOf(s.correctiveOf)];
+      const JawPose& pose = poses[i];
+      if (!base) {  // a corrective's jaw is its base's: it adds none
+        if (pose.openDeg != 0.0) entry.jaw.emplace_back("open", pose.openDeg);
+        if (pose.forwardCm != 0.0) entry.jaw.emplace_back("forward", pose.forwardCm);
+        if (pose.lateralCm != 0.0) entry.jaw.emplace_back("lateral", pose.lateralCm);
+      }
+      entry.correctiveOf = s.correctiveOf;
+      VecX a = s.fit->activations;
+      if (base) a -= base->fit->activations;
+      entry.activations = namedActivations(skin, a);
+      // The cosine clamped: round-off can put a perfect fit at 1 + 1e-16.
+      entry.fit = RetargetFitFigures{std::clamp(s.fit->metric.cosine, -1.0, 1.0), s.fit->metric.magnitudeRatio, s.fit->rmsMm,
+                                     s.fit->maxMm};
+      if (s.fit->metric.comparedVertices > 0) {  // a shape that moves nothing has no figures to count
+        cosines.push_back(s.fit->metric.cosine);
+        rms.push_back(s.fit->rmsMm);
+      }
+    }
+    out.map.shapes.push_back(std::move(entry));
+  }
+  out.shapes = std::move(shapes);
+  out.medianCosine = median(cosines);
+  out.medianRmsMm = median(rms);
+  out.seconds = clock.seconds();
+  return out;
+}
+
+}  // namespace myo

@@ -1,0 +1,324 @@
+#include "myoshell/muscles/muscle_coupling.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/edge_table.h"
+#include "myoshell/mesh/geometry.h"
+#include "myoshell/muscles/tissue_attachment.h"
+#include "myoshell/reduce/modal_analysis.h"
+#include "myoshell/shell/discrete_shell.h"
+
+namespace myo {
+
+namespace {
+// How squarely the muscle must lie beneath a skin vertex to couple to it: −(direction to the
+// muscle)·(skin normal) above this (about 73° from straight down).
+constexpr double kBeneath = 0.3;
+
+// The outer-canthus distance (cm) of the head the muscles' material was set on: the built-in head.
+constexpr double kMuscleMaterialHeadScale = 8.8917179;
+
+// The skin's closest point to a point (a SurfaceLocator's query, or the brute-force one).
+using ClosestOnSkin = std::function<SurfacePoint(const Vec3&)>;
+
+double smooth(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+}  // namespace
+
+double CouplingProfile::modulus(double t) const {
+  if (t <= originEnd) return 0.0;
+  if (t < bellyStart) return bellyModulus * smooth((t - originEnd) / (bellyStart - originEnd));
+  return bellyModulus + (insertionModulus - bellyModulus) * smooth((t - insertionStart) / (1.0 - insertionStart));
+}
+
+void CouplingProfile::validate(const std::string& owner) const {
+  auto bad = [&](const std::string& what) { throw InputError(owner + ": " + what); };
+  if (!(insertionModulus > 0) || !std::isfinite(insertionModulus)) bad("insertion_modulus must be > 0 dyn/cm²");
+  if (!(bellyModulus >= 0) || !std::isfinite(bellyModulus)) bad("belly_modulus must be ≥ 0 dyn/cm²");
+  if (!(originEnd >= 0 && originEnd < bellyStart && bellyStart <= insertionStart && insertionStart < 1.0))
+    bad("profile positions must satisfy 0 ≤ origin_end < belly_start ≤ insertion_start < 1");
+}
+
+// The mean motion of the insertion ring towards the origin along `axis` (unit), cm.
+double insertionShortening(const Muscle& mu, const MatX3& U, const Vec3& axis) {
+  double along = 0.0;
+  for (int v : mu.insertionNodes) along += U.row(v).dot(axis.transpose());
+  return along / static_cast<double>(mu.insertionNodes.size());
+}
+
+// The muscle moved by U along its bed (docs/anatomical_model.md, "Muscles slide over their bed"):
+// each node v hangs under its skin point c_v (the skin's closest point, normal n_v) at the offset
+// r_v = p_v − c_v, whose part along the normal is h_v = r_v·n_v < 0. Its motion across the skin's
+// tangent plane walks that point along the skin, in steps of at most a quarter of |r_v|, each step
+// re-projected onto the skin and onto its tangent plane there, to c' (normal n'); the node follows
+// at the same depth, q' = p_v + (c' − c_v) + h_v (n' − n_v), which is p_v when u_v = 0. Its motion
+// into or out of the face is gone: a curved muscle follows the face's curve instead of straightening
+// through the deep tissue under it. The short steps keep the walk on the skin beside c_v, never
+// across a lip's seam or a fold.
+// A node whose walk does not carry its skin point ¾ as far as its motion across the skin is not
+// under the face's skin but beside a rim (near the mouth's corner its closest skin is the lip's
+// inner side, which turns into the mouth, and the walk stalls there): it moves as its walked
+// neighbours on the muscle's mesh do, by the mean of their slid motions ("A node beside the mouth's
+// rim", docs/anatomical_model.md). Its own motion would not do: its skin normal is the lip's, so the
+// bed's correction there sinks it into the face. Without this, stalled nodes of the insertion ring
+// left the others to carry the ring's mean shortening: up to twice σ × length.
+MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePoint>& restFoot,
+                   const ClosestOnSkin& onSkin) {
+  constexpr double kStalled = 0.75;  // a walk whose chord is shorter than this fraction of the motion across the skin
+  MatX3 slid = U;
+  std::vector<char> walked(static_cast<size_t>(U.rows()), 1);
+  for (Eigen::Index v = 0; v < U.rows(); ++v) {
+    if (U.row(v).squaredNorm() == 0.0) continue;  // the pinned origin
+    const SurfacePoint& c = restFoot[static_cast<size_t>(v)];
+    const Vec3 u = U.row(v).transpose();
+    const Vec3 offset = Vec3(mu.mesh.V.row(v)) - c.point;  // from the skin down to the node
+    const double below = offset.dot(c.normal);                 // its part along the normal (< 0)
+    const Vec3 along = u - u.dot(c.normal) * c.normal;
+    const int steps = std::clamp(static_cast<int>(std::ceil(along.norm() / (0.25 * offset.norm()))), 1, 64);
+    SurfacePoint foot = c;
+    for (int k = 0; k < steps; ++k) {
+      const Vec3 step = along / steps;
+      foot = onSkin(foot.point + step - step.dot(foot.normal) * foot.normal);
+    }
+    slid.row(v) = ((foot.point - c.point) + below * (foot.normal - c.normal)).transpose();
+    walked[static_cast<size_t>(v)] = (foot.point - c.point).norm() >= kStalled * along.norm();
+  }
+  if (std::all_of(walked.begin(), walked.end(), [](char w) { return w != 0; })) return slid;
+  // Stalled nodes take the mean slid motion of their walked (or already filled) mesh neighbours,
+  // ring after ring outwards; with none anywhere they keep their own motion.
+  std::vector<std::vector<int>> neighbours(static_cast<size_t>(U.rows()));
+  for (Eigen::Index f = 0; f < mu.mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mu.mesh.F(f, k), b = mu.mesh.F(f, (k + 1) % 3);
+      neighbours[static_cast<size_t>(a)].push_back(b);
+      neighbours[static_cast<size_t>(b)].push_back(a);
+    }
+  for (bool filled = true; filled;) {
+    filled = false;
+    std::vector<char> next = walked;
+    for (Eigen::Index v = 0; v < U.rows(); ++v) {
+      if (walked[static_cast<size_t>(v)]) continue;
+      Vec3 motion = Vec3::Zero();
+      int count = 0;
+      for (int w : neighbours[static_cast<size_t>(v)])
+        if (walked[static_cast<size_t>(w)] && U.row(w).squaredNorm() > 0.0) {
+          motion += slid.row(w).transpose();
+          ++count;
+        }
+      if (count == 0) continue;
+      slid.row(v) = (motion / count).transpose();
+      next[static_cast<size_t>(v)] = 1;
+      filled = true;
+    }
+    walked = std::move(next);
+  }
+  for (Eigen::Index v = 0; v < U.rows(); ++v)
+    if (!walked[static_cast<size_t>(v)]) slid.row(v) = U.row(v);
+  return slid;
+}
+
+// A linear muscle's shape at a = 1: the static response of the pinned muscle to its activation load
+// (unit forces along the contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's
+// static-shape variant), scaled so that the insertion ring moves shortening × length along the
+// muscle's chord. With `slideOverBed`, the nodes then walk along the skin at their rest depth
+// (slideOverBed above), and the scale is found so that the slid insertion moves shortening × length
+// along the fibres' direction at the insertion.
+void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCouplingSettings& settings,
+                 const std::vector<SurfacePoint>& restFoot, const ClosestOnSkin& onSkin) {
+  const Muscle& mu = cm.muscle;
+  const MuscleDef& def = mu.def;
+  const int nm = mu.mesh.vertexCount();
+  const std::vector<int> freeV = freeVerticesOf(nm, mu.originNodes, mu.mesh.F);
+  std::vector<int> toFree(static_cast<size_t>(nm), -1);
+  for (size_t k = 0; k < freeV.size(); ++k) toFree[static_cast<size_t>(freeV[k])] = static_cast<int>(k);
+  const SparseMat Kff = restrictToFree(shell.stiffnessAtRest(), freeV, nm);
+  VecX P = VecX::Zero(Kff.rows());
+  for (size_t c = 0; c < mu.centralNodes.size(); ++c) {
+    const int r = toFree[static_cast<size_t>(mu.centralNodes[c])];
+    if (r >= 0) P.segment<3>(3 * r) += mu.contractDirection.row(static_cast<Eigen::Index>(c)).transpose();
+  }
+  Eigen::SimplicialLDLT<SparseMat> ldlt(Kff);
+  if (ldlt.info() != Eigen::Success) throw NumericalError("muscle '" + def.name + "': stiffness is singular");
+  const VecX x = ldlt.solve(P);
+  MatX3 response = MatX3::Zero(nm, 3);
+  for (int v = 0; v < nm; ++v) {
+    const int r = toFree[static_cast<size_t>(v)];
+    if (r >= 0) response.row(v) = x.segment<3>(3 * r).transpose();
+  }
+  const double target = settings.shortening * mu.restLength;
+  auto checkedScale = [&](double along) {
+    if (!(along > 0.0))
+      throw NumericalError("muscle '" + def.name + "': its activation load does not move the insertion towards the origin");
+    return target / along;
+  };
+  // The pinned tube shortens along its chord. On the bed the fibres follow the skin, so their
+  // shortening is measured along their own direction at the insertion (the contraction direction of
+  // the insertion ring's central nodes: the centre line's tangent there, which follows the skin);
+  // fixed-point steps on the scale make it σ × length.
+  Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
+  if (settings.slideOverBed) {
+    Vec3 fibre = Vec3::Zero();
+    for (size_t c = 0; c < mu.centralNodes.size(); ++c)
+      if (std::find(mu.insertionNodes.begin(), mu.insertionNodes.end(), mu.centralNodes[c]) != mu.insertionNodes.end())
+        fibre += mu.contractDirection.row(static_cast<Eigen::Index>(c)).transpose();
+    if (fibre.norm() > 0.0) axis = fibre.normalized();
+  }
+  double scale = checkedScale(insertionShortening(mu, response, axis));
+  cm.fullShape = scale * response;
+  if (settings.slideOverBed) {
+    for (int it = 0; it < 30; ++it) {
+      cm.fullShape = slideOverBed(mu, scale * response, restFoot, onSkin);
+      const double along = insertionShortening(mu, cm.fullShape, axis);
+      if (std::abs(along - target) <= 1e-9 * target) break;
+      scale *= checkedScale(along);
+    }
+  }
+  {
+    const VecX& mass = shell.lumpedMass();
+    double mm2 = 0.0;
+    for (size_t k = 0; k < freeV.size(); ++k) mm2 += mass(freeV[k]) * x.segment<3>(3 * static_cast<Eigen::Index>(k)).squaredNorm();
+    cm.naturalFrequency = std::sqrt(x.dot(Kff * x) / mm2);
+  }
+}
+
+// A ring muscle's shape at a = 1 (docs/muscles.md, "Ring muscles"): the fibres shorten by the
+// ring's `shortening` σ, drawing every node towards the ring's centre c in the face's plane,
+//   u_v = −σ P(p_v − c) + π σ |P(p_v − c)| ẑ,
+// P the projection onto the face frame's x–y plane, ẑ its forward axis, π the ring's `protrusion`.
+// A band of uniform fibres under uniform tension contracts uniformly about its centre: its length
+// falls by σ. The forward term is the lip's incompressibility: tissue squeezed towards the mouth's
+// centre bulges out of the face (π = 0 for the eye, whose ring slides over the bone).
+void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& frame) {
+  const Muscle& mu = cm.muscle;
+  const MuscleDef::Ring& ring = mu.def.ring;
+  const int nm = mu.mesh.vertexCount();
+  const Vec3 x = frame.axes.col(0), y = frame.axes.col(1), z = frame.axes.col(2);
+  cm.fullShape.resize(nm, 3);
+  for (int v = 0; v < nm; ++v) {
+    const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.ringCentre;
+    const Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
+    cm.fullShape.row(v) = (-ring.shortening * inPlane + ring.protrusion * ring.shortening * inPlane.norm() * z).transpose();
+  }
+  // ω from the free band's Rayleigh quotient (the shape has no rigid part: it shrinks the band).
+  VecX u(3 * nm);
+  for (int v = 0; v < nm; ++v) u.segment<3>(3 * v) = cm.fullShape.row(v).transpose();
+  const VecX& mass = shell.lumpedMass();
+  double mm2 = 0.0;
+  for (int v = 0; v < nm; ++v) mm2 += mass(v) * u.segment<3>(3 * v).squaredNorm();
+  cm.naturalFrequency = std::sqrt(u.dot(shell.stiffnessAtRest() * u) / mm2);
+}
+
+CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings,
+                           const SurfaceLocator* skin) {
+  const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
+  profile.validate(def.coupling ? "muscle '" + def.name + "': coupling" : "muscle coupling");
+  settings.muscle.validate();
+  if (!(settings.shortening > 0.0 && settings.shortening < 1.0))
+    throw InputError("muscle '" + def.name + "': shortening must lie in (0, 1)");
+  CoupledMuscle cm;
+  cm.muscle = buildMuscle(def, head, TubeOrientation::MirrorRightSide, skin);
+  const Muscle& mu = cm.muscle;
+  const TriMesh& mm = mu.mesh;
+  const int nm = mm.vertexCount();
+  // The tube's material is the thesis face's, set on the built-in head: scaled with the head (k_L
+  // with its size, k_B with its square; k_A's term already scales as the area), the tube's static
+  // response keeps its form on a head of any size, and the strength rule sets its magnitude.
+  ShellMaterial material = settings.muscle;
+  const double size = head.frame().scale / kMuscleMaterialHeadScale;
+  material.kL *= size;
+  material.kB *= size * size;
+  const DiscreteShell shell(mm.V, mm.F, buildEdgeTable(mm.F, nm), material);
+
+  const MatX3& S = head.mesh.V;
+  const MatX3i& F = head.mesh.F;
+  const MatX3 skinNormals = skin ? skin->vertexNormals() : vertexNormals(S, F);
+  const ClosestOnSkin onSkin = [&](const Vec3& p) { return skin ? skin->closest(p) : closestSurfacePoint(S, F, skinNormals, p); };
+  const double L = mu.restLength;
+  // Per muscle node: its place along the muscle (t) and its depth below the skin. A ring's fibres
+  // insert into the skin all along it (the lips, the lids): t = 1, the insertion's modulus.
+  const Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
+  VecX nodeT(nm), nodeDepth(nm);
+  std::vector<SurfacePoint> foot(static_cast<size_t>(nm));  // each node's closest skin point
+  for (int v = 0; v < nm; ++v) {
+    const Vec3 p = mm.V.row(v);
+    nodeT(v) = def.isRing() ? 1.0 : std::clamp((p - mu.originPoint).dot(-axis) / L, 0.0, 1.0);
+    foot[static_cast<size_t>(v)] = onSkin(p);
+    nodeDepth(v) = foot[static_cast<size_t>(v)].distance;
+    if (!(nodeDepth(v) > 1e-9 * L))
+      throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
+  }
+
+  if (mu.def.isRing()) ringShape(cm, shell, head.frame());
+  else linearShape(cm, shell, settings, foot, onSkin);
+
+  // Springs from every skin vertex over the muscle to the muscle's surface point below it.
+  const SurfaceLocator muscleSurface(mm.V, mm.F, vertexNormals(mm.V, mm.F));
+  const VecX skinArea = lumpedVertexAreas(S, F);
+  // Skin farther than `searchRadius` from `middle` cannot lie over the muscle: skip the search.
+  const Vec3 middle = def.isRing() ? mu.ringCentre : 0.5 * (mu.originPoint + mu.insertionPoint);
+  double searchRadius = L;
+  if (def.isRing()) {
+    searchRadius = 0.0;
+    for (int v = 0; v < nm; ++v)
+      searchRadius = std::max(searchRadius, (Vec3(mm.V.row(v)) - middle).norm() + settings.footprintReach * nodeDepth(v));
+  }
+  const double reachFactor = settings.footprintReach;
+  for (Eigen::Index i = 0; i < S.rows(); ++i) {
+    const Vec3 x = S.row(i);
+    if ((x - middle).norm() > searchRadius) continue;
+    const SurfacePoint below = muscleSurface.closest(x);
+    const Eigen::Vector3i tri = mm.F.row(below.triangle).transpose();
+    double t = 0.0, depth = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      t += below.barycentric(k) * nodeT(tri(k));
+      depth += below.barycentric(k) * nodeDepth(tri(k));
+    }
+    const double G = profile.modulus(t);
+    if (G <= 0.0) continue;
+    // The muscle must lie beneath this skin, not beside or in front of it (the other lip, the
+    // inside of the mouth).
+    const Vec3 down = (below.point - x) / std::max(below.distance, 1e-12 * L);
+    if (down.dot(Vec3(skinNormals.row(i))) > -kBeneath) continue;
+    const double reach = reachFactor * depth;
+    if (below.distance >= reach) continue;
+    const double s = below.distance / reach;
+    CoupledMuscle::Spring spring;
+    spring.skin = static_cast<int>(i);
+    spring.nodes = {tri(0), tri(1), tri(2)};
+    spring.weights = {below.barycentric(0), below.barycentric(1), below.barycentric(2)};
+    spring.t = t;
+    spring.depth = below.distance;
+    // A shear layer of modulus G and thickness δ under the vertex's area, faded out towards the
+    // footprint's edge so the coupling has no step.
+    spring.stiffness = G * skinArea(i) / std::max(below.distance, 1e-3 * L) * (1.0 - s * s) * (1.0 - s * s);
+    cm.springs.push_back(spring);
+  }
+  return cm;
+}
+
+void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets) {
+  for (const auto& s : m.springs)
+    for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin + c, 3 * s.skin + c, s.stiffness);
+}
+
+Vec3 CoupledMuscle::Spring::muscleDisplacement(const MatX3& muscleU) const {
+  Vec3 u = Vec3::Zero();
+  for (size_t b = 0; b < nodes.size(); ++b) u += weights[b] * muscleU.row(nodes[b]).transpose();
+  return u;
+}
+
+MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount) {
+  MatX3 f = MatX3::Zero(skinVertexCount, 3);
+  for (const auto& s : m.springs) f.row(s.skin) += s.stiffness * s.muscleDisplacement(m.fullShape).transpose();
+  return f;
+}
+
+}  // namespace myo

@@ -1,0 +1,138 @@
+#include "myoshell/muscles/tissue_attachment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/mesh/geometry.h"
+
+namespace myo {
+
+namespace {
+
+// 0 below 0, 1 above 1, 3s² − 2s³ between (C¹: the maps have no kinks).
+double smooth(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+// 1 inside radius r, falling smoothly to 0 at r + width.
+double bump(double distance, double r, double width) { return 1.0 - smooth((distance - r) / width); }
+
+// Distance from p to the segment [a, b] in the (x, y) plane of the face frame.
+double segmentDistance2d(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+}  // namespace
+
+VecX lumpedVertexAreas(const MatX3& V, const MatX3i& F) {
+  VecX A = VecX::Zero(V.rows());
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    const double a = triangleArea(V.row(F(t, 0)), V.row(F(t, 1)), V.row(F(t, 2))) / 3.0;
+    for (int k = 0; k < 3; ++k) A(F(t, k)) += a;
+  }
+  return A;
+}
+
+VecX TissueMap::vertexMass() const { return density * thickness.cwiseProduct(area); }
+
+SparseMat TissueMap::stiffness() const {
+  const int n = size();
+  SparseMat K(3 * n, 3 * n);
+  K.reserve(Eigen::VectorXi::Constant(3 * n, 1));
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) K.insert(3 * i + c, 3 * i + c) = attachment(i) * area(i);
+  K.makeCompressed();
+  return K;
+}
+
+TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
+  if (!(s.fatShearModulus > 0) || !(s.heldStiffness > 0) || !(s.thinTissue > 0) || !(s.cheekTissue > 0) ||
+      !(s.lipChinTissue > 0) || !(s.tissueDensity > 0))
+    throw InputError("tissue attachment: moduli, stiffnesses, thicknesses and density must be > 0");
+  const FaceFrame frame = head.frame();
+  const Landmarks& lm = head.landmarks;
+  const MatX3& V = head.mesh.V;
+  auto at = [&](const char* name) { return frame.toFrame(Vec3(V.row(lm.vertex(name)))); };
+  // Landmarks in the face frame (ICT values in brackets, docs/anatomical_model.md).
+  const Vec3 eyeR = at("right_eye_outer"), eyeL = at("left_eye_outer");            // (∓0.50, 0, 0)
+  const Vec3 innerR = at("right_eye_inner"), innerL = at("left_eye_inner");        // (∓0.21, −0.03)
+  const Vec3 nasion = at("nasion_approx"), tip = at("nose_tip");                   // y −0.01, −0.42
+  const Vec3 cornerR = at("mouth_corner_right"), cornerL = at("mouth_corner_left");// (∓0.28, −0.80)
+  const Vec3 menton = at("chin_menton");                                           // y −1.25
+  const double browY = 0.25 * (at("right_brow_inner").y() + at("left_brow_inner").y() +
+                               at("right_brow_outer").y() + at("left_brow_outer").y());  // 0.22
+  const double lipTopY = at("upper_lip_top").y();
+
+  const int n = static_cast<int>(V.rows());
+  TissueMap map;
+  map.density = s.tissueDensity;
+  map.area = lumpedVertexAreas(V, head.mesh.F);
+  map.attachment.resize(n);
+  map.thickness.resize(n);
+  map.held.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 q = frame.toFrame(Vec3(V.row(i)));
+    const Vec2 p(q.x(), q.y());
+    const double side = q.x() >= 0 ? 1.0 : -1.0;  // mirror: evaluate the subject's left regions at |x|
+    const Vec3& eye = side > 0 ? eyeL : eyeR;
+    const Vec3& inner = side > 0 ? innerL : innerR;
+    const Vec3& corner = side > 0 ? cornerL : cornerR;
+    double w = 0.0;
+    // Behind the face (ears, temples behind the orbit, back of the head): the face's front lies
+    // within ~0.45 of the canthal plane.
+    w = std::max(w, smooth((-0.45 - q.z()) / 0.25));
+    // Scalp behind the hairline: about 0.45 above the brows (forehead 4–6 cm).
+    w = std::max(w, smooth((q.y() - (browY + 0.40)) / 0.20));
+    // Neck: below the menton.
+    w = std::max(w, smooth((menton.y() - 0.05 - q.y()) / 0.20));
+    // Nasal dorsum: the bony and cartilaginous bridge, nasion to 70 % of the way to the tip.
+    const Vec2 dorsumTop(nasion.x(), nasion.y()), dorsumEnd = dorsumTop + 0.7 * (Vec2(tip.x(), tip.y()) - dorsumTop);
+    w = std::max(w, bump(segmentDistance2d(p, dorsumTop, dorsumEnd), 0.05, 0.06));
+    // Zygomatic arch: a band ~0.15 below the canthal line, lateral of the outer canthus.
+    w = std::max(w, bump(std::abs(q.y() - (eye.y() - 0.15)), 0.04, 0.06) * smooth((std::abs(q.x()) - std::abs(eye.x()) - 0.05) / 0.10));
+    // Orbital retaining ligament: the inferior and lateral orbital rim, an ellipse around the eye
+    // (centre between the canthi, semi-axes 0.30 × 0.22), lower half only (the brow stays free).
+    {
+      const Vec2 c(0.5 * (eye.x() + inner.x()), 0.5 * (eye.y() + inner.y()));
+      const double r = std::hypot((q.x() - c.x()) / 0.30, (q.y() - c.y()) / 0.22);
+      w = std::max(w, bump(std::abs(r - 1.0) * 0.26, 0.02, 0.04) * smooth((c.y() + 0.05 - q.y()) / 0.05));
+    }
+    // Zygomatic ligament (McGregor's patch): below the outer canthus on the zygomatic body.
+    w = std::max(w, bump((p - Vec2(eye.x(), eye.y() - 0.32)).norm(), 0.05, 0.06));
+    // Mandibular ligament: anterior mandible, below and just lateral of the mouth corner.
+    w = std::max(w, bump((p - Vec2(corner.x() + side * 0.02, menton.y() + 0.12)).norm(), 0.05, 0.06));
+    map.held(i) = w;
+
+    // Soft-tissue thickness: cheek (lateral of the nasolabial region, between the zygoma and the
+    // mandible), lips and chin, thin elsewhere.
+    const double cheek = smooth((std::abs(q.x()) - 0.20) / 0.10) * smooth((eye.y() - 0.20 - q.y()) / 0.15) *
+                         smooth((q.y() - (menton.y() + 0.20)) / 0.15) * smooth((q.z() + 0.45) / 0.15);
+    const double lipChin = smooth((0.40 - std::abs(q.x())) / 0.10) * smooth((lipTopY + 0.10 - q.y()) / 0.10) *
+                           smooth((q.y() - menton.y()) / 0.10) * (1.0 - smooth((-0.3 - q.z()) / 0.1));
+    const double soft = std::max(cheek, lipChin);
+    const double hSoft = cheek >= lipChin ? s.cheekTissue : s.lipChinTissue;
+    const double h = (1.0 - soft) * s.thinTissue + soft * hSoft;
+    map.thickness(i) = h;
+    map.attachment(i) = (1.0 - w) * s.fatShearModulus / h + w * s.heldStiffness;
+  }
+  return map;
+}
+
+void applyAttachmentOverrides(TissueMap& map, const std::vector<AttachmentOverride>& overrides) {
+  for (size_t k = 0; k < overrides.size(); ++k) {
+    const AttachmentOverride& o = overrides[k];
+    if (o.vertex < 0 || o.vertex >= map.size())
+      throw InputError("skin.attachment[" + std::to_string(k) + "]: vertex " + std::to_string(o.vertex) +
+                       " is outside [0, " + std::to_string(map.size()) + ")");
+    if (!(o.stiffness > 0) || !std::isfinite(o.stiffness))
+      throw InputError("skin.attachment[" + std::to_string(k) + "]: stiffness must be > 0 dyn/cm³ (got " +
+                       std::to_string(o.stiffness) + ")");
+    map.attachment(o.vertex) = o.stiffness;
+  }
+}
+
+}  // namespace myo
