@@ -1,5 +1,5 @@
 # The layers, in link order (DESIGN.md): each layer links only layers listed before it.
-set(MYO_LAYER_ORDER core mesh shell reduce verify head face muscles thesis anatomy fit anim io render gl)
+set(MYO_LAYER_ORDER core mesh shell reduce verify head muscles thesis anatomy fit anim io render gl)
 
 # myo_add_layer(NAME DEPS...): a static library myo_<NAME> from every src/<NAME>/*.cpp, with the
 # public headers under include/myoshell/<NAME>/. New files are picked up without editing CMake.

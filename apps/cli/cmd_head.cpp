@@ -22,7 +22,7 @@
 #include "myoshell/anatomy/eyelids.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 
 namespace myo::python {
 

@@ -13,8 +13,8 @@
 
 #include "myoshell/anatomy/eyelids.h"
 #include "myoshell/anim/performance.h"
-#include "myoshell/face/face_system.h"
 #include "myoshell/fit/arkit_names.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/head_files.h"

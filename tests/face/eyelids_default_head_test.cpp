@@ -19,8 +19,8 @@
 
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anatomy/eyelids.h"
-#include "myoshell/face/face_system.h"
 #include "myoshell/fit/activation_fit.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/head/jaw.h"
 #include "myoshell/head/mediapipe_mesh.h"

@@ -16,7 +16,7 @@
 
 #include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/errors.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"

@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/head/mediapipe_mesh.h"
 #include "myoshell/io/head_files.h"

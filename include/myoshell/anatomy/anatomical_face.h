@@ -18,7 +18,7 @@
 #include "myoshell/anatomy/anatomical_stepper.h"
 #include "myoshell/anatomy/skin_placement.h"
 #include "myoshell/core/timer.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 
 namespace myo {
 

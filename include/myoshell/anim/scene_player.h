@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 
 namespace myo {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene_parser.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/reduce/basis_cache.h"
 #include "myoshell/thesis/face_model.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
-#include "myoshell/face/face_model_kind.h"
+#include "myoshell/head/face_model_kind.h"
 #include "myoshell/mesh/tri_mesh.h"
 #include "myoshell/muscles/coupling_profile.h"
 

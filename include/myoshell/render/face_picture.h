@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene_player.h"
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/render/camera.h"
 #include "myoshell/render/colormap.h"
 #include "myoshell/render/image.h"

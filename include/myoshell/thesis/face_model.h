@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/muscles/muscle.h"
 #include "myoshell/reduce/basis_cache.h"

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
-#include "myoshell/face/face_model_kind.h"
+#include "myoshell/head/face_model_kind.h"
 #include "myoshell/head/head.h"
 #include "myoshell/head/jaw.h"
 

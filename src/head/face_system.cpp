@@ -1,4 +1,4 @@
-#include "myoshell/face/face_system.h"
+#include "myoshell/head/face_system.h"
 
 #include "myoshell/core/check.h"
 
