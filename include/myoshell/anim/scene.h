@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "myoshell/anatomy/anatomical_skin.h"
+#include "myoshell/anatomy/skin_settings.h"
 #include "myoshell/anim/head_pose_track.h"
 #include "myoshell/anim/one_euro_filter.h"
 #include "myoshell/anim/performance.h"
