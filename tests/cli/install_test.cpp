@@ -32,7 +32,7 @@ TEST(Install, AnInstalledMyoshellBuildsAndRunsTheEmbedExample) {
   const std::string quiet = " >> '" + log.string() + "' 2>&1";
   ASSERT_EQ(shell(cmake + " --install '" + std::string(MYO_BINARY_DIR) + "' --prefix '" + prefix.string() + "'" + quiet), 0)
       << "see " << log;
-  EXPECT_TRUE(fs::exists(prefix / "include" / "myoshell" / "face" / "simulator.h"));
+  EXPECT_TRUE(fs::exists(prefix / "include" / "myoshell" / "thesis" / "simulator.h"));
   EXPECT_TRUE(fs::exists(prefix / "lib" / "cmake" / "Myoshell" / "MyoshellConfig.cmake"));
   EXPECT_TRUE(fs::exists(prefix / "include" / "myoshell" / "verify" / "validation.h"));
   EXPECT_TRUE(fs::exists(prefix / "lib" / "libmyo_verify.a"));
