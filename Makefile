@@ -1,27 +1,45 @@
 # Two commands do everything on a fresh Debian machine:
 #   make demo   set up, build, and run the demo
 #   make test   set up, build, and run every test
+# `make demo` (and make, make build, make python) installs only what building and running need
+# (scripts/setup) and configures $(BUILD_DIR) without the tests and benchmark programs; `make test`,
+# test-asan*, fuzz* and bench install what the tests need too (scripts/setup --test) and configure
+# with them. Both use the same $(BUILD_DIR): switching reconfigures it, the library is not rebuilt.
+# docs/install.md lists the packages.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup configure build python test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
+.PHONY: all setup setup-test configure configure-test build build-test python test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
 
 all: build
 
 setup:
 	@bash scripts/setup
 
+setup-test:
+	@bash scripts/setup --test
+
+CONFIGURE = cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
+
+# The library, CLI, viewer and Python module: no GoogleTest, Google Benchmark or assimp needed.
 configure: setup
-	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null
+	@$(CONFIGURE) -DMYO_BUILD_TESTS=OFF -DMYO_BUILD_BENCH=OFF > /dev/null
 
 build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The same and the tests and benchmark programs (tests/, bench/).
+configure-test: setup-test
+	@$(CONFIGURE) -DMYO_BUILD_TESTS=ON -DMYO_BUILD_BENCH=ON > /dev/null
+
+build-test: configure-test
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The Python module alone, into $(BUILD_DIR)/python/myoshell (docs/python.md); `make test` runs its tests.
 python: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target _myoshell
 
-test: build
+test: build-test
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # Every test under AddressSanitizer and UndefinedBehaviorSanitizer, in its own build folder, but
@@ -35,7 +53,7 @@ ASAN_EXCLUDE = -LE '^(gl|viewer)$$'
 # long to compile at -O2 -g (docs/RELIABILITY.md, "Status").
 ASAN_CMAKE = cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DMYO_SANITIZE=ON -DMYO_BUILD_BENCH=OFF > /dev/null
-asan-build: setup
+asan-build: setup-test
 	@$(ASAN_CMAKE)
 	@cmake --build build-asan -j $(JOBS)
 
@@ -45,7 +63,7 @@ test-asan: asan-build
 # The part of test-asan that CI runs (.ci/run): the parser and I/O layers and the CLI's bad-input
 # catalogue. Builds only what those tests need (the catalogue is its own program, test_bad_inputs).
 ASAN_CI_TARGETS = test_core test_mesh test_anim test_io test_bad_inputs
-test-asan-ci: setup
+test-asan-ci: setup-test
 	@$(ASAN_CMAKE)
 	@cmake --build build-asan -j $(JOBS) --target $(ASAN_CI_TARGETS)
 	@cd build-asan && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) -L '^(core|mesh|anim|io)$$'
@@ -56,7 +74,7 @@ test-asan-ci: setup
 # corpus (fuzz/corpus/) once. Findings land in fuzz/findings/ (docs/RELIABILITY.md).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance
-fuzz-build: setup
+fuzz-build: setup-test
 	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DMYO_FUZZ=ON -DMYO_BUILD_TESTS=OFF -DMYO_BUILD_BENCH=OFF > /dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target $(FUZZ_TARGETS)
@@ -70,7 +88,8 @@ fuzz-replay: fuzz-build
 demo: build
 	@$(BUILD_DIR)/bin/myoshell demo --out out/demo
 
-bench: build
+# The CLI's timing command (docs/PERFORMANCE.md), built with the benchmark programs (bench/).
+bench: build-test
 	@$(BUILD_DIR)/bin/myoshell bench
 
 clean:

@@ -145,7 +145,7 @@ TEST_F(BatchRecipes, TheJobListIsPerformanceMajorAndTheSameForBothRecipes) {
 }
 
 TEST_F(BatchRecipes, GnuParallelDrivesFourPerformancesOnTwoHeadsBuildingTheCacheFirst) {
-  if (!have("parallel")) GTEST_SKIP() << "GNU parallel is not installed (scripts/setup installs it)";
+  if (!have("parallel")) GTEST_SKIP() << "GNU parallel is not installed (scripts/setup --test installs it)";
   const fs::path out = dir_ / "parallel_out";
   const Shell r = sh(env() + "JOBS=2 bash " + q(recipe("parallel.sh")) + " " + q(dir_ / "perf") + " " +
                      q(dir_ / "heads.txt") + " " + q(out) + " -- " + kDriveArgs);

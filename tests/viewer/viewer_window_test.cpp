@@ -61,7 +61,7 @@ bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 
 const char* kXvfb = "xvfb-run -a -s '-screen 0 1280x1024x24'";
 
 TEST(ViewerWindow, AScriptedSmileChangesTheFaceAndThePanelIsDrawn) {
-  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs xvfb and xauth)";
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup --test installs xvfb and xauth)";
   const fs::path dir = scratch("smile");
   std::ofstream(dir / "neutral.txt") << "show muscles off\nadvance 10\nscreenshot neutral.png\n";
   std::ofstream(dir / "smile.txt") << "# the left zygomaticus, full\nset zygomaticus_major_left 1\nadvance 10\n"
