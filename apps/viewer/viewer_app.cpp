@@ -180,6 +180,9 @@ class ViewerApp {
   int screenshots_ = 0;
   ViewerStats stats_;
   bool orbiting_ = false, panning_ = false, f12WasDown_ = false;
+  // The grab is the mouse's (Ctrl + left-drag), not a script's: only the mouse's follows the cursor
+  // and ends when the button is up (a script's grab, pull and release are its own commands).
+  bool mouseGrab_ = false;
   double lastX_ = 0, lastY_ = 0;
   Vec3 grabPoint_ = Vec3::Zero();  // where the mouse holds the skin, cm (on the plane ⟂ view)
 
@@ -239,14 +242,15 @@ class ViewerApp {
     const bool ctrl = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
                       glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
     if (!io.WantCaptureMouse) {
-      if (left && ctrl && !session_.grabbing()) grabAt(px, py);
-      if (left && !ctrl && !session_.grabbing() && !orbiting_) orbiting_ = true, lastX_ = px, lastY_ = py;
+      if (left && ctrl && !mouseGrab_) grabAt(px, py);
+      if (left && !ctrl && !mouseGrab_ && !orbiting_) orbiting_ = true, lastX_ = px, lastY_ = py;
       if (right && !panning_) panning_ = true, lastX_ = px, lastY_ = py;
       if (io.MouseWheel != 0.0f) display_.zoom = std::clamp(display_.zoom * std::pow(1.15, io.MouseWheel), 0.2, 20.0);
     }
     if (!left) {
       orbiting_ = false;
-      if (session_.grabbing()) session_.release();
+      if (mouseGrab_ && session_.grabbing()) session_.release();
+      mouseGrab_ = false;
     }
     if (!right) panning_ = false;
     const double pixel = camera_.orthoHeight / std::max(height_, 1);
@@ -255,7 +259,7 @@ class ViewerApp {
       display_.pitch = std::clamp(display_.pitch + 0.4 * (py - lastY_), -85.0, 85.0);
     }
     if (panning_) display_.pan += -camera_.right() * ((px - lastX_) * pixel) + camera_.trueUp() * ((py - lastY_) * pixel);
-    if (session_.grabbing()) {
+    if (mouseGrab_ && session_.grabbing()) {
       // The spot follows the mouse on the plane through the grab point facing the viewer.
       Vec3 origin, direction;
       pixelRay(camera_, px, py, faceWidth_, height_, origin, direction);
@@ -276,6 +280,7 @@ class ViewerApp {
     if (vertex < 0) return;
     try {
       session_.grab(vertex);
+      mouseGrab_ = true;
       grabPoint_ = positions.row(vertex);
       status_ = fmt::format("pulling vertex {}", vertex);
     } catch (const InputError& e) {
@@ -445,6 +450,15 @@ class ViewerApp {
     else if (c.verb == "grab") session_.grab(vertexOf(c.args[0]));
     else if (c.verb == "pull") session_.pull(Vec3(c.number(0), c.number(1), c.number(2)));
     else if (c.verb == "release") session_.release();
+    else if (c.verb == "probe") {
+      const int v = vertexOf(c.args[0]);
+      const MatX3& u = session_.simulator().skinDisplacement();
+      if (v < 0 || v >= u.rows())
+        throw InputError(fmt::format("'probe': vertex {} is outside [0, {})", v, u.rows()));
+      const Vec3 d = u.row(v);
+      fmt::print("probe {} (vertex {}): displacement {:.6g} {:.6g} {:.6g} cm, |u| {:.6g} cm\n", c.args[0], v, d.x(),
+                 d.y(), d.z(), d.norm());
+    }
     else if (c.verb == "key") session_.setKeysAtPlayhead();
     else if (c.verb == "save") session_.saveScene(c.args[0]);
     else if (c.verb == "export") session_.exportGlb(c.args[0]);

@@ -249,7 +249,7 @@ TEST(ViewerScript, ErrorsNameTheFileLineAndFault) {
   };
   EXPECT_EQ(message("set zygomaticus_major_left 1\nfrobnicate\n"),
             "s.txt:2: unknown command 'frobnicate' (known: advance, blink, export, grab, gravity, jaw, key, link, orbit, pause, play, "
-            "pull, release, reset, save, screenshot, seek, select, set, show, stiffness, view, zoom)");
+            "probe, pull, release, reset, save, screenshot, seek, select, set, show, stiffness, view, zoom)");
   EXPECT_EQ(message("# a comment\n\nadvance\n"), "s.txt:3: 'advance' takes 1 argument, got 0");
   EXPECT_EQ(message("set zygomaticus_major_left lots\n"), "s.txt:1: 'set': 'lots' is not a finite number");
   EXPECT_EQ(message("stiffness nan\n"), "s.txt:1: 'stiffness': 'nan' is not a finite number");
