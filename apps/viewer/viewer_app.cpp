@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -183,6 +184,9 @@ class ViewerApp {
   // The grab is the mouse's (Ctrl + left-drag), not a script's: only the mouse's follows the cursor
   // and ends when the button is up (a script's grab, pull and release are its own commands).
   bool mouseGrab_ = false;
+  float stiffnessEdit_ = 0.0f;      // the anatomical stiffness slider while it is dragged
+  bool stiffnessDragged_ = false;
+  double pendingStiffness_ = 0.0;   // > 0: rebuild the anatomical skin at this scale next frame
   double lastX_ = 0, lastY_ = 0;
   Vec3 grabPoint_ = Vec3::Zero();  // where the mouse holds the skin, cm (on the plane ⟂ view)
 
@@ -197,6 +201,16 @@ class ViewerApp {
 
   // One frame: input, the panel, `seconds` of simulation, drawing, an optional screenshot.
   void frame(double seconds, const std::string& screenshot = {}) {
+    if (pendingStiffness_ > 0.0) {  // the last frame showed the message: the rebuild blocks this one
+      const double s = std::exchange(pendingStiffness_, 0.0);
+      try {
+        status_ = fmt::format("stiffness ×{:.2f}: skin rebuilt in {:.1f} s", s, session_.setStiffnessScale(s));
+        mouseGrab_ = false;
+      } catch (const std::exception& e) {
+        status_ = e.what();
+      }
+      seconds = 0.0;  // the rebuild's wall time is not simulated time
+    }
     Stopwatch clock;
     glfwPollEvents();
     glfwGetFramebufferSize(window_, &width_, &height_);
@@ -330,10 +344,21 @@ class ViewerApp {
     if (ImGui::CollapsingHeader("Skin", ImGuiTreeNodeFlags_DefaultOpen)) {
       bool gravity = session_.gravity();
       if (session_.hasGravity() && ImGui::Checkbox("gravity", &gravity)) session_.setGravity(gravity);
-      float s = static_cast<float>(session_.simulator().skinStiffnessScale());
-      if (session_.thesisModel() &&  // the anatomical model's one skin has no stiffness slider
-          ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
-        session_.setStiffnessScale(std::max(s, 0.1f));
+      if (!session_.stiffnessRebuilds()) {  // thesis: scaled in place, live while dragging
+        float s = static_cast<float>(session_.stiffnessScale());
+        if (ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+          session_.setStiffnessScale(std::max(s, 0.1f));
+      } else {
+        // Anatomical: each value is a rebuild of the skin, so only the value let go of is built,
+        // on the next frame (this one shows the message first).
+        if (!stiffnessDragged_ && pendingStiffness_ == 0.0) stiffnessEdit_ = static_cast<float>(session_.stiffnessScale());
+        ImGui::SliderFloat("stiffness ×", &stiffnessEdit_, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        stiffnessDragged_ = ImGui::IsItemActive();
+        if (ImGui::IsItemDeactivatedAfterEdit() && std::abs(stiffnessEdit_ - session_.stiffnessScale()) > 1e-6) {
+          pendingStiffness_ = std::max(stiffnessEdit_, 0.1f);
+          status_ = fmt::format("rebuilding the skin at stiffness ×{:.2f}…", pendingStiffness_);
+        }
+      }
       float k = static_cast<float>(display_.dragStiffness);
       if (ImGui::SliderFloat("drag dyn/cm", &k, 100.0f, 20000.0f, "%.0f", ImGuiSliderFlags_Logarithmic)) display_.dragStiffness = k;
       ImGui::TextDisabled("Ctrl + left-drag on the skin pulls it");
@@ -442,7 +467,14 @@ class ViewerApp {
     else if (c.verb == "blink") session_.blink();
     else if (c.verb == "link") session_.linked = on(0);
     else if (c.verb == "gravity") session_.setGravity(on(0));
-    else if (c.verb == "stiffness") session_.setStiffnessScale(c.number(0));
+    else if (c.verb == "stiffness") {
+      if (session_.stiffnessRebuilds())
+        fmt::print(stderr, "myoshell-view: {}:{}: stiffness {}: rebuilding the anatomical skin at E = {:g} dyn/cm²…\n",
+                   options_.script, c.line, c.args[0], c.number(0) * session_.scene().anatomical.skinYoungModulus /
+                                                           session_.stiffnessScale());
+      const double seconds = session_.setStiffnessScale(c.number(0));
+      if (session_.stiffnessRebuilds()) fmt::print(stderr, "myoshell-view: skin rebuilt in {:.1f} s\n", seconds);
+    }
     else if (c.verb == "play") session_.playing = true;
     else if (c.verb == "pause") session_.playing = false;
     else if (c.verb == "seek") session_.seek(c.number(0));
