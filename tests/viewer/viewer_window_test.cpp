@@ -124,6 +124,20 @@ TEST(ViewerWindow, AScriptedDragMovesTheGrabbedSkinAlongThePull) {
   EXPECT_GT(differingPixels(before, after, 0, 0, after.width, after.height), 200);
 }
 
+// An OBJ given where a scene goes was read as YAML and refused with "key '(document)': must be an
+// object": it must say that the viewer takes a scene and how to write one for the OBJ, before any
+// display is needed.
+TEST(ViewerWindow, AnObjHeadIsRefusedWithHowToMakeItsScene) {
+  const fs::path dir = scratch("obj");
+  std::ofstream(dir / "my_head.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", "my_head.obj", dir);
+  EXPECT_EQ(run.exitCode, 2) << run.output;
+  EXPECT_NE(run.output.find("myoshell-view: error: 'my_head.obj' is a mesh, not a scene"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find(R"({"obj": "my_head.obj", "landmarks": )"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("(document)"), std::string::npos) << run.output;
+}
+
 TEST(ViewerWindow, ScreenshotModeWritesThePictureAndExits) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
   const fs::path dir = scratch("screenshot");
