@@ -20,6 +20,7 @@
 #include "support/cli_runner.h"
 #include "support/grid_animation.h"
 #include "support/scratch_folder.h"
+#include "support/seam_rig.h"
 #include "support/uv_seam_mesh.h"
 
 namespace myo {
@@ -207,16 +208,8 @@ TEST_F(GltfAssimp, ReadsARigsNamedTargetsInMetres) {
 // duplicate exactly as its original.
 TEST_F(GltfAssimp, ARigWithSeamsHasTheObjsCornerUvs) {
   const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
-  RigExport rig;
-  rig.name = "seam";
-  rig.rest = head.V;
-  rig.triangles = head.F;
-  rig.uv = head.UV;
-  rig.cornerUV = head.cornerUV;
-  rig.names = {"jawOpen"};
-  MatX3 delta(head.V.rows(), 3);
-  for (int v = 0; v < delta.rows(); ++v) delta.row(v) << 0.1 * v, 0.05 * (v % 2), -0.2 * v;
-  rig.deltas = {delta};
+  const RigExport rig = test::seamRig(head, {"jawOpen"});
+  const MatX3& delta = rig.deltas[0];
   writeRigGlb(dir_ / "seam.glb", rig);
   TriMesh triangles = head;  // assimp's OBJ importer keeps quads: write the triangles to compare faces
   triangles.polygons.clear();

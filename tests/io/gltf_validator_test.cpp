@@ -18,6 +18,7 @@
 #include "support/cli_runner.h"
 #include "support/grid_animation.h"
 #include "support/scratch_folder.h"
+#include "support/seam_rig.h"
 #include "support/test_data.h"
 #include "support/uv_seam_mesh.h"
 
@@ -112,18 +113,7 @@ TEST_F(GltfValidator, GlbWithTexcoordsHasNoErrors) {
 TEST_F(GltfValidator, RigWithSeamDuplicatesHasNoErrors) {
   MYO_REQUIRE_GLTF_VALIDATOR();
   const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
-  RigExport rig;
-  rig.name = "seam";
-  rig.rest = head.V;
-  rig.triangles = head.F;
-  rig.uv = head.UV;
-  rig.cornerUV = head.cornerUV;
-  rig.names = {"jawOpen", "mouthSmileLeft"};
-  for (int k = 0; k < 2; ++k) {
-    MatX3 d(head.V.rows(), 3);
-    for (int v = 0; v < d.rows(); ++v) d.row(v) << 0.1 * v, 0.05 * k, -0.2 * v * k;
-    rig.deltas.push_back(d);
-  }
+  const RigExport rig = test::seamRig(head, {"jawOpen", "mouthSmileLeft"});
   writeRigGlb(dir_ / "seam.glb", rig);
   expectValid(dir_ / "seam.glb");
 }
