@@ -83,6 +83,8 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
       ->delimiter(',')
       ->capture_default_str();
   sub->add_flag("--video", a->run.video, "Write DIR/<name>.mp4 and .gif: the face beside the active input curves");
+  sub->add_option("--framing", a->run.framing, "--video frames the face (its landmarks), head (crown to chin) or all")
+      ->default_val("face");
   sub->add_flag("--head-motion", a->headMotion, "Turn the exported frames with the performance's head rotation");
   sub->add_option("--size", a->run.size, "Picture size, pixels")->check(CLI::Range(64, 4096));
   sub->add_flag("--software", a->run.software, "Draw with the software renderer even where OpenGL is available");

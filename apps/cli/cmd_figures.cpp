@@ -69,7 +69,7 @@ class Figures {
   // The default head framed whole; a whole head (ICT) framed on its face.
   Camera camera(const FaceSystem& model, ViewPreset preset) const {
     return faceCamera(model, preset, opt_.size, opt_.size,
-                      model.head().name == "default" ? FaceFraming::head : FaceFraming::face);
+                      model.head().name == "default" ? FaceFraming::all : FaceFraming::face);
   }
 
   // One tile: the face picture of `state` with `overlays`.

@@ -80,9 +80,10 @@ int runInfo(const std::string& path, bool json) {
     row("non-manifold edges", std::to_string(s.nonManifoldEdges));
     row("degenerate triangles", std::to_string(s.degenerateTriangles));
     row("inconsistent edges", std::to_string(s.inconsistentEdges));
-    row("bbox min (cm)", fmt::format("{:.4g} {:.4g} {:.4g}", s.bboxMin.x(), s.bboxMin.y(), s.bboxMin.z()));
-    row("bbox max (cm)", fmt::format("{:.4g} {:.4g} {:.4g}", s.bboxMax.x(), s.bboxMax.y(), s.bboxMax.z()));
-    row("area (cm²)", fmt::format("{:.6g}", s.area));
+    // An OBJ carries no unit: the numbers are the file's (a head may be in m, mm or cm).
+    row("bbox min", fmt::format("{:.4g} {:.4g} {:.4g} (the file's units)", s.bboxMin.x(), s.bboxMin.y(), s.bboxMin.z()));
+    row("bbox max", fmt::format("{:.4g} {:.4g} {:.4g}", s.bboxMax.x(), s.bboxMax.y(), s.bboxMax.z()));
+    row("area", fmt::format("{:.6g} (the file's units, squared)", s.area));
     row("UVs", mesh.UV.rows() > 0 ? "yes" : "no");
     for (const auto& [name, set] : mesh.groups) row("group", fmt::format("{} ({} vertices)", name, set.size()));
     if (faults.empty()) {

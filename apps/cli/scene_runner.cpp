@@ -49,6 +49,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
   const ExportFormats formats = parseExportFormats(opt.formats);  // before any work: a typo fails at once
   const ViewPreset view = parseView(opt.view);
+  const FaceFraming framing = parseFraming(opt.framing);
   const auto cache = openBasisCache(opt.cacheDir);
 
   const bool tty = !opt.json && isatty(STDOUT_FILENO);
@@ -111,7 +112,8 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     const bool png = opt.render && f % opt.renderEvery == 0;
     const bool onSheet = opt.render && f % sheetEvery == 0 && sheet.size() < 6;
     if (video || png || onSheet) {
-      const Image image = painter->paint(faceScene(*model, faceFrameState(snap, overlays), view, opt.size, opt.size, overlays));
+      const Image image = painter->paint(
+          faceScene(*model, faceFrameState(snap, overlays), view, opt.size, opt.size, overlays, nullptr, framing));
       if (video) video->addFrame(panel ? besideEachOther(image, drawCurvePanel(opt.videoPanel, snap.time, opt.size, opt.size)) : image);
       if (png) {
         const std::string rel = fmt::format("png/{}_{:04d}.png", scene.name, f);

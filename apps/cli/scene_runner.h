@@ -25,6 +25,9 @@ struct RunOptions {
   int renderEvery = 1;
   int size = 480;
   std::string view = "front";
+  // What the pictures frame (render/face_picture.h FaceFraming): "all" (the whole mesh), "head"
+  // (crown to chin) or "face" (its landmarks); drive's default is face, a bust's face being small.
+  std::string framing = "all";
   bool showMuscles = false;
   double colorScale = 0.0;  // > 0: colour the skin by |u| on [0, colorScale] cm
   bool software = false;    // the software rasterizer even where OpenGL (EGL) is available

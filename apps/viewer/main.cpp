@@ -27,6 +27,25 @@ static bool isPerformanceFile(const std::string& path) {
   return ext == ".csv" || ext == ".jsonl";
 }
 
+// A mesh rather than a scene: YAML would read an OBJ's text as one scalar ("key '(document)': must
+// be an object"), which tells a new user nothing.
+static bool isMeshFile(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".glb" || ext == ".gltf" || ext == ".fbx";
+}
+
+static std::string meshNotSceneMessage(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string();
+  return "'" + path + "' is a mesh, not a scene: myoshell-view opens a scene file (JSON or YAML) or a performance " +
+         "(.csv, .jsonl). For an OBJ head, write a scene beside it, e.g. " + stem + ".json: {\"name\": \"" + stem +
+         "\", \"head\": {\"obj\": \"" + p.filename().string() + "\", \"landmarks\": \"" + stem +
+         "_landmarks.json\"}} (the landmarks: docs/heads.md; `myoshell head " + path +
+         " --landmarks FILE` checks the head first; the keys: docs/scene_format.md), then run myoshell-view " + stem +
+         ".json";
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"myoshell-view: a live face with a slider per muscle"};
   std::string scenePath, cacheDir, size = "1280x800";
@@ -62,6 +81,7 @@ int main(int argc, char** argv) {
   options.width = w;
   options.height = h;
   try {
+    if (!scenePath.empty() && isMeshFile(scenePath)) throw myo::InputError(meshNotSceneMessage(scenePath));
     myo::viewer::checkDisplay();  // no display: say so now, not after building the face
     myo::setParallelThreads(threads);  // the builds (core/parallel.h); a step never spreads
     myo::SceneDesc scene;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -180,6 +181,12 @@ class ViewerApp {
   int screenshots_ = 0;
   ViewerStats stats_;
   bool orbiting_ = false, panning_ = false, f12WasDown_ = false;
+  // The grab is the mouse's (Ctrl + left-drag), not a script's: only the mouse's follows the cursor
+  // and ends when the button is up (a script's grab, pull and release are its own commands).
+  bool mouseGrab_ = false;
+  float stiffnessEdit_ = 0.0f;      // the anatomical stiffness slider while it is dragged
+  bool stiffnessDragged_ = false;
+  double pendingStiffness_ = 0.0;   // > 0: rebuild the anatomical skin at this scale next frame
   double lastX_ = 0, lastY_ = 0;
   Vec3 grabPoint_ = Vec3::Zero();  // where the mouse holds the skin, cm (on the plane ⟂ view)
 
@@ -194,6 +201,16 @@ class ViewerApp {
 
   // One frame: input, the panel, `seconds` of simulation, drawing, an optional screenshot.
   void frame(double seconds, const std::string& screenshot = {}) {
+    if (pendingStiffness_ > 0.0) {  // the last frame showed the message: the rebuild blocks this one
+      const double s = std::exchange(pendingStiffness_, 0.0);
+      try {
+        status_ = fmt::format("stiffness ×{:.2f}: skin rebuilt in {:.1f} s", s, session_.setStiffnessScale(s));
+        mouseGrab_ = false;
+      } catch (const std::exception& e) {
+        status_ = e.what();
+      }
+      seconds = 0.0;  // the rebuild's wall time is not simulated time
+    }
     Stopwatch clock;
     glfwPollEvents();
     glfwGetFramebufferSize(window_, &width_, &height_);
@@ -239,14 +256,15 @@ class ViewerApp {
     const bool ctrl = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
                       glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
     if (!io.WantCaptureMouse) {
-      if (left && ctrl && !session_.grabbing()) grabAt(px, py);
-      if (left && !ctrl && !session_.grabbing() && !orbiting_) orbiting_ = true, lastX_ = px, lastY_ = py;
+      if (left && ctrl && !mouseGrab_) grabAt(px, py);
+      if (left && !ctrl && !mouseGrab_ && !orbiting_) orbiting_ = true, lastX_ = px, lastY_ = py;
       if (right && !panning_) panning_ = true, lastX_ = px, lastY_ = py;
       if (io.MouseWheel != 0.0f) display_.zoom = std::clamp(display_.zoom * std::pow(1.15, io.MouseWheel), 0.2, 20.0);
     }
     if (!left) {
       orbiting_ = false;
-      if (session_.grabbing()) session_.release();
+      if (mouseGrab_ && session_.grabbing()) session_.release();
+      mouseGrab_ = false;
     }
     if (!right) panning_ = false;
     const double pixel = camera_.orthoHeight / std::max(height_, 1);
@@ -255,7 +273,7 @@ class ViewerApp {
       display_.pitch = std::clamp(display_.pitch + 0.4 * (py - lastY_), -85.0, 85.0);
     }
     if (panning_) display_.pan += -camera_.right() * ((px - lastX_) * pixel) + camera_.trueUp() * ((py - lastY_) * pixel);
-    if (session_.grabbing()) {
+    if (mouseGrab_ && session_.grabbing()) {
       // The spot follows the mouse on the plane through the grab point facing the viewer.
       Vec3 origin, direction;
       pixelRay(camera_, px, py, faceWidth_, height_, origin, direction);
@@ -276,6 +294,7 @@ class ViewerApp {
     if (vertex < 0) return;
     try {
       session_.grab(vertex);
+      mouseGrab_ = true;
       grabPoint_ = positions.row(vertex);
       status_ = fmt::format("pulling vertex {}", vertex);
     } catch (const InputError& e) {
@@ -325,10 +344,21 @@ class ViewerApp {
     if (ImGui::CollapsingHeader("Skin", ImGuiTreeNodeFlags_DefaultOpen)) {
       bool gravity = session_.gravity();
       if (session_.hasGravity() && ImGui::Checkbox("gravity", &gravity)) session_.setGravity(gravity);
-      float s = static_cast<float>(session_.simulator().skinStiffnessScale());
-      if (session_.thesisModel() &&  // the anatomical model's one skin has no stiffness slider
-          ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
-        session_.setStiffnessScale(std::max(s, 0.1f));
+      if (!session_.stiffnessRebuilds()) {  // thesis: scaled in place, live while dragging
+        float s = static_cast<float>(session_.stiffnessScale());
+        if (ImGui::SliderFloat("stiffness ×", &s, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+          session_.setStiffnessScale(std::max(s, 0.1f));
+      } else {
+        // Anatomical: each value is a rebuild of the skin, so only the value let go of is built,
+        // on the next frame (this one shows the message first).
+        if (!stiffnessDragged_ && pendingStiffness_ == 0.0) stiffnessEdit_ = static_cast<float>(session_.stiffnessScale());
+        ImGui::SliderFloat("stiffness ×", &stiffnessEdit_, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        stiffnessDragged_ = ImGui::IsItemActive();
+        if (ImGui::IsItemDeactivatedAfterEdit() && std::abs(stiffnessEdit_ - session_.stiffnessScale()) > 1e-6) {
+          pendingStiffness_ = std::max(stiffnessEdit_, 0.1f);
+          status_ = fmt::format("rebuilding the skin at stiffness ×{:.2f}…", pendingStiffness_);
+        }
+      }
       float k = static_cast<float>(display_.dragStiffness);
       if (ImGui::SliderFloat("drag dyn/cm", &k, 100.0f, 20000.0f, "%.0f", ImGuiSliderFlags_Logarithmic)) display_.dragStiffness = k;
       ImGui::TextDisabled("Ctrl + left-drag on the skin pulls it");
@@ -437,7 +467,14 @@ class ViewerApp {
     else if (c.verb == "blink") session_.blink();
     else if (c.verb == "link") session_.linked = on(0);
     else if (c.verb == "gravity") session_.setGravity(on(0));
-    else if (c.verb == "stiffness") session_.setStiffnessScale(c.number(0));
+    else if (c.verb == "stiffness") {
+      if (session_.stiffnessRebuilds())
+        fmt::print(stderr, "myoshell-view: {}:{}: stiffness {}: rebuilding the anatomical skin at E = {:g} dyn/cm²…\n",
+                   options_.script, c.line, c.args[0], c.number(0) * session_.scene().anatomical.skinYoungModulus /
+                                                           session_.stiffnessScale());
+      const double seconds = session_.setStiffnessScale(c.number(0));
+      if (session_.stiffnessRebuilds()) fmt::print(stderr, "myoshell-view: skin rebuilt in {:.1f} s\n", seconds);
+    }
     else if (c.verb == "play") session_.playing = true;
     else if (c.verb == "pause") session_.playing = false;
     else if (c.verb == "seek") session_.seek(c.number(0));
@@ -445,6 +482,15 @@ class ViewerApp {
     else if (c.verb == "grab") session_.grab(vertexOf(c.args[0]));
     else if (c.verb == "pull") session_.pull(Vec3(c.number(0), c.number(1), c.number(2)));
     else if (c.verb == "release") session_.release();
+    else if (c.verb == "probe") {
+      const int v = vertexOf(c.args[0]);
+      const MatX3& u = session_.simulator().skinDisplacement();
+      if (v < 0 || v >= u.rows())
+        throw InputError(fmt::format("'probe': vertex {} is outside [0, {})", v, u.rows()));
+      const Vec3 d = u.row(v);
+      fmt::print("probe {} (vertex {}): displacement {:.6g} {:.6g} {:.6g} cm, |u| {:.6g} cm\n", c.args[0], v, d.x(),
+                 d.y(), d.z(), d.norm());
+    }
     else if (c.verb == "key") session_.setKeysAtPlayhead();
     else if (c.verb == "save") session_.saveScene(c.args[0]);
     else if (c.verb == "export") session_.exportGlb(c.args[0]);

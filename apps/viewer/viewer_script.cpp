@@ -18,7 +18,8 @@ const std::map<std::string, std::string>& grammar() {
       {"pause", ""},     {"seek", "n"},    {"reset", ""},    {"grab", "w"},      {"pull", "nnn"},
       {"release", ""},   {"key", ""},      {"save", "w"},    {"export", "w"},    {"screenshot", "w"},
       {"advance", "n"},  {"show", "wb"},   {"select", "w"},  {"view", "v"},      {"orbit", "nn"},
-      {"zoom", "n"},     {"jaw", "nnn"},   {"blink", ""}};
+      {"zoom", "n"},     {"jaw", "nnn"},   {"blink", ""},
+      {"probe", "w"}};
   return g;
 }
 

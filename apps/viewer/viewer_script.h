@@ -7,6 +7,7 @@
 //   play | pause | seek T | reset
 //   grab V                grab skin vertex V (a number) or landmark V (a name) with the mouse drag
 //   pull FX FY FZ         force on the grabbed spot, dyn        release
+//   probe V               print vertex (or landmark) V's displacement, cm, to stdout
 //   key                   keys at the playhead from the sliders
 //   save PATH | export PATH (GLB) | screenshot PATH (PNG)
 //   advance N             N frames of the scene's frame rate: simulate and draw each

@@ -41,12 +41,14 @@ std::string mirrorName(const std::string& name) {
 
 ViewerSession::ViewerSession(SceneDesc scene, BasisCache* cache)
     : model_(buildSceneFace(withMouseDrag(scene), cache)),
-      player_(std::move(scene), model_),
+      cache_(cache),
+      player_(std::make_unique<ScenePlayer>(scene, model_)),
+      baseModulus_(scene.anatomical.skinYoungModulus),
       sliders_(static_cast<size_t>(model_->muscleCount()), 0.0),
       mirror_(static_cast<size_t>(model_->muscleCount()), -1),
-      mouseDrag_(static_cast<int>(player_.scene().drags.size())),
+      mouseDrag_(static_cast<int>(scene.drags.size())),
       gravityOn_(model_->hasGravity()) {
-  player_.setControls([this](FaceStepper& s) { controls(s); });
+  player_->setControls([this](FaceStepper& s) { controls(s); });
   updateTracked();
   for (int m = 0; m < muscleCount(); ++m) {
     const std::string other = mirrorName(muscleName(m));
@@ -110,6 +112,34 @@ void ViewerSession::setGravity(bool on) {
   sim().setGravity(on ? 1.0 : 0.0);
 }
 
+double ViewerSession::setStiffnessScale(double s) {
+  if (!(std::isfinite(s) && s > 0.0))
+    throw InputError("the skin stiffness scale must be a number > 0 (got " + std::to_string(s) + ")");
+  if (thesisModel()) {
+    sim().setSkinStiffnessScale(s);
+    return 0.0;
+  }
+  Stopwatch clock;
+  SceneDesc scaled = scene();
+  scaled.anatomical.skinYoungModulus = s * baseModulus_;
+  // Built before anything is replaced: a failed build leaves the session as it was.
+  std::shared_ptr<const FaceSystem> face = buildSceneFace(withMouseDrag(scaled), cache_);
+  auto player = std::make_unique<ScenePlayer>(std::move(scaled), face);
+  const double at = playhead();
+  grabbing_ = false;  // the grip was the old simulator's
+  model_ = std::move(face);
+  player_ = std::move(player);
+  player_->setControls([this](FaceStepper& st) { controls(st); });
+  if (hasGravity()) sim().setGravity(gravityOn_ ? 1.0 : 0.0);
+  seek(at);  // from rest, the timeline replayed to the playhead
+  return clock.seconds();
+}
+
+double ViewerSession::stiffnessScale() const {
+  if (thesisModel()) return simulator().skinStiffnessScale();
+  return scene().anatomical.skinYoungModulus / baseModulus_;
+}
+
 void ViewerSession::grab(int vertex) {
   sim().setDragVertex(mouseDrag_, vertex);
   grabbing_ = true;
@@ -133,7 +163,7 @@ void ViewerSession::updateTracked() {
 // show its values), the sliders of every muscle it does not track, gravity as switched, the mouse
 // drag as set.
 void ViewerSession::applyControls() {
-  if (playing) player_.applyTimeline(player_.time());
+  if (playing) player_->applyTimeline(player_->time());
   controls(sim());
 }
 
@@ -182,9 +212,9 @@ void ViewerSession::advance(double seconds) {
   Stopwatch wall;
   for (int s = 0; s < steps; ++s) {
     if (playing) {
-      player_.step();  // timeline at the playhead, then controls(), then the step
-      if (player_.time() >= duration() - 0.5 * dt) {  // the end of the timeline: stop there
-        player_.setTime(duration());
+      player_->step();  // timeline at the playhead, then controls(), then the step
+      if (player_->time() >= duration() - 0.5 * dt) {  // the end of the timeline: stop there
+        player_->setTime(duration());
         playing = false;
       }
     } else {
@@ -209,9 +239,9 @@ void ViewerSession::seek(double t) {
   const bool wasPlaying = playing;
   pending_ = 0.0;
   playing = true;  // the timeline drives the replay
-  player_.restart(0.0);
-  player_.playTo(t);
-  player_.setTime(t);
+  player_->restart(0.0);
+  player_->playTo(t);
+  player_->setTime(t);
   applyControls();  // the sliders show the values at t
   playing = wasPlaying;
 }
@@ -247,7 +277,7 @@ int ViewerSession::setKeysAtPlayhead() {
     edited.jawLateral = withKey(edited.jawLateral, at, jaw_.lateralCm, "timeline.jaw.lateral");
     keys += 3;
   }
-  player_.setScene(std::move(edited));
+  player_->setScene(std::move(edited));
   updateTracked();
   return keys;
 }

@@ -25,10 +25,10 @@ class ViewerSession {
   // gravity pins but not the landmarks, so a grip on a mouth corner moves the corner).
   ViewerSession(SceneDesc scene, BasisCache* cache);
 
-  const SceneDesc& scene() const { return player_.scene(); }
+  const SceneDesc& scene() const { return player_->scene(); }
   const FaceSystem& model() const { return *model_; }
   const FaceModel* thesisModel() const { return dynamic_cast<const FaceModel*>(model_.get()); }  // null: anatomical
-  const FaceStepper& simulator() const { return player_.simulator(); }
+  const FaceStepper& simulator() const { return player_->simulator(); }
 
   // --- sliders ---------------------------------------------------------------------------------
   int muscleCount() const { return static_cast<int>(sliders_.size()); }
@@ -48,9 +48,17 @@ class ViewerSession {
   void setGravity(bool on);
   bool gravity() const { return gravityOn_; }
   bool hasGravity() const { return model_->hasGravity(); }
-  // The skin stiffness slider (Simulator::setSkinStiffnessScale): s > 0. Thesis only (the
-  // anatomical model refuses it: InputError).
-  void setStiffnessScale(double s) { sim().setSkinStiffnessScale(s); }
+  // The skin stiffness slider, s > 0 (InputError otherwise). Thesis: every channel's stiffness
+  // scaled in place (Simulator::setSkinStiffnessScale, no eigen-solve). Anatomical: the skin's
+  // K̂ = s·K_shell + K_att + ΣK_c is not a multiple of the old one, so its basis is not either: the
+  // face is rebuilt with skin.young_modulus = s·E₀ (E₀ the scene's as opened; seconds cold, from
+  // the basis cache after; docs/viewer.md has the times), the face restarts from rest and the
+  // timeline is replayed to the playhead; a mouse grab is let go. The scene (save, export) then
+  // carries the scaled modulus. Returns the rebuild's wall time (s; 0 for the thesis model).
+  double setStiffnessScale(double s);
+  double stiffnessScale() const;
+  // Whether setStiffnessScale rebuilds the face (the anatomical model): the window says so first.
+  bool stiffnessRebuilds() const { return thesisModel() == nullptr; }
 
   // --- the jaw (anatomical model; docs/jaw.md) ---------------------------------------------------
   bool hasJaw() const { return thesisModel() == nullptr; }
@@ -92,7 +100,7 @@ class ViewerSession {
   // Jumps the playhead to t (s, clamped to [0, duration]): the face restarts from rest and the
   // timeline is replayed to t.
   void seek(double t);
-  double playhead() const { return player_.time(); }
+  double playhead() const { return player_->time(); }
   double duration() const { return scene().duration; }
 
   // --- authoring -------------------------------------------------------------------------------
@@ -115,7 +123,11 @@ class ViewerSession {
 
  private:
   std::shared_ptr<const FaceSystem> model_;
-  ScenePlayer player_;  // the scene, its timeline clock (the playhead) and the simulator
+  BasisCache* cache_;   // where the faces' bases come from (may be null)
+  // The scene, its timeline clock (the playhead) and the simulator; a pointer, so that a stiffness
+  // rebuild (anatomical) can replace it with one on the new face.
+  std::unique_ptr<ScenePlayer> player_;
+  double baseModulus_ = 0.0;  // anatomical: the scene's skin.young_modulus as opened (E₀)
   std::vector<double> sliders_;
   JawPose jaw_;
   std::vector<int> mirror_;
@@ -129,7 +141,7 @@ class ViewerSession {
   double stepsPerSecond_ = 0.0;
   std::vector<std::string> warnings_;
 
-  FaceStepper& sim() { return player_.simulator(); }
+  FaceStepper& sim() { return player_->simulator(); }
   void applyControls();
   void controls(FaceStepper& sim);
   void updateTracked();

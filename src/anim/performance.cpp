@@ -69,11 +69,12 @@ PerformanceInput detectPerformanceInput(const std::string& text, const std::stri
   if (!head.empty() && head.front() == '{') return PerformanceInput::MediaPipe;
   const std::vector<std::string_view> fields = splitFields(head);
   // Live Link Face writes "BlendShapeCount"; tools that imitate it write "BlendshapeCount" too.
-  if (fields.size() >= 2 && fields[0] == "Timecode" && startsWithNoCase(fields[1], "BlendShapeCount") &&
-      fields[1].size() == 15)
+  // Each layout is told by its own columns, so that a file missing its time column reaches its
+  // reader, which names the column ("missing required column 'timestamp'"), rather than this error.
+  if (std::any_of(fields.begin(), fields.end(),
+                  [](std::string_view f) { return f.size() == 15 && startsWithNoCase(f, "BlendShapeCount"); }))
     return PerformanceInput::LiveLink;
-  const bool hasTimestamp = std::find(fields.begin(), fields.end(), "timestamp") != fields.end();
-  if (hasTimestamp && std::any_of(fields.begin(), fields.end(), isAuColumn)) return PerformanceInput::OpenFace;
+  if (std::any_of(fields.begin(), fields.end(), isAuColumn)) return PerformanceInput::OpenFace;
   throw InputError("cannot tell the performance's layout from " + quoted(head) +
                        ": expected an OpenFace CSV header (timestamp and AUxx_r columns), a Live Link Face "
                        "header (Timecode,BlendShapeCount,…) or MediaPipe JSON Lines ({\"timestamp_ms\": …})",

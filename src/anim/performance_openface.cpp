@@ -97,7 +97,12 @@ Performance parseOpenFace(const std::string& text, const std::string& name, cons
     return it == columnOf.end() ? -1 : static_cast<std::ptrdiff_t>(it->second);
   };
   const std::ptrdiff_t timeCol = column("timestamp");
-  if (timeCol < 0) throw InputError("missing required column 'timestamp'", name, headerLine);
+  if (timeCol < 0) {
+    const std::vector<std::string> close = closeNames("timestamp", std::vector<std::string>(header.begin(), header.end()));
+    throw InputError("missing required column 'timestamp'" +
+                         (close.empty() ? std::string() : " (is " + quoted(close.front()) + " it? OpenFace writes 'timestamp')"),
+                     name, headerLine);
+  }
   const std::ptrdiff_t confCol = column("confidence"), successCol = column("success"), faceCol = column("face_id");
   const std::ptrdiff_t rxCol = column("pose_Rx"), ryCol = column("pose_Ry"), rzCol = column("pose_Rz");
   const int poseColumns = (rxCol >= 0) + (ryCol >= 0) + (rzCol >= 0);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
 
@@ -103,7 +104,10 @@ void DocReader::fail(const std::string& key, const std::string& what) const {
   failAt(node_, keyPath(key), what);
 }
 
-bool DocReader::has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
+bool DocReader::has(const std::string& key) const {
+  asked_.insert(key);  // a key the reader knows, present or not: a suggestion for a misspelt one
+  return node_[key].IsDefined() && !node_[key].IsNull();
+}
 
 YAML::Node DocReader::node(const std::string& key) {
   used_.insert(key);
@@ -199,7 +203,13 @@ void DocReader::requireWithin(const std::string& key, double value, double lo, d
 void DocReader::finish() const {
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.Scalar();
-    if (!used_.count(key)) failAt(it->first, keyPath(key), "unknown key");
+    if (used_.count(key)) continue;
+    std::set<std::string> known = asked_;
+    known.insert(used_.begin(), used_.end());
+    const std::vector<std::string> close = closeNames(key, std::vector<std::string>(known.begin(), known.end()));
+    std::string hint;
+    for (const std::string& c : close) hint += (hint.empty() ? " (did you mean '" : "' or '") + keyPath(c);
+    failAt(it->first, keyPath(key), "unknown key" + (hint.empty() ? hint : hint + "'?)"));
   }
 }
 

@@ -24,19 +24,53 @@ const char* viewName(ViewPreset view) {
   return "front";
 }
 
-Camera faceCamera(const FaceSystem& model, ViewPreset view, int width, int height, FaceFraming framing) {
-  const FaceFrame frame = model.head().frame();
-  Camera camera = presetCamera(ViewFrame{frame.origin, frame.axes, frame.scale}, view);
-  const auto named = model.head().landmarks.resolved();
-  if (framing == FaceFraming::face && !named.empty()) {
-    MatX3 P(static_cast<Eigen::Index>(named.size()), 3);
-    Eigen::Index i = 0;
-    for (const auto& [name, v] : named) P.row(i++) = model.head().mesh.V.row(v);
-    fitToBounds(camera, P, width, height, 0.22);  // room above the brows
-  } else {
-    fitToBounds(camera, model.head().mesh.V, width, height, 0.04);  // the rest head: frames line up
+FaceFraming parseFraming(const std::string& name) {
+  if (name == "all") return FaceFraming::all;
+  if (name == "head") return FaceFraming::head;
+  if (name == "face") return FaceFraming::face;
+  throw InputError("unknown framing '" + name + "' (use face, head or all)");
+}
+
+const char* framingName(FaceFraming framing) {
+  switch (framing) {
+    case FaceFraming::all: return "all";
+    case FaceFraming::head: return "head";
+    case FaceFraming::face: return "face";
   }
+  return "all";
+}
+
+Camera faceCamera(const Head& head, ViewPreset view, int width, int height, FaceFraming framing) {
+  const FaceFrame frame = head.frame();
+  Camera camera = presetCamera(ViewFrame{frame.origin, frame.axes, frame.scale}, view);
+  const MatX3& V = head.mesh.V;
+  const auto named = head.landmarks.resolved();
+  if (framing == FaceFraming::all || named.empty()) {
+    fitToBounds(camera, V, width, height, 0.04);
+    return camera;
+  }
+  MatX3 P(static_cast<Eigen::Index>(named.size()), 3);
+  Eigen::Index i = 0;
+  for (const auto& [name, v] : named) P.row(i++) = V.row(v);
+  if (framing == FaceFraming::face) {
+    fitToBounds(camera, P, width, height, 0.22);  // room above the brows
+    return camera;
+  }
+  // head: every vertex above the chin, less a tenth of the landmarks' height (the jaw's underside).
+  const Vec3 up = frame.axes.col(1);
+  const VecX heights = P * up;
+  const double cut = heights.minCoeff() - 0.1 * (heights.maxCoeff() - heights.minCoeff());
+  const VecX all = V * up;
+  MatX3 kept(V.rows(), 3);
+  Eigen::Index k = 0;
+  for (Eigen::Index r = 0; r < V.rows(); ++r)
+    if (all(r) >= cut) kept.row(k++) = V.row(r);
+  fitToBounds(camera, kept.topRows(k), width, height, 0.04);
   return camera;
+}
+
+Camera faceCamera(const FaceSystem& model, ViewPreset view, int width, int height, FaceFraming framing) {
+  return faceCamera(model.head(), view, width, height, framing);
 }
 
 FaceFrameState faceFrameState(const FrameSnapshot& snapshot, const FaceOverlays& overlays) {
@@ -146,8 +180,8 @@ FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, const 
 }
 
 FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, ViewPreset view, int width, int height,
-                    const FaceOverlays& overlays, const VecX* roi) {
-  return faceScene(model, state, faceCamera(model, view, width, height), width, height, overlays, roi);
+                    const FaceOverlays& overlays, const VecX* roi, FaceFraming framing) {
+  return faceScene(model, state, faceCamera(model, view, width, height, framing), width, height, overlays, roi);
 }
 
 namespace {

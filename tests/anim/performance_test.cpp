@@ -64,6 +64,14 @@ TEST(PerformanceInput, DetectedFromTheFirstLine) {
                  "(timestamp and AUxx_r columns), a Live Link Face header (Timecode,BlendShapeCount,…) or MediaPipe "
                  "JSON Lines ({\"timestamp_ms\": …})");
   }
+  // A layout's own columns tell it even without its time column, whose reader then names it (this
+  // said "cannot tell the performance's layout" for an OpenFace CSV without its timestamp).
+  EXPECT_EQ(errorOf("frame,confidence,success,AU01_r,AU12_r\n0,0.98,1,0.1,0.2\n"),
+            "p.csv:1: missing required column 'timestamp'");
+  EXPECT_EQ(errorOf("frame,Timestamp,AU12_r\n0,0,1\n"),
+            "p.csv:1: missing required column 'timestamp' (is 'Timestamp' it? OpenFace writes 'timestamp')");
+  EXPECT_EQ(errorOf("BlendShapeCount,EyeBlinkLeft\n52,0.1\n"),
+            "p.csv:1: missing required column 'Timecode' (a Live Link Face CSV starts Timecode,BlendShapeCount,…)");
   // A timestamp without action units is not OpenFace's.
   EXPECT_NE(errorOf("frame,timestamp,confidence\n").find("p.csv:1: cannot tell"), std::string::npos);
   EXPECT_EQ(errorOf("\n \n"), "p.csv: the performance file is empty");

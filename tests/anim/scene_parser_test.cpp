@@ -69,7 +69,14 @@ TEST(SceneParser, ReadsEveryPart) {
 
 TEST(SceneParser, ErrorsNameFileLineColumnAndKeyPath) {
   EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dt\": -1}\n}"), "scene.json:2:22: key 'numerics.dt': must be > 0 (got -1)");
-  EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dtt\": 0.1}\n}"), "scene.json:2:16: key 'numerics.dtt': unknown key");
+  EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dtt\": 0.1}\n}"),
+            "scene.json:2:16: key 'numerics.dtt': unknown key (did you mean 'numerics.dt'?)");
+  // A misspelt key is suggested its spelling among the keys of its own mapping, present or not.
+  EXPECT_EQ(errorOf("{\"gravty\": {\"enabled\": false}}"),
+            "scene.json:1:2: key 'gravty': unknown key (did you mean 'gravity'?)");
+  EXPECT_EQ(errorOf("{\"skin\": {\"youngs_modulus\": 2e6}}"),
+            "scene.json:1:11: key 'skin.youngs_modulus': unknown key (did you mean 'skin.young_modulus'?)");
+  EXPECT_EQ(errorOf("{\"wobble\": 1}"), "scene.json:1:2: key 'wobble': unknown key");  // nothing close
   EXPECT_EQ(errorOf("{\"duration\": \"2\"}"), "scene.json:1:14: key 'duration': must be a number");
   EXPECT_EQ(thesisErrorOf("{\"roi_alpha\": 0.9}"), "scene.json:1:15: key 'roi_alpha': must be > 1 (got 0.9)");
   EXPECT_EQ(thesisErrorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": 1.5}]}}}"),

@@ -247,6 +247,9 @@ TEST(DriveCli, BadArgumentsExitTwoBeforeAnyWork) {
   EXPECT_NE(r.err.find("--end 2 must lie after --start 5"), std::string::npos) << r.err;
   r = test::runCli("drive '" + csv.string() + "' --input livelink --out '" + out.string() + "'");
   EXPECT_EQ(r.exitCode, 2) << r.merged;
+  r = test::runCli("drive '" + csv.string() + "' --video --framing bust --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.merged;
+  EXPECT_NE(r.err.find("unknown framing 'bust' (use face, head or all)"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -9,34 +9,23 @@
 #include "myoshell/io/animation_export.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
+#include "support/scratch_folder.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ExportCommand : public ::testing::Test {
+class ExportCommand : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myo_export_cli_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    std::ofstream(dir_ / "small.json") << R"({
-  "name": "small", "model": "thesis",
-  "muscles": {"use": ["zygomaticus_major_left"]},
-  "gravity": {"enabled": false},
-  "numerics": {"skin_modes": 8},
-  "duration": 0.1, "fps": 20,
-  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
-})";
+    ScratchFolderTest::SetUp();
+    write("small.json", test::kSmallScene);
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string run(const std::string& out, const std::string& extra) const {
-    return "run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / out).string() + "' --cache '" +
-           (dir_ / "cache").string() + "' " + extra;
+    return "run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / out).string() + "'" + cacheArg() + " " +
+           extra;
   }
-  fs::path dir_;
 };
 
 TEST_F(ExportCommand, WritesGlbPc2AndObjThatAgree) {

@@ -75,6 +75,14 @@ TEST(InfoCommand, IctHeadTable) {
   EXPECT_THAT(r.out, HasSubstr("faults"));
 }
 
+// An OBJ has no unit: info printed "bbox (cm)" for a head in metres. It must claim none.
+TEST(InfoCommand, TheTableClaimsNoUnitForAnObj) {
+  const std::string metres = (test::sourceDir() / "tests" / "bad_inputs" / "head_in_metres.obj").string();
+  const test::CliResult r = runCli("info '" + metres + "'");
+  EXPECT_THAT(r.out, HasSubstr("(the file's units)")) << r.out;
+  EXPECT_THAT(r.out, ::testing::Not(HasSubstr("cm"))) << r.out;
+}
+
 TEST(InfoCommand, FaultyMeshReportsEveryFaultAndExitsThree) {
   const fs::path path = fs::temp_directory_path() / ("myo_info_faulty_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 1 zz 0\n"

@@ -17,6 +17,7 @@
 #include "myoshell/reduce/modal_analysis.h"
 #include "myoshell/shell/discrete_shell.h"
 #include "support/cli_runner.h"
+#include "support/scratch_folder.h"
 
 namespace myo {
 namespace {
@@ -24,21 +25,12 @@ namespace {
 namespace fs = std::filesystem;
 
 
-class ModesCli : public ::testing::Test {
+class ModesCli : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myoshell_modes_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
+    ScratchFolderTest::SetUp();
     mesh_ = write("strip.obj", stripObj());
     pins_ = write("pins.json", "{\"vertices\": [0, 1, 9, 10, 18, 19]}");
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p;
   }
 
   test::CliResult run(const std::string& args) { return test::runCli(args); }
@@ -59,7 +51,7 @@ class ModesCli : public ::testing::Test {
 
   std::string quoted(const fs::path& p) const { return "'" + p.string() + "'"; }
 
-  fs::path dir_, mesh_, pins_;
+  fs::path mesh_, pins_;
 };
 
 TEST_F(ModesCli, JsonMatchesTheLibrary) {

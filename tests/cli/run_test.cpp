@@ -7,37 +7,15 @@
 
 #include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
+#include "support/scratch_folder.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
 
-class RunCommand : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myo_run_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-  std::string cacheArg() const { return " --cache '" + (dir_ / "cache").string() + "'"; }
-  fs::path dir_;
-};
-
-const char* kSmallScene = R"({
-  "name": "small", "model": "thesis",
-  "muscles": {"use": ["zygomaticus_major_left"]},
-  "gravity": {"enabled": false},
-  "numerics": {"skin_modes": 8},
-  "duration": 0.1, "fps": 20,
-  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
-})";
+using RunCommand = test::ScratchFolderTest;
+using test::kSmallScene;
 
 TEST_F(RunCommand, WritesObjFramesStatsAndPictures) {
   const std::string scene = write("small.json", kSmallScene);

@@ -11,6 +11,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
+#include "support/scratch_folder.h"
 
 namespace myo {
 namespace {
@@ -37,18 +38,7 @@ AnimationFrames waveAnimation(int frameCount) {
   return a;
 }
 
-class AnimationExport : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myo_export_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
-
+using AnimationExport = test::ScratchFolderTest;
 TEST_F(AnimationExport, Pc2RoundTrip) {
   const AnimationFrames a = waveAnimation(7);
   const fs::path path = dir_ / "wave.pc2";

@@ -17,41 +17,18 @@
 #include "myoshell/io/obj_writer.h"
 #include "myoshell/io/rig_export.h"
 #include "myoshell/mesh/obj_reader.h"
-#include "support/uv_seam_mesh.h"
 #include "support/cli_runner.h"
+#include "support/grid_animation.h"
+#include "support/scratch_folder.h"
+#include "support/seam_rig.h"
+#include "support/uv_seam_mesh.h"
 
 namespace myo {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A 6×4 grid of vertices (30 triangles) 1 cm apart, bulging over `frameCount` frames.
-AnimationFrames bulgeAnimation(int frameCount) {
-  constexpr int nx = 6, ny = 4;
-  AnimationFrames a;
-  a.name = "bulge";
-  a.fps = 30.0;
-  a.rest.resize(nx * ny, 3);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) a.rest.row(j * nx + i) << 0.5 * i + 3, 0.7 * j - 1, 8.0 + 0.1 * i * j;
-  a.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
-  int t = 0;
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int v = j * nx + i;
-      a.triangles.row(t++) << v, v + 1, v + nx + 1;
-      a.triangles.row(t++) << v, v + nx + 1, v + nx;
-    }
-  for (int k = 0; k < frameCount; ++k) {
-    MatX3 P = a.rest;
-    for (int v = 0; v < P.rows(); ++v) {
-      P(v, 2) += 0.3 * std::sin(0.4 * k + v);
-      P(v, 0) -= 0.02 * k * (v % 3);
-    }
-    a.positions.push_back(P);
-  }
-  return a;
-}
+using test::bulgeAnimation;
 
 double maxDifference(const aiVector3D* v, const MatX3& expected) {
   double worst = 0;
@@ -82,18 +59,7 @@ double maxCornerUvDifference(const aiMesh* a, const aiMesh* b) {
   return worst;
 }
 
-class GltfAssimp : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myo_gltf_assimp_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
-
+using GltfAssimp = test::ScratchFolderTest;
 TEST_F(GltfAssimp, ReadsTheBaseMeshMorphTargetsAndWeightsAnimation) {
   const AnimationFrames a = bulgeAnimation(10);
   const fs::path path = dir_ / "bulge.glb";
@@ -179,16 +145,9 @@ TEST_F(GltfAssimp, TexcoordsEqualTheObjs) {
 
 // A simulated run: the GLB's anim meshes are the frames the PC2 cache holds, vertex by vertex.
 TEST_F(GltfAssimp, CliRunGlbMatchesTheSimulatedFrames) {
-  std::ofstream(dir_ / "small.json") << R"({
-  "name": "small", "model": "thesis",
-  "muscles": {"use": ["zygomaticus_major_left"]},
-  "gravity": {"enabled": false},
-  "numerics": {"skin_modes": 8},
-  "duration": 0.1, "fps": 20,
-  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
-})";
-  const auto r = test::runCli("run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / "out").string() +
-                              "' --cache '" + (dir_ / "cache").string() + "' --format glb,pc2,obj");
+  write("small.json", test::kSmallScene);
+  const auto r = test::runCli("run '" + (dir_ / "small.json").string() + "' --out '" + (dir_ / "out").string() + "'" +
+                              cacheArg() + " --format glb,pc2,obj");
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   const PointCache pc = readPc2(dir_ / "out" / "small.pc2");
 
@@ -249,16 +208,8 @@ TEST_F(GltfAssimp, ReadsARigsNamedTargetsInMetres) {
 // duplicate exactly as its original.
 TEST_F(GltfAssimp, ARigWithSeamsHasTheObjsCornerUvs) {
   const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
-  RigExport rig;
-  rig.name = "seam";
-  rig.rest = head.V;
-  rig.triangles = head.F;
-  rig.uv = head.UV;
-  rig.cornerUV = head.cornerUV;
-  rig.names = {"jawOpen"};
-  MatX3 delta(head.V.rows(), 3);
-  for (int v = 0; v < delta.rows(); ++v) delta.row(v) << 0.1 * v, 0.05 * (v % 2), -0.2 * v;
-  rig.deltas = {delta};
+  const RigExport rig = test::seamRig(head, {"jawOpen"});
+  const MatX3& delta = rig.deltas[0];
   writeRigGlb(dir_ / "seam.glb", rig);
   TriMesh triangles = head;  // assimp's OBJ importer keeps quads: write the triangles to compare faces
   triangles.polygons.clear();

@@ -16,6 +16,9 @@
 #include "myoshell/io/rig_export.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
+#include "support/grid_animation.h"
+#include "support/scratch_folder.h"
+#include "support/seam_rig.h"
 #include "support/test_data.h"
 #include "support/uv_seam_mesh.h"
 
@@ -78,43 +81,9 @@ void expectValid(const fs::path& file) {
   EXPECT_EQ(v.exitCode, 0) << v.raw;
 }
 
-// A 7×5 grid of quads (48 vertices, 70 triangles) in z = 0, 1 cm apart, rippling over 12 frames.
-AnimationFrames rippleAnimation(int frameCount) {
-  constexpr int nx = 8, ny = 6;
-  AnimationFrames a;
-  a.name = "ripple";
-  a.fps = 25.0;
-  a.rest.resize(nx * ny, 3);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) a.rest.row(j * nx + i) << i, j, 0;
-  a.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
-  int t = 0;
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int v = j * nx + i;
-      a.triangles.row(t++) << v, v + 1, v + nx + 1;
-      a.triangles.row(t++) << v, v + nx + 1, v + nx;
-    }
-  for (int k = 0; k < frameCount; ++k) {
-    MatX3 P = a.rest;
-    for (int v = 0; v < P.rows(); ++v) P(v, 2) = 0.2 * std::sin(0.5 * k + 0.8 * P(v, 0)) * std::cos(0.6 * P(v, 1));
-    a.positions.push_back(P);
-  }
-  return a;
-}
+using test::rippleAnimation;
 
-class GltfValidator : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myo_gltf_validator_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
-
+using GltfValidator = test::ScratchFolderTest;
 TEST_F(GltfValidator, WriteGlbHasNoErrors) {
   MYO_REQUIRE_GLTF_VALIDATOR();
   const fs::path path = dir_ / "ripple.glb";
@@ -144,18 +113,7 @@ TEST_F(GltfValidator, GlbWithTexcoordsHasNoErrors) {
 TEST_F(GltfValidator, RigWithSeamDuplicatesHasNoErrors) {
   MYO_REQUIRE_GLTF_VALIDATOR();
   const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
-  RigExport rig;
-  rig.name = "seam";
-  rig.rest = head.V;
-  rig.triangles = head.F;
-  rig.uv = head.UV;
-  rig.cornerUV = head.cornerUV;
-  rig.names = {"jawOpen", "mouthSmileLeft"};
-  for (int k = 0; k < 2; ++k) {
-    MatX3 d(head.V.rows(), 3);
-    for (int v = 0; v < d.rows(); ++v) d.row(v) << 0.1 * v, 0.05 * k, -0.2 * v * k;
-    rig.deltas.push_back(d);
-  }
+  const RigExport rig = test::seamRig(head, {"jawOpen", "mouthSmileLeft"});
   writeRigGlb(dir_ / "seam.glb", rig);
   expectValid(dir_ / "seam.glb");
 }
@@ -174,14 +132,7 @@ TEST_F(GltfValidator, ATruncatedGlbFails) {
 
 TEST_F(GltfValidator, CliRunGlbHasNoErrors) {
   MYO_REQUIRE_GLTF_VALIDATOR();
-  std::ofstream(dir_ / "small.json") << R"({
-  "name": "small", "model": "thesis",
-  "muscles": {"use": ["zygomaticus_major_left"]},
-  "gravity": {"enabled": false},
-  "numerics": {"skin_modes": 8},
-  "duration": 0.1, "fps": 20,
-  "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 0}, {"t": 0.05, "value": 1}]}}
-})";
+  write("small.json", test::kSmallScene);
   const auto r = test::runCli("run " + shellQuote((dir_ / "small.json").string()) + " --out " +
                               shellQuote((dir_ / "out").string()) + " --cache " + shellQuote((dir_ / "cache").string()) +
                               " --format glb");

@@ -15,6 +15,7 @@
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/mesh/uv_seams.h"
+#include "support/seam_rig.h"
 #include "support/uv_seam_mesh.h"
 
 namespace myo {
@@ -112,22 +113,7 @@ TEST(RigExport, OurReaderGetsTheRigBackInCentimetres) {
   fs::remove_all(dir);
 }
 
-// The small OBJ with UV seams (tests/support/uv_seam_mesh.h) as a rig with two targets.
-RigExport seamRig(const TriMesh& mesh) {
-  RigExport rig;
-  rig.name = "seam";
-  rig.rest = mesh.V;
-  rig.triangles = mesh.F;
-  rig.uv = mesh.UV;
-  rig.cornerUV = mesh.cornerUV;
-  rig.names = {"jawOpen", "cheekPuff"};
-  for (int k = 0; k < 2; ++k) {
-    MatX3 d(mesh.V.rows(), 3);
-    for (int v = 0; v < d.rows(); ++v) d.row(v) << 0.1 * v * (k + 1), -0.05 * v, 0.2 * ((v + k) % 3);
-    rig.deltas.push_back(d);
-  }
-  return rig;
-}
+using test::seamRig;  // the seam head as a rig with two targets
 
 // The float VEC2 data of a tightly packed accessor.
 MatX2 accessorVec2(const tinygltf::Model& m, int index) {

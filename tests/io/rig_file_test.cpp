@@ -14,6 +14,7 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "support/scratch_folder.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -117,19 +118,8 @@ Tiny tinyRig() {
   return t;
 }
 
-class RigFileTest : public ::testing::Test {
+class RigFileTest : public test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("myo_rig_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& bytes) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p.string();
-  }
   // The message of the InputError that reading `bytes` as `name` raises ("" when none).
   std::string error(const std::string& name, const std::string& bytes) {
     const std::string path = write(name, bytes);
@@ -142,7 +132,6 @@ class RigFileTest : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir_;
 };
 
 // The world transform of the tiny rig, in cm: root (0,0,1) m, then T (1,2,3) m, Rz(90°), S 2.

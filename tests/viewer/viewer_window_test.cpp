@@ -9,12 +9,15 @@
 
 #include "support/picture.h"
 
+#include <Eigen/Core>
+
 namespace {
 
 namespace fs = std::filesystem;
 using myo::test::Picture;
 using myo::test::readPicture;
 using myo::test::differingPixels;
+using Vec3 = Eigen::Vector3d;
 
 struct ViewerRun {
   int exitCode = -1;
@@ -88,6 +91,51 @@ TEST(ViewerWindow, AScriptedSmileChangesTheFaceAndThePanelIsDrawn) {
   // The lower face changes more than the upper face (the forehead stays).
   const int upper = differingPixels(neutral, smile, 380, 0, smile.width, smile.height / 3);
   EXPECT_LT(upper, faceChanged / 4);
+}
+
+// A script's grab is the script's: the window released every grab while no mouse button was down,
+// so `grab`/`pull`/`advance` left the default scene (anatomical model, built-in head) at rest and the
+// screenshot byte-identical. The grabbed corner must move along the pull, and `release` let it go.
+TEST(ViewerWindow, AScriptedDragMovesTheGrabbedSkinAlongThePull) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const fs::path dir = scratch("drag");
+  std::ofstream(dir / "drag.txt") << "show panel off\nadvance 2\nscreenshot before.png\n"
+                                     "grab mouth_corner_left\npull 200000 0 0\nadvance 30\n"
+                                     "probe mouth_corner_left\nscreenshot after.png\n"
+                                     "release\nadvance 60\nprobe mouth_corner_left\n";
+  const ViewerRun run = runViewer(kXvfb, "--size 480x360 --script drag.txt", dir);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  // "probe mouth_corner_left (vertex N): displacement X Y Z cm, |u| L cm", pulled then let go.
+  std::vector<Vec3> probes;
+  for (size_t at = run.output.find("probe mouth_corner_left"); at != std::string::npos;
+       at = run.output.find("probe mouth_corner_left", at + 1)) {
+    std::istringstream in(run.output.substr(run.output.find("displacement", at) + 12));
+    Vec3 u;
+    in >> u.x() >> u.y() >> u.z();
+    ASSERT_TRUE(in) << run.output;
+    probes.push_back(u);
+  }
+  ASSERT_EQ(probes.size(), 2u) << run.output;
+  EXPECT_GT(probes[0].x(), 0.2) << run.output;                  // cm: more than 2 mm along +x
+  EXPECT_GT(probes[0].normalized().x(), 0.7) << run.output;     // mostly along the pull
+  EXPECT_LT(probes[1].norm(), 0.1 * probes[0].norm()) << run.output;  // released: it springs back
+  const Picture before = readPicture(dir / "before.png"), after = readPicture(dir / "after.png");
+  ASSERT_EQ(after.width, 480);
+  EXPECT_GT(differingPixels(before, after, 0, 0, after.width, after.height), 200);
+}
+
+// An OBJ given where a scene goes was read as YAML and refused with "key '(document)': must be an
+// object": it must say that the viewer takes a scene and how to write one for the OBJ, before any
+// display is needed.
+TEST(ViewerWindow, AnObjHeadIsRefusedWithHowToMakeItsScene) {
+  const fs::path dir = scratch("obj");
+  std::ofstream(dir / "my_head.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", "my_head.obj", dir);
+  EXPECT_EQ(run.exitCode, 2) << run.output;
+  EXPECT_NE(run.output.find("myoshell-view: error: 'my_head.obj' is a mesh, not a scene"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find(R"({"obj": "my_head.obj", "landmarks": )"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("(document)"), std::string::npos) << run.output;
 }
 
 TEST(ViewerWindow, ScreenshotModeWritesThePictureAndExits) {

@@ -44,7 +44,8 @@ class DocReader {
   void requireAtLeast(const std::string& key, double value, double lower) const;    // value ≥ lower
   void requireWithin(const std::string& key, double value, double lo, double hi) const;  // lo ≤ v ≤ hi
 
-  // Throws InputError at the first key never read: "unknown key 'PATH.KEY'".
+  // Throws InputError at the first key never read: "key 'PATH.KEY': unknown key", with "(did you
+  // mean 'PATH.K2'?)" when a key this reader read or asked about (has) is a few edits away.
   void finish() const;
 
   // InputError at `at` (or at this mapping) naming the key path.
@@ -65,6 +66,7 @@ class DocReader {
   std::string file_;
   std::string path_;
   std::set<std::string> used_;
+  mutable std::set<std::string> asked_;  // keys has() was asked about (known to the reader)
 };
 
 }  // namespace myo

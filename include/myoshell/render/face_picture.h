@@ -43,12 +43,22 @@ inline const FacePalette kFacePalette{};
 ViewPreset parseView(const std::string& name);
 const char* viewName(ViewPreset view);
 
-// What frames the picture: the whole rest head (every frame of a run lines up), or the face (its
-// landmarks, with room above the brows) for a whole head such as ICT's.
-enum class FaceFraming { head, face };
-// The preset camera fitted to the rest head (or its landmarks) for a width × height picture.
+// What frames the picture, always the rest mesh (every frame of a run lines up):
+//   all:  the whole mesh, with a neck and shoulders if it has them;
+//   head: the mesh from the crown down to just below the chin (the lowest landmark, less a tenth of
+//         the landmarks' height), so a bust's neck and shoulders fall outside; the same as all on a
+//         face mask such as the built-in head;
+//   face: the named landmarks (brows to chin, eye and mouth corners) with room around them (above
+//         the brows for the forehead) — the face, whatever the mesh around it.
+// Without landmarks head and face frame as all.
+enum class FaceFraming { all, head, face };
+// "all", "head", "face"; an unknown name is an InputError listing them.
+FaceFraming parseFraming(const std::string& name);
+const char* framingName(FaceFraming framing);
+// The preset camera fitted to the rest head as `framing` says for a width × height picture.
+Camera faceCamera(const Head& head, ViewPreset view, int width, int height, FaceFraming framing = FaceFraming::all);
 Camera faceCamera(const FaceSystem& model, ViewPreset view, int width, int height,
-                  FaceFraming framing = FaceFraming::head);
+                  FaceFraming framing = FaceFraming::all);
 
 // A frame of the simulation, as much of it as the overlays need.
 struct FaceFrameState {
@@ -107,7 +117,7 @@ FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, const 
                     const FaceOverlays& overlays, const VecX* roi = nullptr);
 // The same from a named view, framed on the rest head (faceCamera).
 FaceScene faceScene(const FaceSystem& model, const FaceFrameState& state, ViewPreset view, int width, int height,
-                    const FaceOverlays& overlays, const VecX* roi = nullptr);
+                    const FaceOverlays& overlays, const VecX* roi = nullptr, FaceFraming framing = FaceFraming::all);
 
 class FacePainter {
  public:
