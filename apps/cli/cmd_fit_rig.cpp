@@ -126,7 +126,7 @@ int runFitRig(FitRigArgs& a) {
   const RigFile rig = readRig(a.rig);
   const SceneInputs inputs = rigFitInputs(rig, a.head);
   const auto cache = openBasisCache(a.cacheDir);
-  const FittedRig fitted = fitRigShapes(rig, inputs, settings, cache.get());
+  const FittedRig fitted = fitRigShapes(rig, inputs, a.head.library, settings, cache.get());
   const RigFit& fit = fitted.fit;
   const AnatomicalFace& face = *fitted.face;
   const Head& head = face.head();

@@ -51,7 +51,7 @@ py::dict fitRigShapesPy(const py::object& rigOrPath, const py::object& head, con
     if (!rig) rig = std::make_shared<const RigFile>(readRig(rigFile));
     const SceneInputs inputs = rigFitInputs(*rig, options);
     if (!cacheFolder.empty()) cache = std::make_unique<FileBasisCache>(cacheFolder);
-    fitted = fitRigShapes(*rig, inputs, settings, cache.get());
+    fitted = fitRigShapes(*rig, inputs, options.library, settings, cache.get());
   }
   const RigFit& fit = fitted.fit;
   for (const std::string& n : fit.skipped)  // the command line's warning, without its program name

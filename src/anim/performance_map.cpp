@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/facs_route.h"
 #include "myoshell/head/jaw.h"
 
 namespace myo {
@@ -21,19 +23,6 @@ struct MuscleWeights {
   Vec3 jaw = Vec3::Zero();
   bool empty() const { return muscles.empty() && jaw.isZero(); }
 };
-
-bool endsWith(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-// The weight a muscle of an AU gets from a sided ARKit shape: full on that side, none on the
-// other, half on the midline (one side's shape pulls half of a muscle both sides share).
-double sideFactor(const std::string& muscle, const std::string& side) {
-  if (side.empty()) return 1.0;
-  const bool left = endsWith(muscle, "_left"), right = endsWith(muscle, "_right");
-  if (!left && !right) return 0.5;
-  return (side == "left") == left ? 1.0 : 0.0;
-}
 
 class Mapper {
  public:
@@ -54,13 +43,13 @@ class Mapper {
     out.muscles[it->second] += weight;
   }
 
-  // An AU's muscles, restricted to `side`. Returns false when the FACS map has no muscles for it.
-  // A sided input moves the jaw sideways towards its side (AU30 alone: towards the subject's left).
-  bool addAu(MuscleWeights& out, int au, const std::string& side, double scale = 1.0) {
-    const FacsEntry* entry = facs_.find(au);
-    if (!entry || (entry->muscles.empty() && !entry->movesJaw())) return false;
-    for (const auto& [muscle, w] : entry->muscles) add(out, muscle, scale * w * sideFactor(muscle, side));
-    out.jaw += scale * Vec3(entry->jawOpenDeg, entry->jawForwardCm, (side == "right" ? -1.0 : 1.0) * entry->jawLateralCm);
+  // An AU's muscles and jaw, restricted to `side` (fit/facs_route.h: the one path from a unit to
+  // muscles). Returns false when the FACS map has nothing for it.
+  bool addAu(MuscleWeights& out, int au, const std::string& side) {
+    const std::optional<FacsDrive> drive = facsDriveOfAu(facs_, au, side);
+    if (!drive) return false;
+    for (const auto& [muscle, w] : drive->muscles) add(out, muscle, w);
+    out.jaw += drive->jaw;
     return true;
   }
 

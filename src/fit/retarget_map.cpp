@@ -57,6 +57,8 @@ NamedValues readNamedValues(DocReader& r, const std::string& key, Check check) {
 
 }  // namespace
 
+const char* toString(RetargetSource source) { return source == RetargetSource::Derived ? "derived" : "fitted"; }
+
 const RetargetShape* RetargetMap::find(const std::string& anySpelling) const {
   const std::optional<std::string> name = findArkitName(anySpelling);
   if (!name) return nullptr;
@@ -97,6 +99,8 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
   map.head = top.string("head", "");
   map.model = top.string("model", "anatomical");
   if (map.model != "anatomical") top.fail("model", "must be \"anatomical\" (the model maps are fitted with)");
+  map.library = top.string("library", "");
+  if (top.has("library") && map.library.empty()) top.fail("library", "must name the muscle library (builtin, face or a file's name)");
   map.note = top.string("note", "");
   const YAML::Node list = top.node("shapes");
   if (!list.IsSequence()) top.failAt(list, "shapes", "must be a list of {name, activations, …}");
@@ -117,6 +121,10 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
                "'" + spelling + "' is " + s.name + ", already given by shapes[" + std::to_string(it->second) + "]");
     s.reachable = r.boolean("reachable", true);
     s.reason = r.string("reason", "");
+    const bool hasSource = r.has("source");
+    const std::string source = r.string("source", "fitted");
+    if (source == "derived") s.source = RetargetSource::Derived;
+    else if (source != "fitted") r.fail("source", "must be \"fitted\" or \"derived\" (got \"" + source + "\")");
     if (r.has("corrective_of")) {
       correctiveNodes[i] = r.node("corrective_of");
       s.correctiveOf = arkitNameAt(r, correctiveNodes[i], r.keyPath("corrective_of"),
@@ -148,6 +156,9 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
       f.finish();
       s.fit = fig;
     }
+    if (hasSource && !s.reachable) r.fail("source", "an unreachable shape has no source");
+    if (s.source == RetargetSource::Derived && !s.correctiveOf.empty())
+      r.fail("source", "a corrective is fitted on its base's shape, not derived");
     if (s.reachable && !s.reason.empty()) r.fail("reason", "only an unreachable shape (reachable: false) has a reason");
     if (!s.reachable) {
       if (s.reason.empty()) r.fail("reason", "an unreachable shape needs a reason (why muscles cannot make it)");
@@ -187,6 +198,7 @@ std::string serialiseRetargetMap(const RetargetMap& map) {
   if (!map.rig.empty()) j["rig"] = map.rig;
   if (!map.head.empty()) j["head"] = map.head;
   j["model"] = map.model;
+  if (!map.library.empty()) j["library"] = map.library;
   if (!map.note.empty()) j["note"] = map.note;
   nlohmann::ordered_json shapes = nlohmann::ordered_json::array();
   for (const RetargetShape& s : map.shapes) {
@@ -198,6 +210,7 @@ std::string serialiseRetargetMap(const RetargetMap& map) {
       shapes.push_back(e);
       continue;
     }
+    e["source"] = toString(s.source);
     if (!s.correctiveOf.empty()) e["corrective_of"] = s.correctiveOf;
     e["activations"] = nlohmann::ordered_json::object();
     for (const auto& [muscle, v] : s.activations) e["activations"][muscle] = v;

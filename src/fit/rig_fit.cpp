@@ -5,10 +5,12 @@
 #include <map>
 #include <optional>
 
+#include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/parallel.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/facs_route.h"
 #include "myoshell/fit/shape_metric.h"
 #include "myoshell/head/jaw.h"
 
@@ -101,7 +103,8 @@ void remeasure(ActivationFit& fit, const MatX3& jawMotion, const MatX3& target, 
 
 }  // namespace
 
-RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets, const FitSettings& settings) {
+RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets, const FitSettings& settings,
+              const FacsMap& facs) {
   const Stopwatch clock;
   const Eigen::Index n = skin.head().mesh.vertexCount();
   RigFit out;
@@ -219,8 +222,8 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   }
 
   std::vector<double> cosines, rms;
-  out.map.model = "anatomical";
-  for (size_t i = 0; i < shapes.size(); ++i) {
+  // One fitted shape's entry (shapes[i]), with its figures counted for the medians.
+  auto fittedEntry = [&](size_t i) {
     RigShapeFit& s = shapes[i];
     RetargetShape entry;
     entry.name = s.name;
@@ -248,7 +251,29 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
       }
     }
     out.map.shapes.push_back(std::move(entry));
+  };
+  out.map.model = "anatomical";
+  // Every ARKit name in ARKit's order: the rig's shapes fitted, the others unreachable with their
+  // reason or derived from their FACS units (facs_route.h).
+  const std::vector<std::string> muscleNames = skin.muscleNames();
+  size_t next = 0;  // the next fitted shape (shapes are in ARKit order)
+  for (const std::string& name : arkitNames()) {
+    if (next < shapes.size() && shapes[next].name == name) {
+      fittedEntry(next++);
+      continue;
+    }
+    if (const std::optional<std::string> reason = unreachableReason(name)) {
+      RetargetShape entry;
+      entry.name = name;
+      entry.reachable = false;
+      entry.reason = *reason;
+      out.map.shapes.push_back(std::move(entry));
+    } else if (std::optional<RetargetShape> derived = derivedRetargetShape(facs, name, muscleNames)) {
+      out.map.shapes.push_back(std::move(*derived));
+      out.derived.push_back(name);
+    }
   }
+  MYO_CHECK(next == shapes.size(), "fitRig: the fitted shapes are not in ARKit order");
   out.shapes = std::move(shapes);
   out.medianCosine = median(cosines);
   out.medianRmsMm = median(rms);

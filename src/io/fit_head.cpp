@@ -54,6 +54,11 @@ LengthUnit fitHeadUnit(const FitHeadOptions& o, const RigFile* rig) {
   return resolveHeadArgument(o.head, o.landmarks, "", o.units).unit;
 }
 
+std::string muscleLibraryLabel(const std::string& library) {
+  if (library == "builtin" || library == "face") return library;
+  return std::filesystem::path(library).filename().string();
+}
+
 double parseLambda(const std::string& text) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);

@@ -22,7 +22,8 @@ SceneInputs rigFitInputs(const RigFile& rig, const FitHeadOptions& headOptions) 
   return inputs;
 }
 
-FittedRig fitRigShapes(const RigFile& rig, const SceneInputs& inputs, const FitSettings& settings, BasisCache* cache) {
+FittedRig fitRigShapes(const RigFile& rig, const SceneInputs& inputs, const std::string& library, const FitSettings& settings,
+                       BasisCache* cache) {
   const Head& head = inputs.head;
   std::vector<RigTarget> targets;
   for (const std::string& name : rig.names) targets.push_back({name, rig.delta(name)});
@@ -36,6 +37,7 @@ FittedRig fitRigShapes(const RigFile& rig, const SceneInputs& inputs, const FitS
   RetargetMap& map = fitted.fit.map;
   map.rig = std::filesystem::path(rig.path).filename().string();
   map.head = head.name;
+  map.library = muscleLibraryLabel(library);
   map.note = fmt::format("fitted by myoshell fit-rig on the shapes of {} (head {}, {} muscles, lambda {})", map.rig,
                          head.name, fitted.face->muscleCount(), settings.lambda);
   return fitted;

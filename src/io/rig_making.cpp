@@ -35,6 +35,12 @@ void checkRigOutputPath(const std::string& path) {
 RetargetMap readRigMap(const std::string& path, const std::vector<MuscleDef>& muscleDefs, const std::string& library) {
   std::vector<std::string> muscles;
   for (const MuscleDef& d : muscleDefs) muscles.push_back(d.name);
+  // The library the map records, checked before its muscle names so the error names both libraries.
+  const std::string recorded = readRetargetMapFile(path).library;
+  if (!recorded.empty() && recorded != muscleLibraryLabel(library))
+    throw InputError("the map is for the muscle library '" + recorded + "', and the head's is '" +
+                         muscleLibraryLabel(library) + "': give --library " + recorded,
+                     path);
   RetargetMap map;
   try {
     map = readRetargetMapFile(path, muscles);

@@ -8,6 +8,7 @@
 #include "myoshell/core/whole_file.h"
 #include "myoshell/head/head_checks.h"
 #include "myoshell/io/attachment_file.h"
+#include "myoshell/io/fit_head.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/performance_file.h"
@@ -47,6 +48,12 @@ void loadScenePerformance(SceneDesc& scene) {
   std::vector<std::string> names;
   for (const MuscleDef& d : sceneMuscles(scene, library)) names.push_back(d.name);
   const RetargetMap arkitMap = desc.map.empty() ? builtinRetargetMap() : readRetargetMapFile(resolveAgainstScene(scene, desc.map));
+  // A map given for another muscle library would drive muscles this face does not have.
+  if (!desc.map.empty() && !arkitMap.library.empty() && arkitMap.library != muscleLibraryLabel(scene.muscleLibrary))
+    throw InputError("the map is for the muscle library '" + arkitMap.library + "', and the scene's is '" +
+                         muscleLibraryLabel(scene.muscleLibrary) + "': give --library " + arkitMap.library +
+                         " (or the scene key muscles.library)",
+                     resolveAgainstScene(scene, desc.map));
   const MappedPerformance mapped = mapPerformance(performance, names, builtinFacsMap(), arkitMap, desc.filter);
   addPerformanceToScene(scene, mapped);
 

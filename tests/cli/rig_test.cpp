@@ -243,6 +243,14 @@ TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
   r = run("rig --head default --map " + quoted(dir / "face_map.json") + " --out " + quoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("face_map.json: the map uses the whole face's muscles (mentalis_left, …): give --library face"));
+  // A map that records its library is refused for another, naming both (before any muscle name).
+  writeText(dir / "recorded_face_map.json",
+            R"({"format": "myoshell-retarget-map", "version": 1, "library": "face", "shapes": [{"name": "mouthSmileLeft", "activations": {"zygomaticus_major_left": 1}}]})");
+  r = run("rig --head default --library builtin --map " + quoted(dir / "recorded_face_map.json") + " --out " + quoted(dir / "rig.glb"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_THAT(r.err, HasSubstr("recorded_face_map.json: the map is for the muscle library 'face', and the head's is 'builtin': "
+                               "give --library face"));
+  EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   r = run("fit-rig " + quoted(dir / "missing.glb") + " --head default");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("missing.glb"));

@@ -29,7 +29,7 @@ TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
   const RigFile& rig = test::ictRig();
   FitSettings settings;
   settings.lambda = 0.02;  // fit-rig's default
-  const FittedRig fitted = fitRigShapes(rig, rigFitInputs(rig, head), settings, test::sharedBasisCache());
+  const FittedRig fitted = fitRigShapes(rig, rigFitInputs(rig, head), head.library, settings, test::sharedBasisCache());
   std::vector<double> all, mouthAndBrow;
   std::map<std::string, double> cosine;
   for (const RigShapeFit& s : fitted.fit.shapes) {

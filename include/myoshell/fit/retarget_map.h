@@ -4,10 +4,11 @@
 // simulates every entry on any head. Maps are keyed by muscle names, so they transfer between heads.
 //
 //   {"format": "myoshell-retarget-map", "version": 1,
-//    "rig": "ict_arkit_rig.glb", "head": "ict", "model": "anatomical", "note": "…",
+//    "rig": "ict_arkit_rig.glb", "head": "ict", "model": "anatomical", "library": "face", "note": "…",
 //    "shapes": [
-//      {"name": "mouthSmileLeft", "activations": {"zygomaticus_major_L": 0.93}, "jaw": {},
+//      {"name": "mouthSmileLeft", "source": "fitted", "activations": {"zygomaticus_major_L": 0.93}, "jaw": {},
 //       "fit": {"cosine": 0.81, "magnitude_ratio": 0.9, "rms_mm": 1.2, "max_mm": 4.1}},
+//      {"name": "browDownLeft", "source": "derived", "activations": {"corrugator_supercilii_left": 1}, "jaw": {}},
 //      {"name": "mouthClose", "corrective_of": "jawOpen", "activations": {…}},
 //      {"name": "eyeLookInLeft", "reachable": false, "reason": "eye rotation: …"}, …]}
 //
@@ -15,7 +16,11 @@
 // An activation lies in [0, 1]; a corrective's (`corrective_of`: the shape it is added to, ARKit's
 // mouthClose on jawOpen) is the difference from its base's and lies in [−1, 1]. An unreachable shape
 // (one muscles cannot make: eye rotation, air) has a reason and no activations. `fit` holds the
-// figures the fit reached (optional; informative only).
+// figures the fit reached (optional; informative only). `source` says where a reachable shape's
+// values come from: "fitted" to an artist's shape by fit-rig, or "derived" from the shape's FACS
+// action units through the FACS map (fit/facs_route.h) where the rig had no such shape; absent, a
+// shape is "fitted". `library` names the muscle library the map's activations are for ("builtin",
+// "face" or a library file's name; absent in maps written before it was recorded).
 #pragma once
 
 #include <optional>
@@ -39,6 +44,9 @@ struct RetargetFitFigures {
 // Name → value pairs in the file's order (muscle activations, jaw values).
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
+enum class RetargetSource { Fitted, Derived };
+const char* toString(RetargetSource source);  // "fitted", "derived"
+
 struct RetargetShape {
   std::string name;                 // ARKit spelling
   bool reachable = true;
@@ -47,12 +55,14 @@ struct RetargetShape {
   NamedValues activations;          // muscle → activation (a corrective's: the difference)
   NamedValues jaw;                  // jaw degree of freedom → value
   std::optional<RetargetFitFigures> fit;
+  RetargetSource source = RetargetSource::Fitted;  // reachable shapes: fitted to a rig's shape or derived
 };
 
 struct RetargetMap {
   std::string rig;                  // the rig it was fitted on (informative)
   std::string head;                 // the head it was fitted on (informative)
   std::string model = "anatomical";
+  std::string library;              // the muscle library it is for ("" when the file does not say)
   std::string note;
   std::vector<RetargetShape> shapes;  // each ARKit name at most once
 
@@ -68,7 +78,8 @@ struct RetargetMap {
 // (InputError) name `name:line:col`, the key path and the fault: a wrong format or version, an unknown
 // or repeated shape name (in either spelling; the close names are suggested), an activation outside
 // its range or of an unknown muscle, a non-finite jaw value, an unreachable shape without a reason or
-// with activations, a corrective of a shape the map does not make, an unknown key.
+// with activations, a corrective of a shape the map does not make, a `source` other than "fitted" or
+// "derived" (or on an unreachable shape, or "derived" on a corrective), an unknown key.
 RetargetMap parseRetargetMap(const std::string& text, const std::string& name = "<string>",
                              const std::vector<std::string>& knownMuscles = {});
 RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name,

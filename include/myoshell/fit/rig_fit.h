@@ -7,7 +7,10 @@
 // those of both halves together. The shapes muscles cannot make (unreachableArkitShapes(): eye
 // rotation, air, tongue) are listed with their reason and not fitted; nothing else is excluded.
 // ARKit's mouthClose is a corrective on jawOpen (it only makes sense added to it): jawOpen +
-// mouthClose is fitted as one shape and the map stores its activations minus jawOpen's.
+// mouthClose is fitted as one shape and the map stores its activations minus jawOpen's. Every ARKit
+// name the rig lacks is in the map too: unreachable with its reason, or derived from its FACS action
+// units through the FACS map (source "derived"; fit/facs_route.h) — the same muscles a performance
+// drives for that name — for the skin's muscles among them.
 #pragma once
 
 #include <optional>
@@ -17,6 +20,7 @@
 #include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/types.h"
 #include "myoshell/fit/activation_fit.h"
+#include "myoshell/fit/facs_map.h"
 #include "myoshell/fit/retarget_map.h"
 
 namespace myo {
@@ -40,7 +44,8 @@ struct RigShapeFit {
 struct RigFit {
   std::vector<RigShapeFit> shapes;     // ARKit order; only names the rig has
   std::vector<std::string> skipped;    // the rig's names that are no ARKit name (not fitted)
-  RetargetMap map;                     // activations per shape (muscle names of the skin)
+  RetargetMap map;                     // every ARKit name the rig has or can derive, ARKit order
+  std::vector<std::string> derived;    // the names derived from the FACS map (not in the rig)
   double medianCosine = 0.0;           // over the reachable shapes that move (a compared vertex)
   double medianRmsMm = 0.0;
   double seconds = 0.0;                // every fit, wall time
@@ -49,7 +54,9 @@ struct RigFit {
 // Fits every target. Throws InputError for a target of the wrong size or with a non-finite
 // coordinate, a name given twice (in either spelling), a mouthClose without jawOpen, no ARKit name
 // at all; NumericalError as fitActivations.
-RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets, const FitSettings& settings);
+// `facs` is the map the rig's missing names are derived through.
+RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets, const FitSettings& settings,
+              const FacsMap& facs = builtinFacsMap());
 
 // The median of a list (the mean of the middle two for an even count; 0 for none).
 double median(std::vector<double> values);

@@ -34,6 +34,9 @@ inline bool usesRigBase(const FitHeadOptions& options, const RigFile* rig) { ret
 // The output's folder must exist and the path must not be a folder (InputError naming `option`).
 void checkOutputFile(const std::string& path, const std::string& option, const std::string& what);
 
+// The name a map records for --library's value: "builtin", "face", or a library file's file name.
+std::string muscleLibraryLabel(const std::string& library);
+
 // --lambda: the sparsity weight, a number ≥ 0 (InputError otherwise).
 double parseLambda(const std::string& text);
 

@@ -16,7 +16,7 @@ namespace myo {
 
 struct FittedRig {
   std::shared_ptr<const AnatomicalFace> face;  // the face the shapes were fitted on (report pictures)
-  RigFit fit;                                  // fit.map: rig (file name), head, note filled in
+  RigFit fit;                                  // fit.map: rig (file name), head, library, note filled in
   double buildSeconds = 0;                     // the face's build, s
 };
 
@@ -25,7 +25,9 @@ struct FittedRig {
 SceneInputs rigFitInputs(const RigFile& rig, const FitHeadOptions& head);
 
 // Fits every shape of `rig` on the face built from `inputs` (rigFitInputs), with bases from `cache`
-// when not null. InputError and NumericalError as fitRig.
-FittedRig fitRigShapes(const RigFile& rig, const SceneInputs& inputs, const FitSettings& settings, BasisCache* cache);
+// when not null; the map records `library` (--library's value, muscleLibraryLabel). InputError and
+// NumericalError as fitRig.
+FittedRig fitRigShapes(const RigFile& rig, const SceneInputs& inputs, const std::string& library, const FitSettings& settings,
+                       BasisCache* cache);
 
 }  // namespace myo

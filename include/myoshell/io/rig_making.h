@@ -20,8 +20,10 @@ namespace myo {
 void checkRigOutputPath(const std::string& path);
 
 // Reads a retargeting map whose activations must name `muscles` (the head's library, `library` being
-// its name as --library gives it). A map of the whole face's muscles read with another library says
-// "the map uses the whole face's muscles (NAME, …): give --library face"; a shape with jaw values is
+// its name as --library gives it). A map that records another library (its "library" key) says
+// "the map is for the muscle library 'face', and the head's is 'builtin': give --library face"; an
+// older map without the key, of the whole face's muscles, read with another library says "the map
+// uses the whole face's muscles (NAME, …): give --library face"; a shape with jaw values is
 // refused (the anatomical model has no jaw in its maps yet). InputError naming the file.
 RetargetMap readRigMap(const std::string& path, const std::vector<MuscleDef>& muscles, const std::string& library);
 
