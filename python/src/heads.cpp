@@ -102,7 +102,7 @@ gravity pins (default: a folder's rigid_vertices.json, else the rim rule). Raise
 the command line's message for a missing file, a bad unit or a head that fails the checks.)doc");
 
   m.def("muscle_names", &muscleNames, py::arg("library") = "builtin", R"doc(
-The muscle names of a library, in its order: 'builtin' (the thesis's eight), 'face' (the whole face,
+The muscle names of a library, in its order: 'builtin' (the built-in ten: the thesis's eight and the lips' two rings), 'face' (the whole face's 39,
 docs/muscles.md) or the path of a library file (JSON or YAML).)doc");
 }
 

@@ -75,7 +75,8 @@ struct SceneDesc {
   // the thesis's (docs/face_model.md). Keys only one model reads are errors under the other.
   FaceModelKind modelKind = FaceModelKind::Anatomical;
   HeadDesc head;
-  // Muscles: the built-in library (thesis's eight) or a JSON library file, optionally only some of
+  // Muscles: the built-in library ("builtin": the thesis's eight, and the lips' two rings under the
+  // anatomical model), the whole face ("face", 39) or a JSON library file, optionally only some of
   // them, plus extra definitions written in the scene.
   std::string muscleLibrary = "builtin";
   std::vector<std::string> muscles;  // names to use; empty = every muscle of the library

@@ -15,7 +15,7 @@ struct FitHeadOptions {
   std::string head = "default";
   std::string landmarks;
   std::string units = "cm";
-  std::string library = "builtin";  // --library: "builtin" (the thesis's eight), "face" (the whole face) or a file
+  std::string library = "builtin";  // --library: "builtin" (the built-in ten), "face" (the whole face's 39) or a file
   bool headGiven = false;   // --head on the command line
   bool unitsGiven = false;  // --units on the command line
 };
