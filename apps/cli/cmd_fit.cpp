@@ -32,6 +32,7 @@
 #include "myoshell/head/head_checks.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/io/marker_file.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/mesh/obj_reader.h"

@@ -21,6 +21,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/io/fit_head.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/rig_fitting.h"

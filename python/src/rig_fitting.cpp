@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "myoshell/io/basis_cache_file.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_fitting.h"
 

@@ -67,12 +67,4 @@ double parseLambda(const std::string& text) {
   return v;
 }
 
-void checkOutputFile(const std::string& path, const std::string& option, const std::string& what) {
-  if (path.empty()) return;
-  const fs::path p(path);
-  if (fs::is_directory(p)) throw InputError(option + ": is a folder; give the " + what + " to write", path);
-  const fs::path parent = p.parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) throw InputError(option + ": no such folder '" + parent.string() + "'");
-}
-
 }  // namespace myo

@@ -11,6 +11,7 @@
 #include "myoshell/fit/arkit_rig.h"
 #include "myoshell/head/jaw.h"
 #include "myoshell/io/fit_head.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/muscles/muscle_def.h"
 

@@ -31,9 +31,6 @@ LengthUnit fitHeadUnit(const FitHeadOptions& options, const RigFile* rig);
 // True when the head is the rig's base (a rig given and no --head).
 inline bool usesRigBase(const FitHeadOptions& options, const RigFile* rig) { return rig && !options.headGiven; }
 
-// The output's folder must exist and the path must not be a folder (InputError naming `option`).
-void checkOutputFile(const std::string& path, const std::string& option, const std::string& what);
-
 // The name a map records for --library's value: "builtin", "face", or a library file's file name.
 std::string muscleLibraryLabel(const std::string& library);
 

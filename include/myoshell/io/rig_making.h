@@ -15,8 +15,8 @@
 namespace myo {
 
 // The rig's output path, checked before any work: InputError "--out: a rig is written as a glTF
-// binary; give a file name ending in .glb", or checkOutputFile's (io/fit_head.h) for a folder or a
-// missing folder.
+// binary; give a file name ending in .glb", or checkOutputFile's (io/output_paths.h) for a folder, a
+// missing or unwritable folder.
 void checkRigOutputPath(const std::string& path);
 
 // Reads a retargeting map whose activations must name `muscles` (the head's library, `library` being
