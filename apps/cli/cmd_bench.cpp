@@ -50,6 +50,8 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
+#include "option_checks.h"
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
@@ -546,7 +548,7 @@ std::string machineName() {
 int runBench(BenchOptions opt) {
   if (opt.seconds <= 0.0) throw InputError("--seconds must be > 0");
   if (opt.runs < 1) throw InputError("--runs must be >= 1");
-  if (opt.scenesDir.empty()) opt.scenesDir = (shippedScenesDir().dir / "thesis").string();
+  opt.scenesDir = thesisScenesDir(opt.scenesDir).dir.string();
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
     throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
   std::vector<BenchRow> rows = thesisRows();
@@ -654,17 +656,17 @@ int runBench(BenchOptions opt) {
 const CommandRegistrar benchRegistrar("bench", [](CLI::App& app) {
   auto opt = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Re-measure the thesis's Tables 2-4 (steps per second) on the thesis scenes, and both models side by side");
-  sub->add_flag("--json", opt->json, "Print the results as JSON");
-  sub->add_option("--threads", opt->threads, "Threads (the simulator is single-threaded: 1 is used)")
-      ->capture_default_str();
+  addJsonFlag(*sub, opt->json);
+  addThreadsOption(*sub, opt->threads, "Threads (the simulator is single-threaded: 1 is used, and another value noted; default 1)");
   sub->add_option("--seconds", opt->seconds, "Timed seconds per row (split over --runs)")->capture_default_str();
   sub->add_option("--runs", opt->runs, "Timed runs per row (the median is reported)")->capture_default_str();
-  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes (default: the shipped scenes/thesis)");
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
-  sub->add_option("--data", opt->dataDir, "Data folder holding ict/ (default: $MYOSHELL_DATA, or ../shared/data beside the source tree)");
+  addScenesOption(*sub, opt->scenesDir);
+  addCacheOption(*sub, opt->cacheDir);
+  addDataOption(*sub, opt->dataDir);
   sub->add_option("--heads", opt->heads, "Heads to run: default, ict (comma-separated)")->capture_default_str();
   sub->add_option("--rows", opt->rows, "Only these row ids (comma-separated; see --json output)");
   sub->add_option("--reference-steps", opt->referenceSteps, "Implicit-Euler steps timed for the reference solver")
+      ->check(wholeAtLeast(1))
       ->capture_default_str();
   auto flag = std::make_shared<bool>(false);
   sub->add_flag("--no-reference", *flag, "Skip the full-space reference solver (reference_ratio null)");

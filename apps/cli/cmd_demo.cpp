@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/render/video.h"
 #include "scene_runner.h"
@@ -26,8 +27,8 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   opt->formats = {"glb", "pc2", "obj"};
   CLI::App* sub = app.add_subcommand("demo", "Smile, frown and brow lowering on the built-in head (scenes/demo.json)");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
-  sub->add_flag("--json", opt->json, "Print a JSON summary");
+  addCacheOption(*sub, opt->cacheDir);
+  addJsonFlag(*sub, opt->json);
   return std::function<int()>([opt] {
     // demo.mp4 and demo.gif; without ffmpeg the rest still runs. Asked here, when demo runs: at
     // registration every command would pay for starting ffmpeg.

@@ -13,10 +13,13 @@
 #include <vector>
 
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/anim/performance_map.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/performance_file.h"
 #include "myoshell/io/performance_scene.h"
+#include "option_checks.h"
 #include "scene_runner.h"
 
 namespace myo::cli {
@@ -24,6 +27,7 @@ namespace {
 
 struct DriveArgs {
   PerformanceSceneDef scene;
+  HeadOptions head;
   bool headMotion = false;
   RunOptions run;
 };
@@ -40,6 +44,10 @@ CurvePanel inputCurves(const SceneDesc& scene, const DriveArgs& a) {
 }
 
 int runDrive(DriveArgs& a) {
+  checkOutputFolder(a.run.outDir, "--out");
+  a.scene.head = a.head.head;
+  a.scene.landmarks = a.head.landmarks;
+  a.scene.units = a.head.units;
   const SceneDesc scene = performanceScene(a.scene);
   a.run.headMotion = a.headMotion;
   if (a.run.video) a.run.videoPanel = inputCurves(scene, a);
@@ -48,6 +56,7 @@ int runDrive(DriveArgs& a) {
 
 static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   auto a = std::make_shared<DriveArgs>();
+  a->run.formats = {"glb"};  // before --format captures it as the default its help shows
   CLI::App* sub = app.add_subcommand(
       "drive", "Play a recorded performance (OpenFace action units, Live Link Face or MediaPipe blendshape weights) on a "
                "head and write the animation");
@@ -55,30 +64,29 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
                   "the performance file (OpenFace CSV, Live Link Face CSV, MediaPipe JSON Lines)")
       ->required();
   sub->add_option("--out", a->run.outDir, "Output folder")->required();
-  sub->add_option("--head", a->scene.head,
-                  "'default', an OBJ file (with --landmarks), or a folder like ../shared/data/ict");
-  sub->add_option("--landmarks", a->scene.landmarks, "landmark file of an OBJ head (docs/heads.md)");
-  sub->add_option("--units", a->scene.units, "the OBJ head's length unit, m, mm or cm (default cm)");
-  sub->add_option("--library", a->scene.library,
-                  "muscles: 'face' (the whole face, default), 'builtin' (the thesis's eight) or a library file");
+  addHeadOptions(*sub, a->head);
+  addLibraryOption(*sub, a->scene.library);
   sub->add_option("--map", a->scene.map, "ARKit input: a retargeting map (fit-rig --out); default the shipped ICT map");
   sub->add_option("--input", a->scene.input, "openface, livelink or mediapipe (default: from the file's header)");
   sub->add_option("--au-scale", a->scene.auScale,
                   "OpenFace: the intensities' scale, 5 (raw) or 1 (default: from the header)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   sub->add_option("--face", a->scene.face, "OpenFace: the face_id to play when the file tracks several")
-      ->check(CLI::NonNegativeNumber);
+      ->check(wholeAtLeast(0));
   sub->add_option("--min-confidence", a->scene.minConfidence, "OpenFace: frames below it are bridged (default 0.7)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(numberIn(0.0, 1.0));
   sub->add_option("--input-fps", a->scene.inputFps, "Live Link: the timecode's frame rate (default: inferred)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   sub->add_option("--filter", a->scene.filter, "the One-Euro filter on the input curves: on (default) or off");
   sub->add_option("--min-cutoff", a->scene.oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")
       ->capture_default_str();
   sub->add_option("--beta", a->scene.oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
-  sub->add_option("--start", a->scene.start, "play from this time, s after the first frame")
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--end", a->scene.end, "play up to this time, s after the first frame");
+  sub->add_option("--start", a->scene.start, "play from this time, s after the first frame (default 0)")
+      ->check(numberAtLeast(0));
+  // Without --end the take plays to its last frame (PerformanceSceneDef::end < 0); a negative
+  // --end would mean the same, silently, so it is refused.
+  sub->add_option("--end", a->scene.end, "play up to this time, s after the first frame, after --start (default: the last frame)")
+      ->check(numberAbove(0));
   sub->add_option("--format", a->run.formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')
       ->capture_default_str();
@@ -86,13 +94,11 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--framing", a->run.framing, "--video frames the face (its landmarks), head (crown to chin) or all")
       ->default_val("face");
   sub->add_flag("--head-motion", a->headMotion, "Turn the exported frames with the performance's head rotation");
-  sub->add_option("--size", a->run.size, "Picture size, pixels")->check(CLI::Range(64, 4096));
+  sub->add_option("--size", a->run.size, "Picture size, pixels")->check(wholeIn(64, 4096));
   sub->add_flag("--software", a->run.software, "Draw with the software renderer even where OpenGL is available");
-  sub->add_option("--cache", a->run.cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
-                                              "~/.cache/myoshell)");
-  sub->add_flag("--json", a->run.json, "Print a JSON summary (input, au_scale, frames, fps, duration, dropped_frames, "
-                                       "warnings, steps_per_second, …)");
-  a->run.formats = {"glb"};
+  addCacheOption(*sub, a->run.cacheDir);
+  addJsonFlag(*sub, a->run.json);
+  addThreadsOption(*sub);
   return [a] { return runDrive(*a); };
 });
 

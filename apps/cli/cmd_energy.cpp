@@ -7,6 +7,7 @@
 #include <string>
 
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/shell/discrete_shell.h"
@@ -59,7 +60,7 @@ static CommandRegistrar reg("energy", [](CLI::App& app) {
   sub->add_option("--ka", args->material.kA, "Area stiffness k_A, dyn/cm")->capture_default_str();
   sub->add_option("--kl", args->material.kL, "Edge-length stiffness k_L, dyn")->capture_default_str();
   sub->add_option("--kb", args->material.kB, "Bending stiffness k_B, erg")->capture_default_str();
-  sub->add_flag("--json", args->json, "Print the terms as JSON");
+  addJsonFlag(*sub, args->json);
   return std::function<int()>([args] { return runEnergy(*args); });
 });
 

@@ -11,18 +11,22 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <set>
 #include <sstream>
 #include <system_error>
 
+#include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "resources.h"
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/fit/shape_metric.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/mesh/obj_reader.h"
 #include "myoshell/muscles/muscle_def.h"
@@ -30,6 +34,7 @@
 #include "myoshell/render/face_picture.h"
 #include "myoshell/render/image.h"
 #include "myoshell/render/png.h"
+#include "option_checks.h"
 #include "scene_runner.h"
 
 namespace myo::cli {
@@ -45,6 +50,7 @@ struct FigureOptions {
   std::string only;  // comma-separated figure keys (fig17, fig18, …); empty = all
   int size = 360;    // tile width and height, pixels
   bool software = false;
+  bool json = false;  // the files written (and the figures skipped) as JSON, not line by line
 };
 
 struct Loaded {
@@ -88,16 +94,24 @@ class Figures {
     const fs::path path = fs::path(opt_.outDir) / file;
     writePng(path.string(), sheet);
     written_.push_back(path.string());
-    fmt::print("wrote {}\n", path.string());
+    if (!opt_.json) fmt::print("wrote {}\n", path.string());
+  }
+
+  // A figure left out, and why (its data is absent).
+  void skip(const std::string& figure, const std::string& reason) {
+    skipped_.push_back({{"figure", figure}, {"reason", reason}});
+    if (!opt_.json) fmt::print("{} skipped: {}\n", figure, reason);
   }
 
   const std::vector<std::string>& written() const { return written_; }
+  const nlohmann::ordered_json& skipped() const { return skipped_; }
 
  private:
   FigureOptions opt_;
   std::unique_ptr<BasisCache> cache_;
   std::unique_ptr<FacePainter> painter_;
   std::vector<std::string> written_;
+  nlohmann::ordered_json skipped_ = nlohmann::ordered_json::array();
 };
 
 // The player's face at time t (s): skin, displacement and muscles.
@@ -346,7 +360,7 @@ void fig27(Figures& F, const FigureOptions& opt) {
   if (const fs::path data = dataDir(opt.dataDir).dir; !data.empty()) useDataDir(probe, data);
   const fs::path obj = fs::path(opt.scenesDir) / probe.head.obj;  // the head path if absolute
   if (!fs::exists(obj)) {
-    fmt::print("fig27 skipped: the ICT head ({}) is absent (give --data DIR or set MYOSHELL_DATA)\n", obj.string());
+    F.skip("fig27", "the ICT head (" + obj.string() + ") is absent (give --data DIR or set MYOSHELL_DATA)");
     return;
   }
   timelineStrip(F, "fig27_ict_head",
@@ -360,7 +374,7 @@ void fig27(Figures& F, const FigureOptions& opt) {
 void anatomicalFigure(Figures& F, const FigureOptions& opt) {
   const fs::path ict = dataDir(opt.dataDir).dir / "ict";
   if (dataDir(opt.dataDir).dir.empty() || !fs::exists(ict / "head_skin.obj")) {
-    fmt::print("anatomical skipped: the ICT head ({}) is absent (give --data DIR or set MYOSHELL_DATA)\n", (ict / "head_skin.obj").string());
+    F.skip("anatomical", "the ICT head (" + (ict / "head_skin.obj").string() + ") is absent (give --data DIR or set MYOSHELL_DATA)");
     return;
   }
   const Head head = loadHead((ict / "head_skin.obj").string(), (ict / "landmarks_multipie68.json").string());
@@ -403,8 +417,7 @@ void anatomicalFigure(Figures& F, const FigureOptions& opt) {
 }
 
 int runFigures(FigureOptions opt) {
-  if (opt.size < 64 || opt.size > 2048) throw InputError("--size must be in [64, 2048]");
-  if (opt.scenesDir.empty()) opt.scenesDir = (shippedScenesDir().dir / "thesis").string();
+  opt.scenesDir = thesisScenesDir(opt.scenesDir).dir.string();
   const std::vector<std::pair<std::string, std::function<void(Figures&)>>> all = {
       {"fig17", [](Figures& F) { fig17(F); }},    {"fig18", [](Figures& F) { fig18(F); }},
       {"fig20", [](Figures& F) { fig19_20(F); }}, {"fig22", [](Figures& F) { fig21_22(F); }},
@@ -422,12 +435,20 @@ int runFigures(FigureOptions opt) {
     }
   if (!fs::exists(fs::path(opt.scenesDir) / "fig17_contract.json"))
     throw InputError("no thesis scenes here (give --scenes DIR, the folder of fig17_contract.json)", opt.scenesDir);
+  checkOutputFolder(opt.outDir, "--out");
   std::error_code ec;
   fs::create_directories(opt.outDir, ec);  // only once the arguments are known good
   if (ec) throw InputError("cannot create the output folder (" + ec.message() + ")", opt.outDir);
   Figures F(opt);  // opens the basis cache: after every check
   for (const auto& [key, fn] : all)
     if (want.empty() || want.count(key)) fn(F);
+  if (opt.json) {
+    nlohmann::ordered_json j;
+    j["out"] = opt.outDir;
+    j["written"] = F.written();
+    j["skipped"] = F.skipped();
+    printJsonReport(j);
+  }
   return kExitOk;
 }
 
@@ -435,12 +456,13 @@ const CommandRegistrar figuresRegistrar("figures", [](CLI::App& app) {
   auto opt = std::make_shared<FigureOptions>();
   CLI::App* sub = app.add_subcommand("figures", "Render the thesis's Figures 17-27 from scenes/thesis, and the anatomical model's picture on ICT, into PNGs");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
-  sub->add_option("--scenes", opt->scenesDir, "Folder of the thesis scenes (default: the shipped scenes/thesis)");
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
-  sub->add_option("--data", opt->dataDir, "Data folder holding ict/ for fig27 (default: $MYOSHELL_DATA, or ../shared/data beside the source tree)");
+  addScenesOption(*sub, opt->scenesDir);
+  addCacheOption(*sub, opt->cacheDir);
+  addDataOption(*sub, opt->dataDir);
   sub->add_option("--only", opt->only, "Only these figures (comma-separated: fig17, fig18, fig20, fig22, ...)");
-  sub->add_option("--size", opt->size, "Tile size, pixels")->capture_default_str();
+  sub->add_option("--size", opt->size, "Tile size, pixels")->check(wholeIn(64, 2048))->capture_default_str();
   sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");
+  addJsonFlag(*sub, opt->json);
   return std::function<int()>([opt] { return runFigures(*opt); });
 });
 

@@ -23,6 +23,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -45,9 +46,7 @@ namespace fs = std::filesystem;
 
 struct FitArgs {
   std::string target;
-  std::string head = "default";
-  std::string landmarks;
-  std::string units = "cm";
+  HeadOptions head;
   std::string muscles;         // comma-separated; "" = every muscle
   std::string library = "builtin";
   std::string align = "none";
@@ -55,9 +54,6 @@ struct FitArgs {
   std::string out;
   std::string cacheDir;
   bool json = false;
-  const CLI::Option* headOption = nullptr;
-  const CLI::Option* landmarksOption = nullptr;
-  const CLI::Option* unitsOption = nullptr;
 };
 
 enum class TargetKind { Obj, Rig, Markers };
@@ -121,13 +117,7 @@ int runFit(const FitArgs& a) {
     rigShapeName = ref.shape;
     rig.shape(rigShapeName);  // InputError listing the rig's shapes when it has no such one
   }
-  FitHeadOptions headOptions;
-  headOptions.head = a.head;
-  headOptions.landmarks = a.landmarks;
-  headOptions.units = a.units;
-  headOptions.library = a.library;
-  headOptions.headGiven = a.headOption->count() > 0;
-  headOptions.unitsGiven = a.unitsOption->count() > 0;
+  const FitHeadOptions headOptions = fitHeadOptions(a.head, a.library);
   const RigFile* rigOrNull = kind == TargetKind::Rig ? &rig : nullptr;
   const SceneInputs inputs = fitHeadInputs(headOptions, rigOrNull, "fit " + a.target);
   const Head& head = inputs.head;
@@ -232,19 +222,19 @@ static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
       "fit", "Find the activations in [0, 1] whose settled anatomical face best matches a target shape, a rig's "
              "shape or markers (docs/fitting.md)");
   sub->add_option("target", args->target, "an OBJ of the head, RIG.glb#shape, or a marker file (.json/.yaml)")->required();
-  args->headOption = sub->add_option("--head", args->head, "'default', an OBJ file (with --landmarks), or a folder "
-                                                            "like ../shared/data/ict (default: default; a rig's "
-                                                            "base with RIG.glb#shape)");
-  args->landmarksOption = sub->add_option("--landmarks", args->landmarks, "landmark file of an OBJ head or of a rig's base");
-  args->unitsOption = sub->add_option("--units", args->units, "the OBJ head's (and OBJ target's) length unit, m, mm or cm");
+  HeadHelp help;
+  help.headDefault = "default, or a RIG.glb#shape target's base mesh (with --landmarks)";
+  help.landmarks = " or of a rig's base";
+  help.units = "; an OBJ target is in the head's unit";
+  addHeadOptions(*sub, args->head, help);
   sub->add_option("--muscles", args->muscles, "A,B,…: fit only these muscles (default: all)");
   sub->add_option("--align", args->align, "none, rigid or similarity: remove the target's motion first (default none)");
   sub->add_option("--lambda", args->lambda, "sparsity weight ≥ 0 (default 0.02; 0 = plain bounded least squares)");
   sub->add_option("--out", args->out, "write the activations and figures as JSON (its folder must exist)");
-  sub->add_option("--library", args->library, "muscles: builtin (the thesis's eight, placed anatomically; default), face (the whole face, docs/muscles.md) or a library file");
-  sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
-                                             "~/.cache/myoshell)");
-  sub->add_flag("--json", args->json, "print the activations and figures as JSON");
+  addLibraryOption(*sub, args->library);
+  addCacheOption(*sub, args->cacheDir);
+  addJsonFlag(*sub, args->json);
+  addThreadsOption(*sub);
   return [args] { return runFit(*args); };
 });
 

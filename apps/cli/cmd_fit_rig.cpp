@@ -16,6 +16,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -37,14 +38,13 @@ namespace fs = std::filesystem;
 
 struct FitRigArgs {
   std::string rig;
-  FitHeadOptions head;
+  HeadOptions head;
+  std::string library = "builtin";
   std::string lambda = "0.02";
   std::string out;
   std::string report;
   std::string cacheDir;
   bool json = false;
-  const CLI::Option* headOption = nullptr;
-  const CLI::Option* unitsOption = nullptr;
 };
 
 nlohmann::ordered_json namedValuesJson(const NamedValues& values) {
@@ -119,15 +119,12 @@ int runFitRig(FitRigArgs& a) {
   FitSettings settings;
   settings.lambda = parseLambda(a.lambda);
   checkOutputFile(a.out, "--out", "map file (JSON)");
-  if (!a.report.empty() && fs::exists(a.report) && !fs::is_directory(a.report))
-    throw InputError("--report: is a file; give a folder for the report", a.report);
-  a.head.headGiven = a.headOption->count() > 0;
-  a.head.unitsGiven = a.unitsOption->count() > 0;
+  if (!a.report.empty()) checkOutputFolder(a.report, "--report");
 
   const RigFile rig = readRig(a.rig);
-  const SceneInputs inputs = rigFitInputs(rig, a.head);
+  const SceneInputs inputs = rigFitInputs(rig, fitHeadOptions(a.head, a.library));
   const auto cache = openBasisCache(a.cacheDir);
-  const FittedRig fitted = fitRigShapes(rig, inputs, a.head.library, settings, cache.get());
+  const FittedRig fitted = fitRigShapes(rig, inputs, a.library, settings, cache.get());
   const RigFit& fit = fitted.fit;
   const AnatomicalFace& face = *fitted.face;
   const Head& head = face.head();
@@ -200,18 +197,17 @@ static CommandRegistrar reg("fit-rig", [](CLI::App& app) -> std::function<int()>
       "fit-rig", "Fit every ARKit-named shape of a glTF rig to activations and write the retargeting map that "
                  "`myoshell rig` plays on any head (docs/fitting.md)");
   sub->add_option("rig", args->rig, "a glTF 2.0 rig (.glb or .gltf) with named morph targets")->required();
-  args->headOption = sub->add_option("--head", args->head.head, "'default', an OBJ file (with --landmarks), or a folder "
-                                                                 "like ../shared/data/ict (default: the rig's base mesh, "
-                                                                 "with --landmarks)");
-  sub->add_option("--landmarks", args->head.landmarks, "landmark file of an OBJ head or of the rig's base");
-  args->unitsOption = sub->add_option("--units", args->head.units, "the OBJ head's length unit, m, mm or cm");
+  HeadHelp help;
+  help.headDefault = "the rig's base mesh (with --landmarks)";
+  help.landmarks = " or of the rig's base";
+  addHeadOptions(*sub, args->head, help);
   sub->add_option("--lambda", args->lambda, "sparsity weight ≥ 0 (default 0.02; 0 = plain bounded least squares)");
   sub->add_option("--out", args->out, "write the retargeting map (JSON; its folder must exist)");
   sub->add_option("--report", args->report, "write report.md and a picture per shape into this folder");
-  sub->add_option("--library", args->head.library, "muscles: builtin (the thesis's eight, placed anatomically; default), face (the whole face, docs/muscles.md) or a library file");
-  sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
-                                             "~/.cache/myoshell)");
-  sub->add_flag("--json", args->json, "print every shape's figures and activations as JSON");
+  addLibraryOption(*sub, args->library);
+  addCacheOption(*sub, args->cacheDir);
+  addJsonFlag(*sub, args->json);
+  addThreadsOption(*sub);
   return [args] { return runFitRig(*args); };
 });
 

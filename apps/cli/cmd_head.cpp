@@ -19,6 +19,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/anatomy/eyelids.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -26,6 +27,7 @@
 #include "myoshell/head/head.h"
 #include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/mesh/edge_table.h"
 #include "myoshell/mesh/subdivision.h"
 #include "myoshell/render/camera.h"
@@ -34,6 +36,7 @@
 #include "myoshell/render/markers.h"
 #include "myoshell/render/png.h"
 #include "myoshell/render/render_mesh.h"
+#include "option_checks.h"
 
 namespace myo::cli {
 namespace {
@@ -86,10 +89,8 @@ void renderHead(const Head& head, const RenderOptions& opt, const std::string& p
 // ---------------------------------------------------------------------------------------------
 
 struct HeadArgs {
-  std::string head = "default";
-  std::string landmarks;
+  HeadOptions head;  // the positional head, --landmarks and --units
   std::string pins;
-  std::string units = "cm";  // the OBJ's length unit: m, mm or cm
   bool json = false;
   std::string render;
   std::string view = "front";
@@ -105,7 +106,7 @@ struct HeadArgs {
 };
 
 Head loadFromArgs(const HeadArgs& a) {
-  const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, a.pins, a.units);
+  const HeadFiles files = resolveHeadArgument(a.head.head, a.head.landmarks, a.pins, a.head.units);
   if (!files.builtIn()) return loadHead(files.obj, files.landmarks, files.pins, files.unit);
   DefaultHeadOptions o = defaultHeadOptions(a.closedEyes ? FaceModelKind::Thesis : FaceModelKind::Anatomical);
   o.subdivisionLevels = a.levels;
@@ -117,6 +118,9 @@ nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 int runHead(const HeadArgs& a) {
   const ViewPreset view = parseView(a.view);  // before any work: a typo fails at once
+  checkOutputFile(a.render, "--render", "PNG file");
+  checkOutputFile(a.writeObj, "--write-obj", "OBJ file");
+  checkOutputFile(a.writeLandmarks, "--write-landmarks", "landmark file");
   const Head head = loadFromArgs(a);
   const TriMesh& m = head.mesh;
   const EdgeTable edges = buildEdgeTable(m.F, m.vertexCount());
@@ -205,20 +209,19 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   CLI::App* sub = app.add_subcommand(
       "head", "Load a head (the built-in default, an OBJ with a landmark file, or a folder like "
               "../shared/data/ict) and report counts, landmarks, face frame and gravity pins");
-  sub->add_option("head", args->head, "'default', an OBJ file, or a folder with head_skin.obj, "
-                                      "landmarks_multipie68.json and rigid_vertices.json");
-  sub->add_option("--landmarks", args->landmarks, "landmark file (layout: docs/heads.md)");
+  sub->add_option("head", args->head.head, "'default', an OBJ file, or a folder with head_skin.obj, "
+                                           "landmarks_multipie68.json and rigid_vertices.json");
+  addHeadFileOptions(*sub, args->head);
   sub->add_option("--pins", args->pins, "vertex-set file of gravity pins (default: the rim rule)");
-  sub->add_option("--units", args->units, "the OBJ's length unit, m, mm or cm (default cm); scaled to cm on load");
-  sub->add_flag("--json", args->json, "print the report as JSON");
+  addJsonFlag(*sub, args->json);
   sub->add_option("--render", args->render, "write a PNG picture with the landmarks marked");
   sub->add_option("--view", args->view, "front, three-quarter, profile or back")->capture_default_str();
-  sub->add_option("--size", args->size, "picture size in pixels")->check(CLI::Range(64, 4096));
+  sub->add_option("--size", args->size, "picture size in pixels")->check(wholeIn(64, 4096));
   sub->add_flag("--wire", args->wire, "draw the triangle edges");
   sub->add_flag("--pins-marked", args->markPins, "mark the gravity pins (green)");
   sub->add_flag("--no-landmarks", args->noLandmarks, "do not mark the landmarks");
   sub->add_option("--levels", args->levels, "default head: subdivision levels (default 2)")
-      ->check(CLI::Range(0, 4));
+      ->check(wholeIn(0, 4));
   sub->add_flag("--closed-mouth", args->closedMouth, "default head: keep the mouth closed");
   sub->add_flag("--closed-eyes", args->closedEyes,
                 "default head: keep the eyes closed (the thesis model's head; the anatomical model's has them open)");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/mesh/mesh_stats.h"
 #include "myoshell/mesh/obj_reader.h"
 
@@ -103,7 +104,7 @@ static CommandRegistrar reg("info", [](CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   sub->add_option("mesh", *path, "OBJ mesh to inspect")->required();
-  sub->add_flag("--json", *json, "Print machine-readable JSON instead of a table");
+  addJsonFlag(*sub, *json);
   return std::function<int()>([path, json] { return runInfo(*path, *json); });
 });
 

@@ -12,6 +12,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/vertex_set_file.h"
 #include "myoshell/mesh/edge_table.h"
@@ -87,7 +88,7 @@ static CommandRegistrar reg("modes", [](CLI::App& app) {
   sub->add_option("--kb", args->material.kB, "Bending stiffness k_B, erg")->capture_default_str();
   sub->add_option("--density", args->material.density, "Density rho, g/cm^3")->capture_default_str();
   sub->add_option("--thickness", args->material.thickness, "Thickness, cm")->capture_default_str();
-  sub->add_flag("--json", args->json, "Print JSON: eigenvalues (ascending), solve_seconds, free_vertices, modes");
+  addJsonFlag(*sub, args->json);
   return std::function<int()>([args] { return runModes(*args); });
 });
 

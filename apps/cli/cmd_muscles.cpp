@@ -12,6 +12,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/muscles/muscle.h"
@@ -21,10 +22,9 @@ namespace myo::cli {
 namespace {
 
 struct MusclesArgs {
-  FitHeadOptions head;
+  HeadOptions head;
+  std::string library = "builtin";
   bool json = false;
-  const CLI::Option* headOption = nullptr;
-  const CLI::Option* unitsOption = nullptr;
 };
 
 // "AU20 AU21" → {20, 21}; the numbers a muscle's `facs` field names, in its order.
@@ -43,10 +43,8 @@ std::vector<int> actionUnits(const std::string& facs) {
 }
 
 int runMuscles(MusclesArgs& a) {
-  a.head.headGiven = a.headOption->count() > 0;
-  a.head.unitsGiven = a.unitsOption->count() > 0;
-  const SceneInputs inputs = fitHeadInputs(a.head, nullptr, "muscles");
-  const bool placed = a.head.headGiven;
+  const SceneInputs inputs = fitHeadInputs(fitHeadOptions(a.head, a.library), nullptr, "muscles");
+  const bool placed = a.head.headGiven();
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const MuscleDef& d : inputs.muscles) {
     nlohmann::ordered_json m;
@@ -59,13 +57,13 @@ int runMuscles(MusclesArgs& a) {
   }
   if (a.json) {
     nlohmann::ordered_json j;
-    j["library"] = a.head.library;
+    j["library"] = a.library;
     if (placed) j["head"] = inputs.head.name;
     j["muscles"] = list;
     printJsonReport(j);
     return kExitOk;
   }
-  fmt::print("{} muscles in library {}{}\n", list.size(), a.head.library,
+  fmt::print("{} muscles in library {}{}\n", list.size(), a.library,
              placed ? " placed on " + inputs.head.name : std::string());
   for (const auto& m : list) {
     std::string aus;
@@ -82,13 +80,12 @@ static CommandRegistrar reg("muscles", [](CLI::App& app) -> std::function<int()>
   CLI::App* sub = app.add_subcommand(
       "muscles", "List a muscle library (name, side, FACS action units, linear or ring) and, with --head, place each "
                  "muscle on that head (docs/muscles.md)");
-  sub->add_option("--library", args->head.library, "builtin (the thesis's eight, default), face (the whole face) or a "
-                                                    "library file");
-  args->headOption = sub->add_option("--head", args->head.head, "'default', an OBJ file (with --landmarks), or a folder "
-                                                                 "like ../shared/data/ict: place every muscle on it");
-  sub->add_option("--landmarks", args->head.landmarks, "landmark file of an OBJ head (docs/heads.md)");
-  args->unitsOption = sub->add_option("--units", args->head.units, "the OBJ head's length unit, m, mm or cm (default cm)");
-  sub->add_flag("--json", args->json, "print {\"muscles\": [{\"name\", \"side\", \"aus\", \"kind\"}]} as JSON");
+  addLibraryOption(*sub, args->library);
+  HeadHelp help;
+  help.head = ": every muscle is placed on it";
+  help.headDefault = "none (the muscles listed, not placed)";
+  addHeadOptions(*sub, args->head, help);
+  addJsonFlag(*sub, args->json);
   return [args] { return runMuscles(*args); };
 });
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
+#include "common_options.h"
 #include "resources.h"
 
 namespace myo::cli {
@@ -19,9 +20,9 @@ struct PathsArgs {
 const CommandRegistrar pathsRegistrar("paths", [](CLI::App& app) {
   auto args = std::make_shared<PathsArgs>();
   CLI::App* sub = app.add_subcommand("paths", "Print where the scenes, the data folder and the basis cache are");
-  sub->add_option("--cache", args->cache, "Basis cache folder (as for run, render, bench, figures, demo)");
-  sub->add_option("--data", args->data, "Data folder (as for bench and figures)");
-  sub->add_flag("--json", args->json, "Print JSON");
+  addCacheOption(*sub, args->cache);
+  addDataOption(*sub, args->data);
+  addJsonFlag(*sub, args->json);
   return std::function<int()>([args] {
     const ResolvedPath scenes = shippedScenesDir(), data = dataDir(args->data), cache = cacheDir(args->cache);
     if (args->json) {

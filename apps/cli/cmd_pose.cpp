@@ -29,6 +29,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "resources.h"
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/errors.h"
@@ -36,6 +37,7 @@
 #include "myoshell/head/head_checks.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/obj_writer.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/scene_face.h"
 
 namespace myo::cli {
@@ -44,9 +46,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct PoseArgs {
-  std::string head = "default";
-  std::string landmarks;
-  std::string units = "cm";
+  HeadOptions head;
   std::string scene;
   std::vector<std::string> sets;  // NAME=VALUE, in the order given
   std::string gravity;            // "on", "off", or "" (on; a scene's own switch with --scene)
@@ -56,10 +56,6 @@ struct PoseArgs {
   std::string out;
   std::string cacheDir;           // --cache; "" = the default (resources.h)
   bool json = false;
-  // Whether a head option was given (they exclude --scene).
-  const CLI::Option* headOption = nullptr;
-  const CLI::Option* landmarksOption = nullptr;
-  const CLI::Option* unitsOption = nullptr;
 };
 
 // The whole text as a finite number, or nothing ("abc", "1x", "nan", "").
@@ -124,21 +120,10 @@ std::vector<Setting> parseSets(const std::vector<std::string>& sets) {
   return out;
 }
 
-// The OBJ's folder must exist (pose makes no folders) and the path must not be a folder.
-void checkOutputPath(const std::string& out) {
-  if (out.empty()) return;
-  const fs::path p(out);
-  if (fs::is_directory(p)) throw InputError("--out: is a folder; give the OBJ file to write", out);
-  const fs::path parent = p.parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw InputError("--out: no such folder '" + parent.string() + "'");
-}
-
 // The scene to settle: the given scene file, or the anatomical defaults on the given head.
 SceneDesc poseScene(const PoseArgs& a) {
-  const bool headGiven = a.headOption->count() + a.landmarksOption->count() + a.unitsOption->count() > 0;
   if (!a.scene.empty()) {
-    if (headGiven)
+    if (a.head.anyGiven())
       throw InputError("--head, --landmarks and --units choose the head without --scene; the scene names its own "
                        "head (keys head.obj, head.landmarks, head.units)");
     SceneDesc scene = readScene(a.scene);
@@ -148,7 +133,7 @@ SceneDesc poseScene(const PoseArgs& a) {
                        a.scene);
     return scene;
   }
-  const HeadFiles files = resolveHeadArgument(a.head, a.landmarks, "", a.units);
+  const HeadFiles files = headFiles(a.head);
   SceneDesc scene;
   scene.name = "pose";
   scene.head.obj = files.obj;
@@ -190,7 +175,7 @@ int runPose(const PoseArgs& a) {
   const Vec3 headPose = parseHeadPose(a.headPose);
   const JawPose jaw = parseJaw(a.jaw);
   const std::vector<Setting> sets = parseSets(a.sets);
-  checkOutputPath(a.out);
+  checkOutputFile(a.out, "--out", "OBJ file");
   SceneDesc scene = poseScene(a);
   if (!a.contact.empty()) scene.anatomical.contact = a.contact == "on";
   const SceneInputs inputs = readSceneInputs(scene);
@@ -330,10 +315,7 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
   CLI::App* sub = app.add_subcommand(
       "pose", "Settle the anatomical face under fixed activations and gravity (its static equilibrium) and "
               "write the shape as OBJ in the head's vertex order and units");
-  args->headOption = sub->add_option("--head", args->head, "'default', an OBJ file (with --landmarks), or a folder "
-                                                            "like ../shared/data/ict (default: default)");
-  args->landmarksOption = sub->add_option("--landmarks", args->landmarks, "landmark file of an OBJ head (docs/heads.md)");
-  args->unitsOption = sub->add_option("--units", args->units, "the OBJ head's length unit, m, mm or cm (default cm)");
+  addHeadOptions(*sub, args->head);
   sub->add_option("--scene", args->scene, "a scene file: its head, muscles and settings (not with the head options)");
   sub->add_option("--set", args->sets, "NAME=VALUE: a muscle's activation in [0, 1] (repeatable)")
       ->expected(1)
@@ -346,9 +328,9 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--jaw", args->jaw, "OPEN_DEG[,FORWARD_CM[,LATERAL_CM]]: the jaw's opening (degrees, [0, 40]), "
                                       "protrusion ([-0.5, 1.5] cm) and lateral shift ([-1.5, 1.5] cm, + subject's left)");
   sub->add_option("--out", args->out, "write the settled shape as OBJ (its folder must exist)");
-  sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
-                                             "~/.cache/myoshell)");
-  sub->add_flag("--json", args->json, "print activations, max_displacement_cm/_vertex and seconds as JSON");
+  addCacheOption(*sub, args->cacheDir);
+  addJsonFlag(*sub, args->json);
+  addThreadsOption(*sub);
   return [args] { return runPose(*args); };
 });
 

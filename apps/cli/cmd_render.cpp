@@ -12,17 +12,20 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "resources.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/parallel.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/face_picture.h"
 #include "myoshell/render/png.h"
 #include "myoshell/render/video.h"
 #include "myoshell/thesis/simulator.h"
+#include "option_checks.h"
 #include "scene_runner.h"
 
 namespace myo::cli {
@@ -125,6 +128,7 @@ int runRender(const RenderCommandOptions& opt) {
   const auto [width, height] = parseSize(opt.size);
   FaceOverlays overlays = parseOverlays(opt.overlays);
   const ViewPreset view = parseView(opt.view);
+  checkOutputFolder(opt.outDir, "--out");
   const SceneDesc scene = readScene(opt.scene);
   if (overlays.roi && scene.modelKind != FaceModelKind::Thesis)
     throw InputError("--overlay roi: the muscles' ROIs are model: thesis only (the scene's model is " +
@@ -132,7 +136,6 @@ int runRender(const RenderCommandOptions& opt) {
   const int frameCount = ScenePlayer::frameCount(scene.duration, scene.fps);
   const FrameRange range = parseFrames(opt.frames, frameCount);
   const fs::path out(opt.outDir);
-  if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
 
   if (opt.video && !ffmpegAvailable())
     throw InputError("--video needs the ffmpeg program, which is not on PATH (scripts/setup installs it)");
@@ -245,14 +248,15 @@ const CommandRegistrar renderRegistrar("render", [](CLI::App& app) {
   sub->add_option("--view", opt->view, "front, three-quarter, profile or back")->capture_default_str();
   sub->add_option("--overlay", opt->overlays, "Comma-separated: muscles, roi, displacement, pins")->delimiter(',');
   sub->add_option("--color-scale", opt->colorScale, "Displacement colour scale [0, CM] (default: the run's largest |u|)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   sub->add_option("--sheet", opt->sheet, "About N evenly spaced frames on the contact sheet (0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(wholeAtLeast(0))
       ->capture_default_str();
   sub->add_flag("--video", opt->video, "Also write DIR/<scene>.mp4 and DIR/<scene>.gif of the drawn frames (ffmpeg)");
   sub->add_flag("--software", opt->software, "Use the software renderer even where OpenGL is available");
-  sub->add_option("--cache", opt->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
-  sub->add_flag("--json", opt->json, "Print a JSON summary");
+  addCacheOption(*sub, opt->cacheDir);
+  addJsonFlag(*sub, opt->json);
+  addThreadsOption(*sub);
   return std::function<int()>([opt] { return runRender(*opt); });
 });
 

@@ -14,6 +14,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/io/fit_head.h"
@@ -24,21 +25,21 @@ namespace myo::cli {
 namespace {
 
 struct RigArgs {
-  FitHeadOptions head;
+  HeadOptions head;
+  std::string library = "builtin";
   std::string map;
   std::string out;
   std::string cacheDir;
   bool json = false;
-  const CLI::Option* unitsOption = nullptr;
 };
 
 int runRig(RigArgs& a) {
   const Stopwatch total;
   checkRigOutputPath(a.out);
-  a.head.headGiven = true;
-  a.head.unitsGiven = a.unitsOption->count() > 0;
-  const SceneInputs inputs = fitHeadInputs(a.head, nullptr, "rig");
-  const RetargetMap map = readRigMap(a.map, inputs.muscles, a.head.library);
+  FitHeadOptions headOptions = fitHeadOptions(a.head, a.library);
+  headOptions.headGiven = true;  // no rig to take a base from: the head is --head's, 'default' when not given
+  const SceneInputs inputs = fitHeadInputs(headOptions, nullptr, "rig");
+  const RetargetMap map = readRigMap(a.map, inputs.muscles, a.library);
   const auto cache = openBasisCache(a.cacheDir);
   const MadeRig made = makeArkitRig(inputs, map, cache.get());
   writeRigGlb(a.out, made.glb);
@@ -75,16 +76,13 @@ static CommandRegistrar reg("rig", [](CLI::App& app) -> std::function<int()> {
   CLI::App* sub = app.add_subcommand(
       "rig", "Make an ARKit-named glTF blendshape rig for a head by settling each shape of a retargeting map on its "
              "anatomical face (docs/fitting.md)");
-  sub->add_option("--head", args->head.head, "'default', an OBJ file (with --landmarks), or a folder like "
-                                              "../shared/data/ict (default: default)");
-  sub->add_option("--landmarks", args->head.landmarks, "landmark file of an OBJ head (docs/heads.md)");
-  args->unitsOption = sub->add_option("--units", args->head.units, "the OBJ head's length unit, m, mm or cm (default cm)");
+  addHeadOptions(*sub, args->head);
   sub->add_option("--map", args->map, "a retargeting map (fit-rig --out; e.g. assets/retarget/arkit_ict.json)")->required();
   sub->add_option("--out", args->out, "the rig to write (.glb; its folder must exist)")->required();
-  sub->add_option("--library", args->head.library, "muscles: builtin (the thesis's eight, placed anatomically; default), face (the whole face, docs/muscles.md) or a library file");
-  sub->add_option("--cache", args->cacheDir, "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
-                                             "~/.cache/myoshell)");
-  sub->add_flag("--json", args->json, "print each shape's largest displacement and the timings as JSON");
+  addLibraryOption(*sub, args->library);
+  addCacheOption(*sub, args->cacheDir);
+  addJsonFlag(*sub, args->json);
+  addThreadsOption(*sub);
   return [args] { return runRig(*args); };
 });
 

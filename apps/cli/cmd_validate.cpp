@@ -10,6 +10,7 @@
 
 #include "job_report.h"
 #include "command.h"
+#include "common_options.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/verify/validation.h"
 
@@ -83,7 +84,7 @@ static CommandRegistrar reg("validate", [](CLI::App& app) {
   auto* sub = app.add_subcommand(
       "validate", "Accuracy cases: modal warping and linear modal vs the full-space nonlinear reference and beam theory");
   auto args = std::make_shared<ValidateArgs>();
-  sub->add_flag("--json", args->json, "Print machine-readable JSON instead of a report");
+  addJsonFlag(*sub, args->json);
   sub->add_flag("--quick", args->quick, "Coarse mesh only and one period of dynamics (a few seconds)");
   sub->add_flag("--no-dynamic", args->noDynamic, "Skip the released-tip dynamic case (the slowest)");
   sub->add_option("--modes", args->modes, "Modes d of the reduced bases (default 20)");

@@ -8,7 +8,7 @@
 
 namespace myo::cli {
 
-// Exit codes of the CLI (documented in the README).
+// Exit codes of the CLI (docs/cli.md). An interrupted run exits 128 + the signal (130, 143).
 enum ExitCode : int {
   kExitOk = 0,
   kExitFailure = 1,     // a numerical or run-time failure

@@ -11,7 +11,6 @@
 #include "command.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/io_error.h"
-#include "myoshell/core/parallel.h"
 
 namespace myo::cli {
 
@@ -28,9 +27,24 @@ CommandRegistrar::CommandRegistrar(const std::string& name, CommandSetup setup) 
 
 }  // namespace myo::cli
 
+namespace {
+
+// A command-line fault (an unknown option, a missing argument, a value out of range) on the one
+// `myoshell: error:` line every other error uses, pointing at the command's --help.
+int parseFailure(const CLI::ParseError& e, const std::string& command) {
+  std::string what = e.what();
+  if (!what.empty() && what.back() == '\n') what.pop_back();
+  fmt::print(stderr, "myoshell: error: {} (see myoshell {}--help)\n", what, command.empty() ? "" : command + " ");
+  return myo::cli::kExitBadInput;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace myo::cli;
-  CLI::App app{"myoshell: muscle-driven facial animation with discrete shells and modal warping"};
+  // Named here, not after argv[0]: --help prints the same usage lines however it is started
+  // (docs/cli.md holds them, tests/cli/cli_doc_test.cpp compares).
+  CLI::App app{"myoshell: muscle-driven facial animation with discrete shells and modal warping", "myoshell"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "myoshell 0.1.0");
 
@@ -45,21 +59,10 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
       if (std::find(before.begin(), before.end(), sub) == before.end()) runners[sub] = run;
   }
-  // --threads on the commands that build a face (its eigen-solves and static responses) or fit many
-  // targets: every hardware thread by default. The output is the same bytes for every N
-  // (core/parallel.h); `bench` measures the single-threaded step and keeps its own option.
-  int threads = 0;
-  const std::vector<std::string> threaded{"drive", "fit", "fit-rig", "pose", "render", "rig", "run"};
-  auto isThreaded = [&](const CLI::App* sub) { return std::find(threaded.begin(), threaded.end(), sub->get_name()) != threaded.end(); };
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
-    if (isThreaded(sub))
-      sub->add_option("--threads", threads,
-                      "Threads for the precompute and independent work (0 = every hardware thread, the default; "
-                      "the output does not depend on it)")
-          ->check(CLI::NonNegativeNumber);
 
   // A first word that is neither an option nor a command: say so by name (CLI11 would only say
   // that a subcommand is required).
+  std::string command;
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     for (const auto& [name, setup] : commands) known |= name == argv[1];
@@ -67,20 +70,22 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "myoshell: error: unknown command '{}' (see myoshell --help)\n", argv[1]);
       return kExitBadInput;
     }
+    command = argv[1];
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed on stdout
+    return parseFailure(e, command);
+  } catch (const myo::InputError& e) {  // a setting applied while parsing (addThreadsOption)
+    fmt::print(stderr, "myoshell: error: {}\n", e.what());
+    return kExitBadInput;
   }
 
   try {
     for (CLI::App* sub : app.get_subcommands())
-      if (isThreaded(sub)) myo::setParallelThreads(threads);  // the others keep one thread
-    for (CLI::App* sub : app.get_subcommands())
       if (auto it = runners.find(sub); it != runners.end()) return it->second();
-    fmt::print(stderr, "myoshell: no command given (see --help)\n");
+    fmt::print(stderr, "myoshell: error: no command given (see myoshell --help)\n");
     return kExitBadInput;
   } catch (const myo::InputError& e) {
     fmt::print(stderr, "myoshell: error: {}\n", e.what());

@@ -116,16 +116,22 @@ ResolvedPath shippedScenesDir() {
 }
 
 ResolvedPath dataDir(const std::string& option, const EnvLookup& env) {
-  if (!option.empty()) return {option, "--data"};
-  if (const char* d = nonEmpty(env("MYOSHELL_DATA"))) return {d, "$MYOSHELL_DATA"};
+  if (!option.empty()) return {fs::absolute(option), "--data"};
+  if (const char* d = nonEmpty(env("MYOSHELL_DATA"))) return {fs::absolute(d), "$MYOSHELL_DATA"};
   fs::path exeDir;
   if (runFromBuildTree(&exeDir)) return {(fs::path(MYO_SHARED_TREE) / "data").lexically_normal(), "source tree's ../shared/data"};
   return {{}, "none (give --data DIR or set MYOSHELL_DATA)"};
 }
 
+ResolvedPath thesisScenesDir(const std::string& option) {
+  if (!option.empty()) return {fs::absolute(option), "--scenes"};
+  const ResolvedPath shipped = shippedScenesDir();
+  return {shipped.dir / "thesis", shipped.source};
+}
+
 ResolvedPath cacheDir(const std::string& option, const EnvLookup& env) {
-  if (!option.empty()) return {option, "--cache"};
-  if (const char* d = nonEmpty(env("MYOSHELL_CACHE"))) return {d, "$MYOSHELL_CACHE"};
+  if (!option.empty()) return {fs::absolute(option), "--cache"};
+  if (const char* d = nonEmpty(env("MYOSHELL_CACHE"))) return {fs::absolute(d), "$MYOSHELL_CACHE"};
   // The XDG base-directory spec: a relative XDG_CACHE_HOME is invalid and ignored.
   if (const char* x = nonEmpty(env("XDG_CACHE_HOME")); x && fs::path(x).is_absolute())
     return {fs::path(x) / "myoshell", "$XDG_CACHE_HOME"};

@@ -7,6 +7,9 @@
 //    ../shared/data; installed, none.
 //  - the basis cache: --cache DIR, else $MYOSHELL_CACHE, else $XDG_CACHE_HOME/myoshell (an
 //    absolute XDG_CACHE_HOME only, as the XDG spec says), else ~/.cache/myoshell.
+// A folder named by an option or a variable is relative to the current directory, and resolved
+// to an absolute path here: the commands re-root scene-relative paths at other folders, which must
+// not capture it (`bench --data ../shared/data` run from the source tree).
 // docs/paths.md describes them; `myoshell paths` prints what they resolve to.
 #pragma once
 
@@ -36,6 +39,8 @@ struct ResolvedPath {
 ResolvedPath shippedScenesDir();
 // The data folder: `option` (--data) if not empty, else $MYOSHELL_DATA, else the build tree's default.
 ResolvedPath dataDir(const std::string& option, const EnvLookup& env = processEnv());
+// The thesis scenes of bench and figures: `option` (--scenes) if not empty, else the shipped scenes/thesis.
+ResolvedPath thesisScenesDir(const std::string& option);
 // The basis cache folder by the precedence above; `option` is --cache ("" when not given).
 ResolvedPath cacheDir(const std::string& option, const EnvLookup& env = processEnv());
 

@@ -25,6 +25,7 @@
 #include "myoshell/head/face_frame.h"
 #include "myoshell/io/animation_exporter.h"
 #include "myoshell/io/output_manifest.h"
+#include "myoshell/io/output_paths.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/png.h"
@@ -46,7 +47,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   SceneDesc scene = sceneIn;
   scene.model.measureLoadParticipation = opt.diagnostics;
   const fs::path out(opt.outDir);
-  if (fs::exists(out) && !fs::is_directory(out)) throw InputError("output path exists and is not a folder", out.string());
+  checkOutputFolder(opt.outDir, "--out");
   const ExportFormats formats = parseExportFormats(opt.formats);  // before any work: a typo fails at once
   const ViewPreset view = parseView(opt.view);
   const FaceFraming framing = parseFraming(opt.framing);

@@ -11,6 +11,7 @@
 #include "myoshell/core/parallel.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/core/errors.h"
+#include "option_checks.h"  // apps/cli: the number checks of the CLI's options
 #include "resources.h"  // apps/cli: where the cache is
 #include "viewer_app.h"
 #include "viewer_session.h"
@@ -47,7 +48,8 @@ static std::string meshNotSceneMessage(const std::string& path) {
 }
 
 int main(int argc, char** argv) {
-  CLI::App app{"myoshell-view: a live face with a slider per muscle"};
+  // Named here, not after argv[0]: --help reads the same however it is started (docs/cli.md).
+  CLI::App app{"myoshell-view: a live face with a slider per muscle", "myoshell-view"};
   std::string scenePath, cacheDir, size = "1280x800";
   myo::viewer::ViewerOptions options;
   app.add_option("scene", scenePath, "scene file (JSON or YAML), or a performance (.csv: OpenFace or Live Link Face; "
@@ -55,22 +57,23 @@ int main(int argc, char** argv) {
                                     "its eight muscles");
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
   app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");
-  app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(CLI::Range(0, 100000));
+  app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(myo::cli::wholeIn(0, 100000));
   app.add_option("--msaa", options.samples, "multisamples per pixel (default: 4 on a GPU, 0 on llvmpipe)")
-      ->check(CLI::Range(0, 16));
+      ->check(myo::cli::wholeIn(0, 16));
   app.add_flag("--stay", options.stay, "keep the window open after --script");
   app.add_option("--size", size, "window size WxH in pixels (default 1280x800)");
   app.add_option("--cache", cacheDir, "folder of cached modal bases (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
   int threads = 0;
   app.add_option("--threads", threads,
                  "threads for building the face (0 = every core, the default); the live step runs on one")
-      ->check(CLI::NonNegativeNumber);
+      ->check(myo::cli::wholeAtLeast(0, "0 = every core"));
   app.set_version_flag("--version", "myoshell-view 0.1.0");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    fmt::print(stderr, "myoshell-view: error: {} (see myoshell-view --help)\n", e.what());
+    return kExitBadInput;
   }
   int w = 0, h = 0;
   char x = 0;

@@ -253,5 +253,22 @@ TEST(DriveCli, BadArgumentsExitTwoBeforeAnyWork) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A window that is empty or reversed is an error naming the options, before the take is read
+// (a negative --end once meant "to the last frame" and played the whole take).
+TEST(DriveCli, AnEmptyOrReversedWindowIsRefused) {
+  const fs::path out = fs::temp_directory_path() / ("myo_drive_window_" + std::to_string(::getpid()));
+  const std::string take = "'" + (test::sourceDir() / "tests" / "bad_inputs" / "performance_nan.csv").string() + "'";
+  auto r = test::runCli("drive " + take + " --end -1 --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_EQ(r.err, "myoshell: error: --end: must be > 0, got -1 (see myoshell drive --help)\n");
+  r = test::runCli("drive " + take + " --start 2 --end 2 --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--end 2 must lie after --start 2"), std::string::npos) << r.err;
+  r = test::runCli("drive " + take + " --start -0.5 --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--start: must be ≥ 0, got -0.5"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
 }  // namespace myo
