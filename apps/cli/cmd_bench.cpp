@@ -664,7 +664,7 @@ const CommandRegistrar benchRegistrar("bench", [](CLI::App& app) {
   addCacheOption(*sub, opt->cacheDir);
   addDataOption(*sub, opt->dataDir);
   sub->add_option("--heads", opt->heads, "Heads to run: default, ict (comma-separated)")->capture_default_str();
-  sub->add_option("--rows", opt->rows, "Only these row ids (comma-separated; see --json output)");
+  sub->add_option("--rows", opt->rows, "Only these row ids (comma-separated; see --json output; default: all)");
   sub->add_option("--reference-steps", opt->referenceSteps, "Implicit-Euler steps timed for the reference solver")
       ->check(wholeAtLeast(1))
       ->capture_default_str();

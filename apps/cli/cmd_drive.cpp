@@ -94,7 +94,7 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--framing", a->run.framing, "--video frames the face (its landmarks), head (crown to chin) or all")
       ->default_val("face");
   sub->add_flag("--head-motion", a->headMotion, "Turn the exported frames with the performance's head rotation");
-  sub->add_option("--size", a->run.size, "Picture size, pixels")->check(wholeIn(64, 4096));
+  sub->add_option("--size", a->run.size, "Picture size, pixels")->check(wholeIn(64, 4096))->capture_default_str();
   sub->add_flag("--software", a->run.software, "Draw with the software renderer even where OpenGL is available");
   addCacheOption(*sub, a->run.cacheDir);
   addJsonFlag(*sub, a->run.json);

@@ -459,7 +459,7 @@ const CommandRegistrar figuresRegistrar("figures", [](CLI::App& app) {
   addScenesOption(*sub, opt->scenesDir);
   addCacheOption(*sub, opt->cacheDir);
   addDataOption(*sub, opt->dataDir);
-  sub->add_option("--only", opt->only, "Only these figures (comma-separated: fig17, fig18, fig20, fig22, ...)");
+  sub->add_option("--only", opt->only, "Only these figures (comma-separated: fig17, fig18, fig20, fig22, fig23, fig25, fig26, fig27, anatomical; default: all)");
   sub->add_option("--size", opt->size, "Tile size, pixels")->check(wholeIn(64, 2048))->capture_default_str();
   sub->add_flag("--software", opt->software, "Draw with the software renderer even where OpenGL is available");
   addJsonFlag(*sub, opt->json);

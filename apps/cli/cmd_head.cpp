@@ -216,7 +216,7 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   addJsonFlag(*sub, args->json);
   sub->add_option("--render", args->render, "write a PNG picture with the landmarks marked");
   sub->add_option("--view", args->view, "front, three-quarter, profile or back")->capture_default_str();
-  sub->add_option("--size", args->size, "picture size in pixels")->check(wholeIn(64, 4096));
+  sub->add_option("--size", args->size, "picture size in pixels")->check(wholeIn(64, 4096))->capture_default_str();
   sub->add_flag("--wire", args->wire, "draw the triangle edges");
   sub->add_flag("--pins-marked", args->markPins, "mark the gravity pins (green)");
   sub->add_flag("--no-landmarks", args->noLandmarks, "do not mark the landmarks");

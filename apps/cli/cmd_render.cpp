@@ -246,7 +246,7 @@ const CommandRegistrar renderRegistrar("render", [](CLI::App& app) {
   sub->add_option("--frames", opt->frames, "Frames A:B or A:B:STEP (frame numbers, B included; default all)");
   sub->add_option("--size", opt->size, "Picture size WxH, pixels")->capture_default_str();
   sub->add_option("--view", opt->view, "front, three-quarter, profile or back")->capture_default_str();
-  sub->add_option("--overlay", opt->overlays, "Comma-separated: muscles, roi, displacement, pins")->delimiter(',');
+  sub->add_option("--overlay", opt->overlays, "Comma-separated: muscles, roi, displacement, pins (default: none)")->delimiter(',');
   sub->add_option("--color-scale", opt->colorScale, "Displacement colour scale [0, CM] (default: the run's largest |u|)")
       ->check(numberAbove(0));
   sub->add_option("--sheet", opt->sheet, "About N evenly spaced frames on the contact sheet (0: none)")

@@ -28,8 +28,8 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   sub->add_flag("--render", opt->render, "Write PNG frames (DIR/png/) and a contact sheet");
-  sub->add_option("--render-every", opt->renderEvery, "Render every N-th frame")->check(wholeAtLeast(1));
-  sub->add_option("--size", opt->size, "Picture size, pixels")->check(wholeIn(64, 4096));
+  sub->add_option("--render-every", opt->renderEvery, "Render every N-th frame")->check(wholeAtLeast(1))->capture_default_str();
+  sub->add_option("--size", opt->size, "Picture size, pixels")->check(wholeIn(64, 4096))->capture_default_str();
   sub->add_option("--view", opt->view, "front, three-quarter, profile or back")->capture_default_str();
   sub->add_flag("--muscles", opt->showMuscles, "Show the muscles through the skin");
   sub->add_flag("--video", opt->video, "Write DIR/<name>.mp4 and DIR/<name>.gif of every frame (ffmpeg)");
@@ -37,7 +37,7 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_flag("--diagnostics", opt->diagnostics,
                 "Also measure each thesis channel's load participation for stats.json (a sparse factorisation per "
                 "channel: slower start)");
-  sub->add_option("--color-scale", opt->colorScale, "Colour the skin by displacement on [0, CM]")->check(numberAtLeast(0));
+  sub->add_option("--color-scale", opt->colorScale, "Colour the skin by displacement on [0, CM] (default 0: not coloured)")->check(numberAtLeast(0));
   return std::function<int()>([opt] {
     checkOutputFolder(opt->outDir, "--out");  // before the scene is read
     return runScene(readScene(opt->scene), *opt);
