@@ -22,16 +22,16 @@ struct CliResult {
   std::string merged;  // stdout followed by stderr
 };
 
-// Runs `myoshell ARGS` through the shell (ARGS is shell syntax: quote paths with spaces), in
+// Runs `PROGRAM ARGS` through the shell (ARGS is shell syntax: quote paths with spaces), in
 // `workDir` when given, after `prefix` (shell syntax too, e.g. "env -u HOME MYOSHELL_CACHE=/c").
-inline CliResult runCli(const std::string& args, const std::filesystem::path& workDir = {},
-                        const std::string& prefix = {}) {
+inline CliResult runProgram(const std::string& program, const std::string& args,
+                            const std::filesystem::path& workDir = {}, const std::string& prefix = {}) {
   namespace fs = std::filesystem;
   static std::atomic<int> counter{0};
   const fs::path base = fs::temp_directory_path() /
                         ("myo_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   const fs::path outFile = base.string() + ".out", errFile = base.string() + ".err";
-  std::string cmd = prefix + " '" + cliPath() + "' " + args + " >'" + outFile.string() + "' 2>'" + errFile.string() + "'";
+  std::string cmd = prefix + " '" + program + "' " + args + " >'" + outFile.string() + "' 2>'" + errFile.string() + "'";
   if (!workDir.empty()) cmd = "cd '" + workDir.string() + "' && " + cmd;
   const int status = std::system(cmd.c_str());
   auto slurp = [](const fs::path& p) {
@@ -48,6 +48,12 @@ inline CliResult runCli(const std::string& args, const std::filesystem::path& wo
   fs::remove(outFile);
   fs::remove(errFile);
   return r;
+}
+
+// Runs `myoshell ARGS` (runProgram).
+inline CliResult runCli(const std::string& args, const std::filesystem::path& workDir = {},
+                        const std::string& prefix = {}) {
+  return runProgram(cliPath(), args, workDir, prefix);
 }
 
 }  // namespace myo::test
