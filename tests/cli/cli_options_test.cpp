@@ -95,6 +95,10 @@ TEST(CliOptions, ANegativeThreadCountIsOneClearLine) {
         << c;
     EXPECT_EQ(r.out, "");
   }
+  // The viewer checks its --threads the same way, on its own error line.
+  const test::CliResult viewer = test::runProgram(MYO_VIEWER_PATH, "--threads -1");
+  EXPECT_EQ(viewer.exitCode, 2);
+  EXPECT_EQ(viewer.err, "myoshell-view: error: --threads: must be ≥ 0 (0 = every core), got -1 (see myoshell-view --help)\n");
   const test::CliResult word = test::runCli("rig --map m.json --out r.glb --threads many");
   EXPECT_EQ(word.exitCode, 2);
   EXPECT_THAT(word.err, HasSubstr("--threads: must be a whole number ≥ 0 (0 = every core), got 'many'"));
