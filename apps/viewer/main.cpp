@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   myo::viewer::ViewerOptions options;
   app.add_option("scene", scenePath, "scene file (JSON or YAML), or a performance (.csv: OpenFace or Live Link Face; "
                                     ".jsonl: MediaPipe) played on the built-in head; default: the built-in head and "
-                                    "its eight muscles");
+                                    "its ten muscles (the thesis's eight and the lips' two rings)");
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
   app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");
   app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(myo::cli::wholeIn(0, 100000));
