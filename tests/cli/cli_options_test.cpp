@@ -67,8 +67,8 @@ TEST(CliOptions, SharedOptionsReadTheSameInEveryCommand) {
     }
     // --library: the same words; each command keeps its own default (drive: face).
     if (const std::string line = helpLine(h, "--library"); !line.empty())
-      EXPECT_THAT(line, HasSubstr("Muscles: builtin (the thesis's eight, placed anatomically), face (the whole face, "
-                                  "docs/muscles.md) or a library file; default: " +
+      EXPECT_THAT(line, HasSubstr("Muscles: builtin (the built-in ten: the thesis's eight, placed anatomically, and the lips' "
+                                  "two rings), face (the whole face's 39, docs/muscles.md) or a library file; default: " +
                                   std::string(c == "drive" ? "face" : "builtin")))
           << c;
     if (const std::string line = helpLine(h, "--head"); !line.empty()) {

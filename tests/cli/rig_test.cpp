@@ -14,6 +14,7 @@
 #include <string>
 
 #include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/facs_route.h"
 #include "myoshell/fit/retarget_map.h"
 #include "myoshell/head/head.h"
 #include "myoshell/io/retarget_map_file.h"
@@ -169,18 +170,35 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
 }
 
 TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFitted) {
-  std::vector<std::string> muscles;
-  for (const MuscleDef& d : anatomicalBuiltinDefs()) muscles.push_back(d.name);
-  const RetargetMap map = readRetargetMapFile((test::sourceDir() / "assets/retarget/arkit_ict.json").string(), muscles);
-  int reachable = 0;
-  for (const RetargetShape& s : map.shapes) {
-    EXPECT_EQ(s.reachable, !unreachableReason(s.name).has_value()) << s.name;
-    if (!s.reachable) continue;
-    ++reachable;
-    EXPECT_TRUE(s.fit.has_value()) << s.name;
+  // Each shipped map: its library's muscles only; the rig's shapes fitted (with figures), the names
+  // the rig lacks derived from their FACS units (no figures), the unreachable ones with a reason.
+  for (const auto& [file, library] : {std::pair<std::string, std::string>{"arkit_ict.json", "builtin"}, {"arkit_ict_face.json", "face"}}) {
+    std::vector<std::string> muscles;
+    for (const MuscleDef& d : library == "face" ? faceMuscleDefs() : anatomicalBuiltinDefs()) muscles.push_back(d.name);
+    const RetargetMap map = readRetargetMapFile((test::sourceDir() / "assets/retarget" / file).string(), muscles);
+    EXPECT_EQ(map.library, library) << file;
+    int fitted = 0, derived = 0;
+    for (const RetargetShape& s : map.shapes) {
+      EXPECT_EQ(s.reachable, !unreachableReason(s.name).has_value()) << s.name;
+      if (!s.reachable) continue;
+      if (s.source == RetargetSource::Fitted) {
+        ++fitted;
+        EXPECT_TRUE(s.fit.has_value()) << file << " " << s.name;
+      } else {
+        ++derived;
+        EXPECT_FALSE(s.fit.has_value()) << file << " " << s.name;
+        const std::optional<RetargetShape> d = derivedRetargetShape(builtinFacsMap(), s.name, muscles);
+        ASSERT_TRUE(d.has_value()) << s.name;
+        EXPECT_EQ(s.activations, d->activations) << file << " " << s.name;
+      }
+    }
+    // The rig's 37 ICT shapes are 35 ARKit names (two pairs of halves); 8 eye rotations and cheekPuff are unreachable.
+    EXPECT_EQ(fitted, 26) << file;
+    // The 16 names ICT's rig lacks that the FACS map makes (tongueOut is unreachable); the built-in
+    // library's ten muscles make 7 of them.
+    EXPECT_EQ(derived, library == "face" ? 16 : 7) << file;
+    if (library == "face") EXPECT_EQ(map.shapes.size(), 52u);
   }
-  // The rig's 37 ICT shapes are 35 ARKit names (two pairs of halves); 8 eye rotations and cheekPuff are unreachable.
-  EXPECT_EQ(reachable, 26);
 }
 
 // The shipped whole-face map has jaw shapes: jawOpen opens the jaw (its pose, 19°, carries the

@@ -15,6 +15,8 @@
 
 #include "myoshell/core/errors.h"
 #include "myoshell/fit/activation_fit.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/facs_route.h"
 #include "myoshell/fit/retarget_map.h"
 #include "myoshell/fit/rig_fit.h"
 #include "myoshell/head/jaw.h"
@@ -339,11 +341,42 @@ TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsA
   FitSettings plain;  // λ = 0: the exact activations come back
   const RigFit fit = fitRig(*skin_, rig, plain);
 
-  ASSERT_EQ(fit.map.shapes.size(), 5u);  // ARKit order: eyeLookInLeft, jawOpen, mouthClose, mouthSmileLeft, browInnerUp
-  EXPECT_EQ(fit.map.shapes[0].name, "eyeLookInLeft");
-  EXPECT_FALSE(fit.map.shapes[0].reachable);
-  EXPECT_EQ(fit.map.shapes[0].reason, *unreachableReason("eyeLookInLeft"));
+  // The rig's five ARKit shapes (eyeLookInLeft, jawOpen, mouthClose, mouthSmileLeft, browInnerUp)
+  // are fitted; every other ARKit name is unreachable with its reason or derived from its FACS
+  // units for this skin's muscles, all in ARKit order.
+  ASSERT_EQ(fit.shapes.size(), 5u);
+  EXPECT_EQ(fit.shapes[0].name, "eyeLookInLeft");
   EXPECT_FALSE(fit.shapes[0].fit.has_value());
+  std::vector<std::string> skinMuscles;
+  for (const auto& m : skin_->muscles()) skinMuscles.push_back(m.muscle.def.name);
+  const std::vector<std::string> fitted = {"jawOpen", "mouthClose", "mouthSmileLeft", "browInnerUp"};
+  size_t at = 0;
+  std::vector<std::string> derived;
+  for (const std::string& name : arkitNames()) {
+    const RetargetShape* s = fit.map.find(name);
+    const std::optional<RetargetShape> fromFacs = derivedRetargetShape(builtinFacsMap(), name, skinMuscles);
+    if (const auto reason = unreachableReason(name)) {
+      ASSERT_NE(s, nullptr) << name;
+      EXPECT_FALSE(s->reachable) << name;
+      EXPECT_EQ(s->reason, *reason);
+    } else if (std::find(fitted.begin(), fitted.end(), name) != fitted.end()) {
+      ASSERT_NE(s, nullptr) << name;
+      EXPECT_EQ(s->source, RetargetSource::Fitted) << name;
+    } else if (fromFacs) {
+      ASSERT_NE(s, nullptr) << name;
+      EXPECT_EQ(s->source, RetargetSource::Derived) << name;
+      EXPECT_EQ(s->activations, fromFacs->activations) << name;
+      EXPECT_FALSE(s->fit.has_value()) << name;
+      derived.push_back(name);
+    } else {
+      EXPECT_EQ(s, nullptr) << name << ": nothing of this skin makes it";
+      continue;
+    }
+    EXPECT_EQ(fit.map.shapes[at++].name, name) << "ARKit order";
+  }
+  EXPECT_EQ(at, fit.map.shapes.size());
+  EXPECT_EQ(fit.derived, derived);
+  EXPECT_FALSE(derived.empty());
   EXPECT_EQ(fit.skipped, std::vector<std::string>{"myStudioSneer"});
   auto value = [&](const std::string& shapeName, const std::string& muscle) {
     for (const auto& [name, v] : fit.map.find(shapeName)->activations)
