@@ -1,4 +1,4 @@
-// `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--scene S]
+// `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--library builtin|face|FILE] [--scene S]
 // [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--jaw OPEN[,FORWARD[,LATERAL]]]
 // [--contact on|off] [--out SHAPE.obj] [--cache DIR] [--json]`:
 // the settled shape of the anatomical face under fixed activations and gravity — the static
@@ -47,6 +47,8 @@ namespace fs = std::filesystem;
 
 struct PoseArgs {
   HeadOptions head;
+  std::string library = "builtin";  // --library: the muscles without --scene
+  CLI::Option* libraryOption = nullptr;
   std::string scene;
   std::vector<std::string> sets;  // NAME=VALUE, in the order given
   std::string gravity;            // "on", "off", or "" (on; a scene's own switch with --scene)
@@ -126,6 +128,8 @@ SceneDesc poseScene(const PoseArgs& a) {
     if (a.head.anyGiven())
       throw InputError("--head, --landmarks and --units choose the head without --scene; the scene names its own "
                        "head (keys head.obj, head.landmarks, head.units)");
+    if (a.libraryOption && a.libraryOption->count() > 0)
+      throw InputError("--library chooses the muscles without --scene; the scene names its own (key muscles.library)");
     SceneDesc scene = readScene(a.scene);
     if (scene.modelKind != FaceModelKind::Anatomical)
       throw InputError("pose settles the anatomical model; this scene's model is " +
@@ -139,6 +143,8 @@ SceneDesc poseScene(const PoseArgs& a) {
   scene.head.obj = files.obj;
   scene.head.landmarks = files.landmarks;
   scene.head.units = files.unit;
+  // A library file is read from where the command runs (a scene's would be read beside the scene).
+  scene.muscleLibrary = a.library == "builtin" || a.library == "face" ? a.library : std::filesystem::absolute(a.library).string();
   return scene;
 }
 
@@ -316,6 +322,8 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
       "pose", "Settle the anatomical face under fixed activations and gravity (its static equilibrium) and "
               "write the shape as OBJ in the head's vertex order and units");
   addHeadOptions(*sub, args->head);
+  addLibraryOption(*sub, args->library);
+  args->libraryOption = sub->get_option("--library");
   sub->add_option("--scene", args->scene, "a scene file: its head, muscles and settings (not with the head options)");
   sub->add_option("--set", args->sets, "NAME=VALUE: a muscle's activation in [0, 1] (repeatable)")
       ->expected(1)

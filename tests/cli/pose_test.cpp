@@ -295,5 +295,36 @@ TEST(Pose, SceneMusclesAreTheModels) {
                    "muscles: zygomaticus_major_left)\n");
 }
 
+
+// --library: the whole face's muscles on the built-in head without a scene. The medial frontalis is
+// only in the whole face: it lifts the skin above the brows (+y of the built-in head, cm), and the
+// built-in library does not know it.
+TEST(Pose, LibraryFaceGivesTheWholeFacesMuscles) {
+  const fs::path dir = scratch("library");
+  const test::CliResult face = test::runCli("pose --library face --set frontalis_medial_left=1 --gravity off --json --out " +
+                                            quoted(dir / "brow.obj"));
+  ASSERT_EQ(face.exitCode, 0) << face.merged;
+  const nlohmann::json j = nlohmann::json::parse(face.out);
+  EXPECT_GT(j.at("max_displacement_cm").get<double>(), 0.1) << face.out;  // at least 1 mm
+  const Head head = loadDefaultHead();
+  const TriMesh shape = readObj((dir / "brow.obj").string());  // the shape written, cm
+  ASSERT_EQ(shape.vertexCount(), head.mesh.vertexCount());
+  const MatX3 u = shape.V - head.mesh.V;
+  int v = 0;
+  peakRow(u, v);
+  EXPECT_GT(u(v, 1), 0.0) << "the medial frontalis lifts the skin at its peak";
+
+  const test::CliResult builtin = test::runCli("pose --set frontalis_medial_left=1 --gravity off");
+  EXPECT_EQ(builtin.exitCode, 2);
+  EXPECT_THAT(builtin.err, ::testing::HasSubstr("--set: unknown muscle 'frontalis_medial_left'"));
+
+  std::ofstream(dir / "scene.json") << R"({"name": "s"})";
+  const test::CliResult both = test::runCli("pose --scene " + quoted(dir / "scene.json") + " --library face");
+  EXPECT_EQ(both.exitCode, 2);
+  EXPECT_EQ(both.err, "myoshell: error: --library chooses the muscles without --scene; the scene names its own (key "
+                      "muscles.library)\n");
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace myo
