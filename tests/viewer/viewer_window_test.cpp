@@ -124,6 +124,30 @@ TEST(ViewerWindow, AScriptedDragMovesTheGrabbedSkinAlongThePull) {
   EXPECT_GT(differingPixels(before, after, 0, 0, after.width, after.height), 200);
 }
 
+// --library face: the whole face on the built-in head without a scene. The medial frontalis (only
+// in the whole face) lifts the inner brow; with a scene, --library is refused before any display.
+TEST(ViewerWindow, LibraryFaceGivesTheWholeFacesSliders) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const fs::path dir = scratch("library");
+  std::ofstream(dir / "brow.txt") << "show panel off\nset frontalis_medial_left 1\nadvance 90\nprobe left_brow_inner\n";
+  const ViewerRun run = runViewer(kXvfb, "--size 320x240 --library face --script brow.txt", dir);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const size_t at = run.output.find("probe left_brow_inner");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  std::istringstream in(run.output.substr(run.output.find("displacement", at) + 12));
+  Vec3 u;
+  in >> u.x() >> u.y() >> u.z();
+  ASSERT_TRUE(in) << run.output;
+  EXPECT_GT(u.y(), 0.05) << run.output;  // cm: the brow rises more than half a millimetre
+
+  std::ofstream(dir / "scene.json") << R"({"name": "s"})";
+  const ViewerRun both = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", "scene.json --library face", dir);
+  EXPECT_EQ(both.exitCode, 2) << both.output;
+  EXPECT_NE(both.output.find("myoshell-view: error: --library chooses the muscles of the built-in head or a performance"),
+            std::string::npos)
+      << both.output;
+}
+
 // An OBJ given where a scene goes was read as YAML and refused with "key '(document)': must be an
 // object": it must say that the viewer takes a scene and how to write one for the OBJ, before any
 // display is needed.
