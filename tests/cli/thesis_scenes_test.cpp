@@ -18,6 +18,7 @@
 #include "myoshell/io/scene_face.h"
 #include "myoshell/thesis/simulator.h"
 #include "support/cli_runner.h"
+#include "support/test_data.h"
 
 namespace myo {
 namespace {
@@ -99,6 +100,12 @@ TEST(ThesisScenes, EverySceneChecks) {
                          "fig18_depressor_anguli", "fig20_corrugator", "fig22_gravity_sweep", "fig23_combined",
                          "fig25_drag",     "fig26_transition", "fig27_ict_head"};
   for (const char* n : names) {
+    // Fig. 27's head is ICT's, from the shared data: without it that scene is left out, said here.
+    if (std::string(n) == "fig27_ict_head" && !test::haveSharedData()) {
+      std::printf("ThesisScenes.EverySceneChecks: %s left out: shared data not found at %s\n", n,
+                  test::sharedDataDir().string().c_str());
+      continue;
+    }
     const test::CliResult r = runCli("check '" + scenePath(n) + "'");
     EXPECT_EQ(r.exitCode, 0) << n << ": " << r.out;
   }
