@@ -1,5 +1,5 @@
-// `myoshell demo`: the default head plays a short scene — smile (zygomaticus major, both sides),
-// relax, frown (depressor anguli oris), brow lowered (corrugator supercilii), with gravity — and
+// `myoshell demo`: the default head's whole face plays a short scene — brows up, brows down, a
+// blink, a smile, a pucker, the jaw opening — and
 // out/demo/ receives the OBJ sequence, demo.glb, demo.pc2, demo.mp4, demo.gif, stats.json, PNG frames and a
 // contact sheet. The scene is
 // scenes/demo.json, embedded at build time so the demo runs from any folder.
@@ -23,9 +23,11 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   opt->outDir = "out/demo";
   opt->render = true;
   opt->renderEvery = 3;
-  opt->showMuscles = true;
+  // The skin alone: the whole face's 39 muscles drawn through it hide the expressions they make
+  // (`myoshell run scenes/demo.json --render --muscles` shows them).
+  opt->showMuscles = false;
   opt->formats = {"glb", "pc2", "obj"};
-  CLI::App* sub = app.add_subcommand("demo", "Smile, frown and brow lowering on the built-in head (scenes/demo.json)");
+  CLI::App* sub = app.add_subcommand("demo", "The whole face on the built-in head: brows up and down, a blink, a smile, a pucker, the jaw (scenes/demo.json)");
   sub->add_option("--out", opt->outDir, "Output folder")->capture_default_str();
   addCacheOption(*sub, opt->cacheDir);
   addJsonFlag(*sub, opt->json);

@@ -37,6 +37,7 @@
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "resources.h"
 
 namespace myo::cli {
@@ -48,7 +49,7 @@ struct FitArgs {
   std::string target;
   HeadOptions head;
   std::string muscles;         // comma-separated; "" = every muscle
-  std::string library = "builtin";
+  std::string library = defaultMuscleLibrary();
   std::string align = "none";
   std::string lambda = "0.02";
   std::string out;

@@ -26,6 +26,7 @@
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/rig_fitting.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "myoshell/render/contact_sheet.h"
 #include "myoshell/render/face_picture.h"
 #include "myoshell/render/png.h"
@@ -39,7 +40,7 @@ namespace fs = std::filesystem;
 struct FitRigArgs {
   std::string rig;
   HeadOptions head;
-  std::string library = "builtin";
+  std::string library = defaultMuscleLibrary();
   std::string lambda = "0.02";
   std::string out;
   std::string report;

@@ -1,4 +1,4 @@
-// `myoshell muscles [--library builtin|face|FILE] [--head default|DIR|OBJ --landmarks F] [--units u]
+// `myoshell muscles [--library face|builtin|FILE] [--head default|DIR|OBJ --landmarks F] [--units u]
 // [--json]`: the muscles of a library — name, side, FACS action units, kind (linear or ring) — and,
 // with a head, each one placed on it (its length in cm), so a library or a head whose landmarks do
 // not fit it fails here, naming the muscle. docs/muscles.md.
@@ -23,7 +23,7 @@ namespace {
 
 struct MusclesArgs {
   HeadOptions head;
-  std::string library = "builtin";
+  std::string library = defaultMuscleLibrary();
   bool json = false;
 };
 

@@ -1,4 +1,4 @@
-// `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--library builtin|face|FILE] [--scene S]
+// `myoshell pose [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--library face|builtin|FILE] [--scene S]
 // [--set NAME=VALUE]… [--gravity on|off] [--head-pose P,Y,R] [--jaw OPEN[,FORWARD[,LATERAL]]]
 // [--contact on|off] [--out SHAPE.obj] [--cache DIR] [--json]`:
 // the settled shape of the anatomical face under fixed activations and gravity — the static
@@ -39,6 +39,7 @@
 #include "myoshell/io/obj_writer.h"
 #include "myoshell/io/output_paths.h"
 #include "myoshell/io/scene_face.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo::cli {
 namespace {
@@ -47,7 +48,7 @@ namespace fs = std::filesystem;
 
 struct PoseArgs {
   HeadOptions head;
-  std::string library = "builtin";  // --library: the muscles without --scene
+  std::string library = defaultMuscleLibrary();  // --library: the muscles without --scene
   CLI::Option* libraryOption = nullptr;
   std::string scene;
   std::vector<std::string> sets;  // NAME=VALUE, in the order given
@@ -143,8 +144,7 @@ SceneDesc poseScene(const PoseArgs& a) {
   scene.head.obj = files.obj;
   scene.head.landmarks = files.landmarks;
   scene.head.units = files.unit;
-  // A library file is read from where the command runs (a scene's would be read beside the scene).
-  scene.muscleLibrary = a.library == "builtin" || a.library == "face" ? a.library : std::filesystem::absolute(a.library).string();
+  scene.muscleLibrary = sceneMuscleLibrary(a.library);
   return scene;
 }
 

@@ -1,7 +1,7 @@
-// `myoshell rig [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] --map MAP.json --out RIG.glb
-// [--cache DIR] [--json]`: a blendshape rig made by physics for any head. Each shape of a
-// retargeting map (fit/retarget_map.h; `fit-rig` writes them, assets/retarget/arkit_ict.json is
-// fitted on ICT) is settled on the head's anatomical face, and the 52 ARKit shapes are written as
+// `myoshell rig [--head default|DIR|OBJ --landmarks F] [--units m|mm|cm] [--map MAP.json] --out RIG.glb
+// [--library face|builtin|FILE] [--cache DIR] [--json]`: a blendshape rig made by physics for any
+// head. Each shape of a retargeting map (fit/retarget_map.h; `fit-rig` writes them; without --map the
+// library's shipped map, assets/retarget/arkit_ict_face.json for the whole face) is settled on the head's anatomical face, and the 52 ARKit shapes are written as
 // glTF morph targets (io/rig_export.h) in ARKit's order: zero deltas where the map has none or the
 // shape is unreachable. A corrective (mouthClose on jawOpen) is written as what it adds to its base.
 // docs/fitting.md, "Making a rig".
@@ -19,6 +19,7 @@
 #include "myoshell/core/timer.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/io/rig_making.h"
+#include "myoshell/muscles/muscle_def.h"
 #include "resources.h"
 
 namespace myo::cli {
@@ -26,12 +27,17 @@ namespace {
 
 struct RigArgs {
   HeadOptions head;
-  std::string library = "builtin";
+  std::string library = defaultMuscleLibrary();
   std::string map;
   std::string out;
   std::string cacheDir;
   bool json = false;
 };
+
+// What the report names for the shipped map a run without --map used.
+std::string shippedMapLabel(const std::string& library) {
+  return library == "builtin" ? "assets/retarget/arkit_ict.json" : "assets/retarget/arkit_ict_face.json";
+}
 
 int runRig(RigArgs& a) {
   const Stopwatch total;
@@ -56,7 +62,7 @@ int runRig(RigArgs& a) {
     nlohmann::ordered_json j;
     j["head"] = head;
     j["vertices"] = n;
-    j["map"] = a.map;
+    j["map"] = a.map.empty() ? shippedMapLabel(a.library) : a.map;
     j["out"] = a.out;
     j["shapes_made"] = made.settled.made;
     j["shapes"] = shapes;
@@ -67,7 +73,7 @@ int runRig(RigArgs& a) {
     return kExitOk;
   }
   fmt::print("rig of {} ({} vertices) from {}: {} of the 52 ARKit shapes made by physics, the others zero ({:.1f} s)\nwrote {}\n",
-             head, n, a.map, made.settled.made, total.seconds(), a.out);
+             head, n, a.map.empty() ? shippedMapLabel(a.library) : a.map, made.settled.made, total.seconds(), a.out);
   return kExitOk;
 }
 
@@ -77,7 +83,9 @@ static CommandRegistrar reg("rig", [](CLI::App& app) -> std::function<int()> {
       "rig", "Make an ARKit-named glTF blendshape rig for a head by settling each shape of a retargeting map on its "
              "anatomical face (docs/fitting.md)");
   addHeadOptions(*sub, args->head);
-  sub->add_option("--map", args->map, "a retargeting map (fit-rig --out; e.g. assets/retarget/arkit_ict.json)")->required();
+  sub->add_option("--map", args->map,
+                  "a retargeting map (fit-rig --out); default: the library's shipped map "
+                  "(assets/retarget/arkit_ict_face.json for face, arkit_ict.json for builtin)");
   sub->add_option("--out", args->out, "the rig to write (.glb; its folder must exist)")->required();
   addLibraryOption(*sub, args->library);
   addCacheOption(*sub, args->cacheDir);

@@ -1,7 +1,7 @@
 // The options many commands share, declared here once so that every command names, describes and
 // checks them the same way, and turned here into the settings they choose:
 //   --head, --landmarks, --units   the head (io/head_files.h: 'default', an OBJ file or a folder)
-//   --library                      the muscle library (each command keeps its own default)
+//   --library                      the muscle library (default: the whole face, defaultMuscleLibrary())
 //   --cache, --data, --scenes      folders, relative to the current directory (resources.h)
 //   --threads                      the threads of the precompute and independent work (core/parallel.h)
 //   --json                         machine-readable output (docs/cli.md lists each command's keys)

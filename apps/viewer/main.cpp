@@ -54,11 +54,11 @@ int main(int argc, char** argv) {
   myo::viewer::ViewerOptions options;
   app.add_option("scene", scenePath, "scene file (JSON or YAML), or a performance (.csv: OpenFace or Live Link Face; "
                                     ".jsonl: MediaPipe) played on the built-in head; default: the built-in head and "
-                                    "its ten muscles (the thesis's eight and the lips' two rings)");
+                                    "the whole face's 39 muscles");
   std::string library;
   app.add_option("--library", library,
-                 "muscles of the built-in head or a performance: builtin (the built-in ten), face (the whole face's 39) "
-                 "or a library file; default builtin (a performance: face); a scene names its own");
+                 "muscles of the built-in head or a performance: face (the whole face's 39, the default), builtin "
+                 "(the built-in ten) or a library file; a scene names its own");
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
   app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");
   app.add_option("--frames", options.frames, "frames before --screenshot (default 30)")->check(myo::cli::wholeIn(0, 100000));
@@ -92,10 +92,7 @@ int main(int argc, char** argv) {
     if (!library.empty() && !scenePath.empty() && !isPerformanceFile(scenePath))
       throw myo::InputError("--library chooses the muscles of the built-in head or a performance; the scene names its "
                             "own (key muscles.library)");
-    // A library file is read from where the viewer runs.
-    const std::string chosen = library.empty() || library == "builtin" || library == "face"
-                                   ? library
-                                   : std::filesystem::absolute(library).string();
+    const std::string chosen = myo::sceneMuscleLibrary(library.empty() ? myo::defaultMuscleLibrary() : library);
     myo::viewer::checkDisplay();  // no display: say so now, not after building the face
     myo::setParallelThreads(threads);  // the builds (core/parallel.h); a step never spreads
     myo::SceneDesc scene;
@@ -103,7 +100,7 @@ int main(int argc, char** argv) {
       // A recorded performance on the built-in head with the whole face (docs/performance_input.md):
       // play and scrub it; the sliders follow the muscles it drives.
       scene.name = std::filesystem::path(scenePath).stem().string();
-      scene.muscleLibrary = chosen.empty() ? "face" : chosen;
+      scene.muscleLibrary = chosen;
       scene.performance.file = std::filesystem::absolute(scenePath).string();
       myo::loadScenePerformance(scene);
       for (const std::string& w : scene.performanceReport->warnings) fmt::print(stderr, "myoshell-view: warning: {}\n", w);
@@ -111,7 +108,7 @@ int main(int argc, char** argv) {
       scene = myo::readScene(scenePath);
     } else {
       scene.name = "default";
-      if (!chosen.empty()) scene.muscleLibrary = chosen;
+      scene.muscleLibrary = chosen;
     }
     const auto cache = myo::cli::openBasisCache(cacheDir, "myoshell-view");
     myo::viewer::ViewerSession session(scene, cache.get());

@@ -29,7 +29,7 @@ def main():
     parser.add_argument("--head", default="default", help="'default', a head folder or an OBJ (then --landmarks)")
     parser.add_argument("--landmarks", default=None, help="landmark file of an OBJ head")
     parser.add_argument("--units", default="cm", help="the OBJ head's unit: m, mm or cm")
-    parser.add_argument("--library", default="builtin", help="muscles: builtin, face or a library file")
+    parser.add_argument("--library", default="face", help="muscles: face (the whole face, the default), builtin or a library file")
     parser.add_argument("--max-active", type=int, default=3, help="at most this many muscles active per shape")
     parser.add_argument("--low", type=float, default=0.2, help="smallest activation of an active muscle")
     parser.add_argument("--high", type=float, default=1.0, help="largest activation of an active muscle")

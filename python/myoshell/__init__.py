@@ -56,7 +56,7 @@ __all__ = [
 ]
 
 
-def pose(activations=None, head=None, library="builtin", cache=None, **settings):
+def pose(activations=None, head=None, library="face", cache=None, **settings):
     """The settled shape of a face built for this call, as `myoshell pose`: float64 (n, 3), cm.
 
     head: a Head (default the built-in one); library, cache: as Face(); settings: Face.pose's

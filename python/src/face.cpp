@@ -206,11 +206,11 @@ a library, gravity; the face `myoshell pose` and `myoshell fit` build.)doc")
              warnIfNotKept(*face);
              return face;
            }),
-           py::arg("head") = py::none(), py::arg("library") = "builtin", py::arg("muscles") = py::none(),
+           py::arg("head") = py::none(), py::arg("library") = defaultMuscleLibrary(), py::arg("muscles") = py::none(),
            py::arg("cache") = py::none(), py::arg("gravity") = true, R"doc(
 Builds the face on `head` (a Head from load_head(); default the built-in head).
-library: 'builtin' (the built-in ten: the thesis's eight and the lips' two rings; the eight alone under
-model: thesis), 'face' (the whole face's 39) or a library file.
+library: 'face' (the whole face's 39, the default), 'builtin' (the built-in ten: the thesis's eight
+and the lips' two rings) or a library file.
 muscles: a list of the library's names to use (default all).
 cache: a basis cache folder (made if missing; the command line's is ~/.cache/myoshell): a build
   whose basis it holds skips the basis computation (on the built-in head 0.2 s instead of 3 s).

@@ -101,9 +101,10 @@ units: the OBJ's length unit, 'm', 'mm' or 'cm' (the head is used in cm). pins: 
 gravity pins (default: a folder's rigid_vertices.json, else the rim rule). Raises InputError with
 the command line's message for a missing file, a bad unit or a head that fails the checks.)doc");
 
-  m.def("muscle_names", &muscleNames, py::arg("library") = "builtin", R"doc(
-The muscle names of a library, in its order: 'builtin' (the built-in ten: the thesis's eight and the lips' two rings), 'face' (the whole face's 39,
-docs/muscles.md) or the path of a library file (JSON or YAML).)doc");
+  m.def("muscle_names", &muscleNames, py::arg("library") = defaultMuscleLibrary(), R"doc(
+The muscle names of a library, in its order: 'face' (the whole face's 39, docs/muscles.md; the
+default), 'builtin' (the built-in ten: the thesis's eight and the lips' two rings) or the path of a
+library file (JSON or YAML).)doc");
 }
 
 }  // namespace myo::python

@@ -11,6 +11,7 @@
 #include "myoshell/io/output_paths.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_fitting.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo::python {
 namespace {
@@ -108,7 +109,7 @@ py::dict fitRigShapesPy(const py::object& rigOrPath, const py::object& head, con
 
 void bindRigFitting(py::module_& m) {
   m.def("fit_rig", &fitRigShapesPy, py::arg("rig"), py::kw_only(), py::arg("head") = py::none(),
-        py::arg("landmarks") = py::none(), py::arg("units") = py::none(), py::arg("library") = "builtin",
+        py::arg("landmarks") = py::none(), py::arg("units") = py::none(), py::arg("library") = defaultMuscleLibrary(),
         py::arg("sparsity") = 0.02, py::arg("cache") = py::none(), py::arg("out") = py::none(), R"doc(
 Fits every ARKit-named shape of a glTF rig to activations of the anatomical face, as `myoshell
 fit-rig` does (docs/fitting.md, "Fitting a rig"), and gathers them into a retargeting map that rig()
@@ -116,7 +117,7 @@ plays on any head.
 rig: a Rig (read_rig) or the path of a .glb/.gltf file.
 head: None (the rig's base mesh; give its landmarks file), or as load_head() names a head ('default',
   a head folder, an OBJ file with landmarks and units); its vertices must be the rig's.
-library: the muscles ('builtin', 'face' or a library file); sparsity: the weight λ ≥ 0 (--lambda);
+library: the muscles ('face', the default, 'builtin' or a library file); sparsity: the weight λ ≥ 0 (--lambda);
 cache: a basis cache folder or None; out: the map's JSON file to write (the command line's bytes).
 Returns a dict: activations (shape name -> {muscle: activation}), shapes (per shape, ARKit order:
 name, reachable, reason, sources, corrective_of, cosine, magnitude_ratio, rms_mm, max_mm (None when

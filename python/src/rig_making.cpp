@@ -68,14 +68,16 @@ py::dict makeRig(const py::object& mapPath, const py::object& head, const py::ob
 }  // namespace
 
 void bindRigMaking(py::module_& m) {
-  m.def("rig", &makeRig, py::arg("map"), py::kw_only(), py::arg("head") = "default", py::arg("landmarks") = py::none(),
-        py::arg("units") = py::none(), py::arg("library") = "builtin", py::arg("cache") = py::none(),
+  m.def("rig", &makeRig, py::arg("map") = py::none(), py::kw_only(), py::arg("head") = "default",
+        py::arg("landmarks") = py::none(), py::arg("units") = py::none(), py::arg("library") = defaultMuscleLibrary(), py::arg("cache") = py::none(),
         py::arg("out") = py::none(), R"doc(
 An ARKit blendshape rig made by physics for a head, as `myoshell rig` makes it (docs/fitting.md,
-"Making a rig"): each shape of the retargeting map `map` (a file: fit_rig(out=...) writes one;
-assets/retarget/arkit_ict.json) settled on the head's anatomical face without gravity.
+"Making a rig"): each shape of the retargeting map `map` (a file: fit_rig(out=...) writes one; None:
+the library's shipped map, assets/retarget/arkit_ict_face.json for the whole face) settled on the
+head's anatomical face without gravity.
 head, landmarks, units: the head as load_head() names it ('default', a head folder, an OBJ file);
-library: the muscles, 'builtin', 'face' or a library file (the map's muscles must be among them);
+library: the muscles, 'face' (the whole face, the default), 'builtin' or a library file (the map's
+muscles must be among them);
 cache: a basis cache folder or None; out: a .glb file to write the rig to (its folder must exist),
 byte for byte the command line's, or None.
 Returns a dict: shape_names (the 52 ARKit names, ARKit's order), deltas float64 (52, n, 3) cm

@@ -216,6 +216,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
   else root.fail("model", "must be \"anatomical\" or \"thesis\" (got \"" + modelName + "\")");
   const FaceModelKind thesis = FaceModelKind::Thesis, anatomical = FaceModelKind::Anatomical;
   const bool isThesis = scene.modelKind == thesis;
+  scene.muscleLibrary = defaultMuscleLibrary(scene.modelKind);
   AnatomicalSettings& an = scene.anatomical;
 
   if (root.has("head")) {

@@ -16,6 +16,7 @@ namespace myo {
 namespace detail {
 extern const char kUnreachableShapesJson[];
 extern const char kArkitIctFaceMapJson[];
+extern const char kArkitIctMapJson[];
 }  // namespace detail
 
 namespace {
@@ -260,6 +261,17 @@ const RetargetMap& builtinRetargetMap() {
     return parseRetargetMap(detail::kArkitIctFaceMapJson, "<embedded assets/retarget/arkit_ict_face.json>", names);
   }();
   return map;
+}
+
+const RetargetMap* shippedRetargetMap(const std::string& library) {
+  if (library == "face") return &builtinRetargetMap();
+  if (library != "builtin") return nullptr;
+  static const RetargetMap map = [] {
+    std::vector<std::string> names;
+    for (const MuscleDef& def : anatomicalBuiltinDefs()) names.push_back(def.name);
+    return parseRetargetMap(detail::kArkitIctMapJson, "<embedded assets/retarget/arkit_ict.json>", names);
+  }();
+  return &map;
 }
 
 }  // namespace myo

@@ -23,7 +23,7 @@ SceneDesc performanceScene(const PerformanceSceneDef& a) {
   scene.head.obj = files.obj;
   scene.head.landmarks = files.landmarks;
   scene.head.units = files.unit;
-  scene.muscleLibrary = a.library == "builtin" || a.library == "face" ? a.library : fs::absolute(a.library).string();
+  scene.muscleLibrary = sceneMuscleLibrary(a.library);
   PerformanceDesc& p = scene.performance;
   p.file = fs::absolute(a.performance).string();
   if (!a.input.empty()) p.read.input = performanceInputFromString(a.input);

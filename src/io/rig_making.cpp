@@ -34,6 +34,11 @@ void checkRigOutputPath(const std::string& path) {
 }
 
 RetargetMap readRigMap(const std::string& path, const std::vector<MuscleDef>& muscleDefs, const std::string& library) {
+  if (path.empty()) {
+    if (const RetargetMap* shipped = shippedRetargetMap(library)) return *shipped;
+    throw InputError("--map: a library file has no shipped map; give the map fitted with it (fit-rig --library " +
+                     library + " --out MAP.json)");
+  }
   std::vector<std::string> muscles;
   for (const MuscleDef& d : muscleDefs) muscles.push_back(d.name);
   // The library the map records, checked before its muscle names so the error names both libraries.

@@ -20,6 +20,10 @@ namespace myo {
 
 namespace fs = std::filesystem;
 
+std::string sceneMuscleLibrary(const std::string& library) {
+  return builtinMuscleLibrary(library, FaceModelKind::Anatomical) ? library : fs::absolute(library).string();
+}
+
 SceneDesc readScene(const std::string& path) {
   SceneDesc scene = parseScene(readWholeFile(path, "cannot open scene file"), path);
   loadScenePerformance(scene);

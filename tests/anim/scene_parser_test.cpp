@@ -27,8 +27,9 @@ TEST(SceneParser, DefaultsFillAnEmptyScene) {
   const SceneDesc s = parseScene("{}", "dir/empty.json");
   EXPECT_EQ(s.name, "empty");
   EXPECT_EQ(s.head.builtin, "default");
-  EXPECT_EQ(s.muscleLibrary, "builtin");
+  EXPECT_EQ(s.muscleLibrary, "face");  // the whole face under the anatomical model
   EXPECT_TRUE(s.muscles.empty());
+  EXPECT_EQ(parseScene(R"({"model": "thesis"})", "t.json").muscleLibrary, "builtin");  // the thesis's eight
   EXPECT_EQ(s.model.skinModes, FaceModelSettings{}.skinModes);
   EXPECT_DOUBLE_EQ(s.duration, 1.0);
 }
@@ -176,7 +177,7 @@ std::string parseError(const std::string& text, const std::string& name) {
 }
 
 TEST(SceneParser, RejectsUnknownMusclesOfTheBuiltInLibraryAtTheirPlace) {
-  EXPECT_EQ(parseError(R"({"muscles": {"use": ["zygomaticus_major_right", "buccinator"]}})", "b.json"),
+  EXPECT_EQ(parseError(R"({"muscles": {"use": ["zygomaticus_major_right", "buccinator"], "library": "builtin"}})", "b.json"),
             "b.json:1:49: key 'muscles.use': unknown muscle 'buccinator' (the library has: zygomaticus_major_right, "
             "zygomaticus_major_left, corrugator_supercilii_right, corrugator_supercilii_left, "
             "depressor_labii_inferioris_right, depressor_labii_inferioris_left, depressor_anguli_oris_right, "

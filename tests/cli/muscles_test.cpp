@@ -17,8 +17,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-TEST(CliMuscles, ListsTheBuiltInTenByDefaultAndTheWholeFaceWithItsRings) {
-  test::CliResult r = test::runCli("muscles --json");
+TEST(CliMuscles, ListsTheWholeFaceByDefaultWithItsRingsAndTheBuiltInTen) {
+  test::CliResult r = test::runCli("muscles --library builtin --json");
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["muscles"].size(), 10u);  // the thesis's eight, then the mouth's two rings
@@ -30,7 +30,7 @@ TEST(CliMuscles, ListsTheBuiltInTenByDefaultAndTheWholeFaceWithItsRings) {
   EXPECT_EQ(j["muscles"][0]["kind"], "linear");
   EXPECT_FALSE(j["muscles"][0].contains("length_cm"));
 
-  r = test::runCli("muscles --library face --head default --json");
+  r = test::runCli("muscles --head default --json");  // the default: the whole face
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["muscles"].size(), 39u);

@@ -74,7 +74,7 @@ TEST(Pose, NoLoadsGiveTheRestMeshExactly) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["max_displacement_cm"].get<double>(), 0.0);
   EXPECT_EQ(j["gravity"], "off");
-  EXPECT_EQ(j["activations"].size(), 10u);
+  EXPECT_EQ(j["activations"].size(), 39u);  // the whole face, the default
   for (const auto& a : j["activations"]) EXPECT_EQ(a.get<double>(), 0.0);
   EXPECT_GT(j["seconds"].get<double>(), 0.0);
 }
@@ -239,7 +239,7 @@ TEST(Pose, BadInputIsRefusedBeforeAnyWork) {
       "depressor_labii_inferioris_right, depressor_labii_inferioris_left, depressor_anguli_oris_right, "
       "depressor_anguli_oris_left, orbicularis_oris_upper, orbicularis_oris_lower";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"--set buccinator=1" + out,
+      {"--library builtin --set buccinator=1" + out,
        "myoshell: error: --set: unknown muscle 'buccinator' (the anatomical model's muscles: " + names + ")\n"},
       {"--set zygomaticus_major_left=1.5" + out,
        "myoshell: error: --set zygomaticus_major_left=1.5: an activation must lie in [0, 1] under the anatomical "
@@ -296,12 +296,12 @@ TEST(Pose, SceneMusclesAreTheModels) {
 }
 
 
-// --library: the whole face's muscles on the built-in head without a scene. The medial frontalis is
-// only in the whole face: it lifts the skin above the brows (+y of the built-in head, cm), and the
-// built-in library does not know it.
-TEST(Pose, LibraryFaceGivesTheWholeFacesMuscles) {
+// The whole face's muscles on the built-in head without a scene, by default. The medial frontalis
+// is only in the whole face: it lifts the skin above the brows (+y of the built-in head, cm), and
+// the built-in ten (--library builtin) do not know it.
+TEST(Pose, TheWholeFaceIsTheDefaultAndBuiltinIsTheTen) {
   const fs::path dir = scratch("library");
-  const test::CliResult face = test::runCli("pose --library face --set frontalis_medial_left=1 --gravity off --json --out " +
+  const test::CliResult face = test::runCli("pose --set frontalis_medial_left=1 --gravity off --json --out " +
                                             quoted(dir / "brow.obj"));
   ASSERT_EQ(face.exitCode, 0) << face.merged;
   const nlohmann::json j = nlohmann::json::parse(face.out);
@@ -314,7 +314,7 @@ TEST(Pose, LibraryFaceGivesTheWholeFacesMuscles) {
   peakRow(u, v);
   EXPECT_GT(u(v, 1), 0.0) << "the medial frontalis lifts the skin at its peak";
 
-  const test::CliResult builtin = test::runCli("pose --set frontalis_medial_left=1 --gravity off");
+  const test::CliResult builtin = test::runCli("pose --library builtin --set frontalis_medial_left=1 --gravity off");
   EXPECT_EQ(builtin.exitCode, 2);
   EXPECT_THAT(builtin.err, ::testing::HasSubstr("--set: unknown muscle 'frontalis_medial_left'"));
 

@@ -201,15 +201,20 @@ TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFi
   }
 }
 
-// The shipped whole-face map has jaw shapes: jawOpen opens the jaw (its pose, 19°, carries the
-// muscles' field), its corrective mouthClose rides on the same jaw, jawLeft shifts the chin to the
-// subject's left; the forehead stays put.
-TEST(CliRig, TheShippedFaceMapsJawShapesMoveTheJaw) {
+// Without --map, rig plays the shipped whole-face map (the default library's): the same bytes as
+// naming the file. Its jaw shapes: jawOpen opens the jaw (its pose, 19°, carries the muscles' field),
+// its corrective mouthClose rides on the same jaw, jawLeft shifts the chin to the subject's left; the
+// forehead stays put.
+TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
   const fs::path dir = scratch("jaw");
-  const test::CliResult made = test::runCli("rig --head default --library face --map " +
-                                            quoted(test::sourceDir() / "assets/retarget/arkit_ict_face.json") + " --out " +
-                                            quoted(dir / "rig.glb"));
+  const test::CliResult made = test::runCli("rig --head default --json --out " + quoted(dir / "rig.glb"));
   ASSERT_EQ(made.exitCode, 0) << made.merged;
+  EXPECT_EQ(nlohmann::json::parse(made.out).at("map"), "assets/retarget/arkit_ict_face.json");
+  const test::CliResult named = test::runCli("rig --head default --library face --map " +
+                                             quoted(test::sourceDir() / "assets/retarget/arkit_ict_face.json") + " --out " +
+                                             quoted(dir / "named.glb"));
+  ASSERT_EQ(named.exitCode, 0) << named.merged;
+  EXPECT_TRUE(readText(dir / "rig.glb") == readText(dir / "named.glb"));
   const RigFile rig = readRig((dir / "rig.glb").string());
   const Head head = loadDefaultHead();
   const MatX3& V = head.mesh.V;
@@ -258,7 +263,7 @@ TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   writeText(dir / "face_map.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "mouthShrugLower", "activations": {"mentalis_left": 1}}]})");
-  r = run("rig --head default --map " + quoted(dir / "face_map.json") + " --out " + quoted(dir / "rig.glb"));
+  r = run("rig --head default --library builtin --map " + quoted(dir / "face_map.json") + " --out " + quoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("face_map.json: the map uses the whole face's muscles (mentalis_left, …): give --library face"));
   // A map that records its library is refused for another, naming both (before any muscle name).

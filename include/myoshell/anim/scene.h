@@ -75,10 +75,11 @@ struct SceneDesc {
   // the thesis's (docs/face_model.md). Keys only one model reads are errors under the other.
   FaceModelKind modelKind = FaceModelKind::Anatomical;
   HeadDesc head;
-  // Muscles: the built-in library ("builtin": the thesis's eight, and the lips' two rings under the
-  // anatomical model), the whole face ("face", 39) or a JSON library file, optionally only some of
-  // them, plus extra definitions written in the scene.
-  std::string muscleLibrary = "builtin";
+  // Muscles: the whole face ("face", 39: the default under the anatomical model), the built-in
+  // ten ("builtin": the thesis's eight and the lips' two rings; under model: thesis the thesis's
+  // eight, its default) or a JSON library file, optionally only some of them, plus extra
+  // definitions written in the scene. defaultMuscleLibrary() gives a model's default.
+  std::string muscleLibrary = "face";
   std::vector<std::string> muscles;  // names to use; empty = every muscle of the library
   std::vector<MuscleDef> extraMuscles;
   FaceModelSettings model;          // thesis: materials, modes, ROI α, springs, dt, stepper, warping, damping

@@ -95,6 +95,10 @@ const std::vector<std::pair<std::string, std::string>>& unreachableArkitShapes()
 // whole face's muscles (`fit-rig --library face`), checked against faceMuscleDefs()'s names. The
 // default map of performance input (anim/performance_map.h).
 const RetargetMap& builtinRetargetMap();
+// The shipped map of a built-in library, embedded: "face" → builtinRetargetMap(), "builtin" →
+// assets/retarget/arkit_ict.json (ICT's rig fitted with the built-in ten); nullptr for any other
+// name (a library file has no shipped map).
+const RetargetMap* shippedRetargetMap(const std::string& library);
 
 // The reason for an unreachable name (any spelling), or nothing.
 std::optional<std::string> unreachableReason(const std::string& anySpelling);

@@ -8,6 +8,7 @@
 
 #include "myoshell/io/rig_file.h"
 #include "myoshell/io/scene_face.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo {
 
@@ -15,7 +16,7 @@ struct FitHeadOptions {
   std::string head = "default";
   std::string landmarks;
   std::string units = "cm";
-  std::string library = "builtin";  // --library: "builtin" (the built-in ten), "face" (the whole face's 39) or a file
+  std::string library = defaultMuscleLibrary();  // --library: "face" (the whole face's 39), "builtin" (the built-in ten) or a file
   bool headGiven = false;   // --head on the command line
   bool unitsGiven = false;  // --units on the command line
 };

@@ -19,6 +19,11 @@ namespace myo {
 // plays its performance into its timeline (loadScenePerformance).
 SceneDesc readScene(const std::string& path);
 
+// A scene's muscles.library for a --library value given on the command line: "face" and "builtin"
+// as they are, a library file made absolute (read from where the command runs; a scene file's own
+// library is read beside the scene).
+std::string sceneMuscleLibrary(const std::string& library);
+
 // When the scene names a performance (key `performance`): reads it (io/performance_file.h), crops
 // it to its window, maps it onto the scene's muscles (the FACS map; for ARKit input the scene's map
 // or the shipped one) and adds it to the timeline (anim/performance_map.h), fills

@@ -129,9 +129,16 @@ const std::vector<MuscleDef>& anatomicalEightDefs();
 // lips are bare skin that a pulled corner drags sideways (docs/anatomical_model.md, "The lips").
 const std::vector<MuscleDef>& anatomicalBuiltinDefs();
 
-// A built-in library by its scene name for a model: "builtin" (the default: the thesis's eight as
-// the thesis places them under model: thesis; anatomicalBuiltinDefs() under model: anatomical) or
-// "face" (the whole face); nullptr for any other name (a library file's path).
+// A built-in library by its scene name for a model: "builtin" (the thesis's eight as the thesis
+// places them under model: thesis; anatomicalBuiltinDefs() under model: anatomical) or "face" (the
+// whole face); nullptr for any other name (a library file's path).
 const std::vector<MuscleDef>* builtinMuscleLibrary(const std::string& name, FaceModelKind model);
+
+// The library every command, the viewer, Python and a scene without muscles.library use: the whole
+// face under the anatomical model; the thesis's eight under model: thesis (its figures stay
+// byte-identical to the thesis's).
+inline const char* defaultMuscleLibrary(FaceModelKind model = FaceModelKind::Anatomical) {
+  return model == FaceModelKind::Thesis ? "builtin" : "face";
+}
 
 }  // namespace myo
