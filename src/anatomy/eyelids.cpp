@@ -253,16 +253,22 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
     // margins meet whatever the physics did to them.
     const EyeFrame f = eyeFrame(eye);
     fissure(positions, eye, f, now);
-    // The nasal slide turns about the vertical axis through the centre, towards the inner canthus.
+    // The nasal slide turns about the vertical axis through the centre, towards the inner canthus,
+    // fading with the fissure's height Δ(x)/Δmax to nothing at the canthi, which the canthal tendons
+    // hold (a full slide up to the canthi tore the skin there into a crack).
     const double towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
+    double gapMax = 0.0;
+    for (const auto& [x, phi] : now.upper.elevation) gapMax = std::max(gapMax, phi - interpolateLinear(now.lower.elevation, x));
     for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
       const int i = eye.lidVertices[k];
       Vec3 d = positions.row(i).transpose() - eye.centre;
       const double x = d.dot(eye.axis);
       const double w = eye.lidWeights[k];  // + upper lid, − lower lid
       double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
+      double slide = 0.0;               // Δ(x)/Δmax: the share of the nasal slide
       if (c != 0.0 && x > now.xLow && x < now.xHigh) {
         const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+        if (gapMax > 0.0) slide = std::min(1.0, gap / gapMax);
         const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
         const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
         alpha = share * gap * w;
@@ -274,7 +280,7 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
       if (rho > 0.0) d += (c * kappa / rho) * across;
       Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
       if (c != 0.0 && eye.nasalTurn != 0.0)
-        R = Eigen::AngleAxisd(towardsNose * c * eye.nasalTurn * std::abs(w), eye.up).toRotationMatrix() * R;
+        R = Eigen::AngleAxisd(towardsNose * c * eye.nasalTurn * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
       positions.row(i) = (eye.centre + R * d).transpose();
       if (turns) (*turns)[e][k] = R;
     }

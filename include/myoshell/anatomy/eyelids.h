@@ -18,10 +18,12 @@
 // so at c = 1 both margins reach the elevation φ_lo + f·Δ: they meet. Δ vanishes at the canthi
 // (both margins end there), where the canthal tendons hold the lids. A closure also turns every lid
 // vertex about the vertical axis through the centre, towards the inner canthus, by
-//   γ_i = c·(s/R)·|w_i|                  (s = LidSettings::nasalSlide, R the proxy's radius)
+//   γ_i = c·(s/R)·|w_i|·Δ(x_i)/Δmax      (s = LidSettings::nasalSlide, R the proxy's radius)
 // the pars palpebralis shortening towards its fixed medial attachment: the lower lid's travel in a
 // blink is mostly this horizontal, nasal slide (Doane 1980), and both margins take it, so they meet
-// where they stood above each other.
+// where they stood above each other. The slide fades with the fissure's height to nothing at the
+// canthi, as the turn does: the canthal tendons hold the lids' ends (a full slide there tore the skin
+// beside the inner canthus into a dark crack; docs/eyelids.md).
 //
 // As the jaw (jaw.h), the rest rides with the lid and the physics acts on the residual: a lid vertex
 // is placed at c + R(θ_i)(x_i − c), x_i its (jawed) position rest + u, so the residual turns with the
