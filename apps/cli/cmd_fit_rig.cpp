@@ -92,7 +92,7 @@ std::vector<std::string> writeReport(const fs::path& dir, const FaceSystem& face
       rig, face.head().name, face.head().mesh.vertexCount(), face.muscleCount());
   for (size_t i = 0; i < fit.shapes.size(); ++i) {
     const RigShapeFit& s = fit.shapes[i];
-    const RetargetShape& entry = fit.map.shapes[i];
+    const RetargetShape& entry = *fit.map.find(s.name);
     if (!s.reachable) {
       md += fmt::format("| {} | — | — | — | — | not fitted: {} |\n", s.name, s.reason);
       continue;
@@ -156,8 +156,10 @@ int runFitRig(FitRigArgs& a) {
       j["rms_mm"] = f ? nlohmann::ordered_json(s.fit->rmsMm) : nlohmann::ordered_json();
       j["max_mm"] = f ? nlohmann::ordered_json(s.fit->maxMm) : nlohmann::ordered_json();
       j["compared_vertices"] = f ? s.fit->metric.comparedVertices : 0;
-      j["activations"] = namedValuesJson(fit.map.shapes[i].activations);
-      j["jaw"] = namedValuesJson(fit.map.shapes[i].jaw);
+      // The map's entry by name: the map holds every ARKit name, the fit only the rig's fitted ones.
+      const RetargetShape& entry = *fit.map.find(s.name);
+      j["activations"] = namedValuesJson(entry.activations);
+      j["jaw"] = namedValuesJson(entry.jaw);
       shapes.push_back(j);
     }
     nlohmann::ordered_json j;
@@ -182,7 +184,7 @@ int runFitRig(FitRigArgs& a) {
       continue;
     }
     fmt::print("  {:<20} cosine {:6.3f}  ratio {:5.2f}  RMS {:5.2f} mm  max {:5.2f} mm  {}\n", s.name, s.fit->metric.cosine,
-               s.fit->metric.magnitudeRatio, s.fit->rmsMm, s.fit->maxMm, activationList(fit.map.shapes[i].activations));
+               s.fit->metric.magnitudeRatio, s.fit->rmsMm, s.fit->maxMm, activationList(fit.map.find(s.name)->activations));
   }
   fmt::print("fit-rig of {} on {}: {} shapes, median cosine {:.3f}, median RMS {:.2f} mm ({:.1f} s fitting, {:.1f} s in "
              "all)\n",

@@ -48,6 +48,7 @@ int runRig(RigArgs& a) {
   const RetargetMap map = readRigMap(a.map, inputs.muscles, a.library);
   const auto cache = openBasisCache(a.cacheDir);
   const MadeRig made = makeArkitRig(inputs, map, cache.get());
+  for (const std::string& w : made.settled.warnings) fmt::print(stderr, "myoshell: warning: {}\n", w);
   writeRigGlb(a.out, made.glb);
 
   const std::string& head = made.glb.name;

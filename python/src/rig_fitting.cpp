@@ -65,7 +65,7 @@ py::dict fitRigShapesPy(const py::object& rigOrPath, const py::object& head, con
   py::dict activations;
   for (size_t i = 0; i < fit.shapes.size(); ++i) {
     const RigShapeFit& s = fit.shapes[i];
-    const RetargetShape& entry = fit.map.shapes[i];
+    const RetargetShape& entry = *fit.map.find(s.name);  // by name: the map holds every ARKit name
     const bool f = s.fit.has_value();
     py::dict d;
     d["name"] = s.name;

@@ -57,6 +57,8 @@ py::dict makeRig(const py::object& mapPath, const py::object& head, const py::ob
   result["deltas"] = toNumpy(made.glb.deltas);
   result["shapes"] = shapes;
   result["shapes_made"] = made.settled.made;
+  for (const std::string& w : made.settled.warnings)
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();
   result["rest"] = toNumpy(made.glb.rest);
   result["triangles"] = toNumpy(made.glb.triangles);
   result["out"] = out.is_none() ? py::object(py::none()) : py::object(py::str(outPath));

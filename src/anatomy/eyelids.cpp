@@ -169,6 +169,9 @@ EyeLids buildEye(const TriMesh& skin, const Landmarks& l, const FaceFrame& frame
   lids.contactRadius = lids.radius;
   lids.lowerShare = s.lowerShare;
   lids.nasalTurn = s.nasalSlide * frame.scale / lids.radius;
+  lids.upperGazeFollow = s.upperGazeFollow;
+  lids.lowerGazeFollow = s.lowerGazeFollow;
+  lids.sideGazeFollow = s.sideGazeFollow;
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     const Vec3 p = V.row(i).transpose();
     const double fromCentre = (p - lids.centre).norm();
@@ -247,8 +250,10 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
     const double c = pose.close[e], r = pose.raise[e];
+    const double gazePitch = pose.gaze.pitchDeg[e] * M_PI / 180.0, gazeYaw = pose.gaze.yawDeg[e] * M_PI / 180.0;
+    const bool gazing = gazePitch != 0.0 || gazeYaw != 0.0;
     if (turns) (*turns)[e].assign(eye.lidVertices.size(), Mat3::Identity());
-    if (c == 0.0 && r == 0.0) continue;
+    if (c == 0.0 && r == 0.0 && !gazing) continue;
     // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
     // margins meet whatever the physics did to them.
     const EyeFrame f = eyeFrame(eye);
@@ -265,22 +270,28 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
       const double x = d.dot(eye.axis);
       const double w = eye.lidWeights[k];  // + upper lid, − lower lid
       double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
-      double slide = 0.0;               // Δ(x)/Δmax: the share of the nasal slide
-      if (c != 0.0 && x > now.xLow && x < now.xHigh) {
+      double slide = 0.0;               // Δ(x)/Δmax: the share of the nasal slide and of the gaze's turn
+      if ((c != 0.0 || gazing) && x > now.xLow && x < now.xHigh) {
         const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
         if (gapMax > 0.0) slide = std::min(1.0, gap / gapMax);
+      }
+      if (c != 0.0 && x > now.xLow && x < now.xHigh) {
+        const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
         const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
         const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
         alpha = share * gap * w;
         kappa = share * step * w;
       }
-      const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k];
+      // The lids follow the gaze: up-gaze raises them (θ + lowers a point).
+      const double follow = w > 0.0 ? eye.upperGazeFollow : eye.lowerGazeFollow;
+      const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k] - follow * gazePitch * std::abs(w) * slide;
       const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
       const double rho = across.norm();
       if (rho > 0.0) d += (c * kappa / rho) * across;
       Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
-      if (c != 0.0 && eye.nasalTurn != 0.0)
-        R = Eigen::AngleAxisd(towardsNose * c * eye.nasalTurn * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
+      // Turns about `up`: the nasal slide and the gaze's yaw (+ towards the subject's left, +x).
+      const double yaw = (c != 0.0 ? towardsNose * c * eye.nasalTurn : 0.0) + eye.sideGazeFollow * gazeYaw;
+      if (yaw != 0.0) R = Eigen::AngleAxisd(yaw * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
       positions.row(i) = (eye.centre + R * d).transpose();
       if (turns) (*turns)[e][k] = R;
     }

@@ -17,12 +17,16 @@ SkinPlacement::SkinPlacement(const Head& head, const std::vector<std::string>& m
 }
 
 ContactReport SkinPlacement::place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out,
-                                   bool project) const {
+                                   bool project, const EyeGaze& gaze) const {
   MYO_CHECK(jaw.isZero() || jaw_, "SkinPlacement::place: a jaw pose on a head without a jaw");
   if (jaw.isZero()) out = rest_ + u;
   else jawedPositions(*jaw_, jaw, rest_, u, out);
   ContactReport report;
-  if (lids_) report.add(applyLids(*lids_, lidPose(activations), out, project));
+  if (lids_) {
+    LidPose lids = lidPose(activations);
+    lids.gaze = gaze;
+    report.add(applyLids(*lids_, lids, out, project));
+  }
   if (mouth_) report.add(applyMouthContact(*mouth_, *jaw_, jaw, out, project));
   return report;
 }

@@ -58,6 +58,8 @@ class Mapper {
     const FacsEntry* entry = facs_.find(au);
     if (!entry) return "AU" + std::to_string(au) + " is not in the FACS map";
     if (!entry->needs.empty()) return "AU" + std::to_string(au) + " needs " + (entry->needs == "jaw" ? "the jaw" : entry->needs);
+    if (entry->turnsEyes() && entry->muscles.empty())
+      return "AU" + std::to_string(au) + " turns the eyes: the lids follow a gaze in rigs (myoshell rig), not yet in a performance";
     return "AU" + std::to_string(au) + " drives no muscle of this model";
   }
 

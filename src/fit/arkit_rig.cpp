@@ -22,12 +22,21 @@ JawPose jawPoseOf(const RetargetShape& shape) {
   return pose;
 }
 
+EyeGaze gazeOf(const RetargetShape& shape) {
+  EyeGaze gaze;
+  for (const auto& [dof, value] : shape.gaze) {
+    const size_t eye = dof.rfind("left", 0) == 0 ? 1 : 0;
+    (dof.size() > 4 && dof.substr(dof.size() - 5) == "pitch" ? gaze.pitchDeg : gaze.yawDeg)[eye] += value;
+  }
+  return gaze;
+}
+
 ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, const SkinPlacement* placement) {
   if (!placement) placement = &skin.placement();
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
   // The muscles' settled displacement, placed (the jaw in `pose`, the lids, the contact).
-  auto settle = [&](const NamedValues& activations, const JawPose& pose) -> MatX3 {
+  auto settle = [&](const NamedValues& activations, const JawPose& pose, const EyeGaze& gaze = {}) -> MatX3 {
     SkinLoads loads;
     loads.gravity = skin.restGravity();  // no gravity load: the rig's shapes are the muscles' alone
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
@@ -41,7 +50,7 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
     if (placement->isPlain()) return s.u;
     MatX3 moved;
-    placement->place(s.u, pose, loads.activations, moved);
+    placement->place(s.u, pose, loads.activations, moved, placement->contact(), gaze);
     return moved - restPositions;
   };
   const MatX3 rest = settle({}, JawPose{});  // zero with warping off; the warped solve's own rest otherwise
@@ -71,7 +80,7 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     shape.delta = MatX3::Zero(n, 3);
     if (s && s->reachable) {
       const JawPose& pose = poses[static_cast<size_t>(k)];
-      shape.delta = settle(map.totalActivations(*s), pose) - rest;
+      shape.delta = settle(map.totalActivations(*s), pose, gazeOf(*s)) - rest;
       if (!s->correctiveOf.empty())
         shape.delta -= settle(map.totalActivations(*map.find(s->correctiveOf)), pose) - rest;
       shape.mapped = true;
@@ -81,6 +90,12 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     shape.maxDisplacementVertex = static_cast<int>(peakVertex);
   });
   for (const ArkitRigShape& shape : rig.shapes) rig.made += shape.mapped ? 1 : 0;
+  std::vector<std::string> gazing;
+  for (const RetargetShape& s : map.shapes)
+    if (s.reachable && !s.gaze.empty()) gazing.push_back(s.name);
+  if (!placement->lids() && !gazing.empty())
+    rig.warnings.push_back("the head has no open eyes, so the " + std::to_string(gazing.size()) +
+                           " shapes that turn the eyes (" + gazing.front() + ", …) only move what their muscles move");
   return rig;
 }
 

@@ -11,6 +11,7 @@
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/head/jaw.h"
 #include "myoshell/muscles/muscle_def.h"
 
@@ -89,12 +90,22 @@ FacsEntry readEntry(DocReader& r, const std::set<std::string>& known, const std:
     j.finish();
     if (!e.movesJaw()) r.fail("jaw", "moves nothing: give open, forward or lateral, or leave the key out");
   }
+  if (r.has("gaze")) {
+    // The eyes' turn at intensity 1 (AU61–64), within an eye's comfortable range.
+    DocReader g = r.child("gaze");
+    e.gazePitchDeg = g.number("pitch", 0.0);
+    g.requireWithin("pitch", e.gazePitchDeg, -kGazeMaxDeg, kGazeMaxDeg);
+    e.gazeYawDeg = g.number("yaw", 0.0);
+    g.requireWithin("yaw", e.gazeYawDeg, -kGazeMaxDeg, kGazeMaxDeg);
+    g.finish();
+    if (!e.turnsEyes()) r.fail("gaze", "turns nothing: give pitch or yaw, or leave the key out");
+  }
   e.needs = r.string("needs", "");
   if (r.has("needs") && e.needs.empty()) r.fail("needs", "must say what the model lacks (e.g. \"lids\")");
-  if (!e.needs.empty() && (!e.muscles.empty() || e.movesJaw()))
-    r.fail("needs", "an AU with muscles or a jaw needs nothing more: give muscles and jaw, or needs, not both");
-  if (e.needs.empty() && e.muscles.empty() && !e.movesJaw())
-    r.failAt(muscles, mpath, "drives no muscle: list its muscles, give its jaw, or say in 'needs' what the model lacks");
+  if (!e.needs.empty() && (!e.muscles.empty() || e.movesJaw() || e.turnsEyes()))
+    r.fail("needs", "an AU with muscles, a jaw or a gaze needs nothing more: give those, or needs, not both");
+  if (e.needs.empty() && e.muscles.empty() && !e.movesJaw() && !e.turnsEyes())
+    r.failAt(muscles, mpath, "drives no muscle: list its muscles, give its jaw or gaze, or say in 'needs' what the model lacks");
   e.note = r.string("note", "");
   r.finish();
   return e;
@@ -154,6 +165,11 @@ std::string serialiseFacsMap(const FacsMap& map) {
       if (e.jawOpenDeg != 0.0) a["jaw"]["open"] = e.jawOpenDeg;
       if (e.jawForwardCm != 0.0) a["jaw"]["forward"] = e.jawForwardCm;
       if (e.jawLateralCm != 0.0) a["jaw"]["lateral"] = e.jawLateralCm;
+    }
+    if (e.turnsEyes()) {
+      a["gaze"] = nlohmann::ordered_json::object();
+      if (e.gazePitchDeg != 0.0) a["gaze"]["pitch"] = e.gazePitchDeg;
+      if (e.gazeYawDeg != 0.0) a["gaze"]["yaw"] = e.gazeYawDeg;
     }
     if (!e.needs.empty()) a["needs"] = e.needs;
     if (!e.note.empty()) a["note"] = e.note;

@@ -29,13 +29,17 @@ double facsSideShare(const std::string& muscle, const std::string& side) {
 
 std::optional<FacsDrive> facsDriveOfAu(const FacsMap& facs, int au, const std::string& side) {
   const FacsEntry* entry = facs.find(au);
-  if (!entry || (entry->muscles.empty() && !entry->movesJaw())) return std::nullopt;
+  if (!entry || (entry->muscles.empty() && !entry->movesJaw() && !entry->turnsEyes())) return std::nullopt;
   FacsDrive d;
   for (const auto& [muscle, w] : entry->muscles) {
     const double share = w * facsSideShare(muscle, side);
     if (share != 0.0) addWeight(d, muscle, share);
   }
   d.jaw = Vec3(entry->jawOpenDeg, entry->jawForwardCm, (side == "right" ? -1.0 : 1.0) * entry->jawLateralCm);
+  // The AU's turn is a direction (AU61 towards the subject's left): a side chooses the eye, not it.
+  const Vec2 turn(entry->gazePitchDeg, entry->gazeYawDeg);
+  if (side != "left") d.gaze[0] = turn;
+  if (side != "right") d.gaze[1] = turn;
   return d;
 }
 
@@ -50,6 +54,8 @@ FacsDrive facsDriveOfArkitName(const FacsMap& facs, const std::string& arkitName
     }
     for (const auto& [muscle, w] : one->muscles) addWeight(out, muscle, w);
     out.jaw += one->jaw;
+    out.gaze[0] += one->gaze[0];
+    out.gaze[1] += one->gaze[1];
   }
   return out;
 }
@@ -66,7 +72,12 @@ std::optional<RetargetShape> derivedRetargetShape(const FacsMap& facs, const std
   const char* dofs[3] = {"open", "forward", "lateral"};
   for (int k = 0; k < 3; ++k)
     if (drive.jaw[k] != 0.0) s.jaw.emplace_back(dofs[k], drive.jaw[k]);
-  if (s.activations.empty() && s.jaw.empty()) return std::nullopt;
+  const char* eyes[2] = {"right", "left"};
+  for (int e = 0; e < 2; ++e) {
+    if (drive.gaze[static_cast<size_t>(e)].x() != 0.0) s.gaze.emplace_back(std::string(eyes[e]) + "_pitch", drive.gaze[static_cast<size_t>(e)].x());
+    if (drive.gaze[static_cast<size_t>(e)].y() != 0.0) s.gaze.emplace_back(std::string(eyes[e]) + "_yaw", drive.gaze[static_cast<size_t>(e)].y());
+  }
+  if (s.activations.empty() && s.jaw.empty() && s.gaze.empty()) return std::nullopt;
   return s;
 }
 

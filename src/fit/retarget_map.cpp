@@ -1,10 +1,12 @@
 #include "myoshell/fit/retarget_map.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/core/check.h"
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/doc_reader.h"
@@ -143,6 +145,13 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
                      (s.correctiveOf.empty() ? "[0, 1]" : "[-1, 1] (a corrective's difference from its base)"));
     });
     s.jaw = readNamedValues(r, "jaw", [](const YAML::Node&, const YAML::Node&, const std::string&, const std::string&, double) {});
+    s.gaze = readNamedValues(r, "gaze", [&](const YAML::Node& key, const YAML::Node& value, const std::string& at,
+                                            const std::string& dof, double v) {
+      if (dof != "left_pitch" && dof != "left_yaw" && dof != "right_pitch" && dof != "right_yaw")
+        r.failAt(key, at, "'" + dof + "' is not left_pitch, left_yaw, right_pitch or right_yaw");
+      if (!(std::abs(v) <= kGazeMaxDeg))
+        r.failAt(value, at, "turn " + value.Scalar() + " degrees is outside [-45, 45]");
+    });
     if (r.has("fit")) {
       DocReader f = r.child("fit");
       RetargetFitFigures fig;
@@ -163,9 +172,9 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
     if (s.reachable && !s.reason.empty()) r.fail("reason", "only an unreachable shape (reachable: false) has a reason");
     if (!s.reachable) {
       if (s.reason.empty()) r.fail("reason", "an unreachable shape needs a reason (why muscles cannot make it)");
-      if (!s.activations.empty() || !s.jaw.empty() || !s.correctiveOf.empty())
-        r.fail(!s.activations.empty() ? "activations" : !s.jaw.empty() ? "jaw" : "corrective_of",
-               "an unreachable shape has no activations, jaw or base");
+      if (!s.activations.empty() || !s.jaw.empty() || !s.gaze.empty() || !s.correctiveOf.empty())
+        r.fail(!s.activations.empty() ? "activations" : !s.jaw.empty() ? "jaw" : !s.gaze.empty() ? "gaze" : "corrective_of",
+               "an unreachable shape has no activations, jaw, gaze or base");
     }
     r.finish();
     map.shapes.push_back(std::move(s));
@@ -217,6 +226,10 @@ std::string serialiseRetargetMap(const RetargetMap& map) {
     for (const auto& [muscle, v] : s.activations) e["activations"][muscle] = v;
     e["jaw"] = nlohmann::ordered_json::object();
     for (const auto& [dof, v] : s.jaw) e["jaw"][dof] = v;
+    if (!s.gaze.empty()) {
+      e["gaze"] = nlohmann::ordered_json::object();
+      for (const auto& [dof, v] : s.gaze) e["gaze"][dof] = v;
+    }
     if (s.fit) {
       e["fit"] = {{"cosine", s.fit->cosine},
                   {"magnitude_ratio", s.fit->magnitudeRatio},

@@ -161,6 +161,9 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   for (const std::string& name : arkitNames()) {
     auto it = byName.find(name);
     if (it == byName.end()) continue;
+    // A shape that turns the eyes (eyeLook*) is derived from its definition even where the rig has
+    // it: muscles cannot make it, and the artist's shape is only compared (docs/eyelids.md).
+    if (facsDriveOfArkitName(facs, name).turnsEyes()) continue;
     RigShapeFit s = std::move(it->second);
     if (const std::optional<std::string> reason = unreachableReason(name)) {
       s.reachable = false;

@@ -322,8 +322,8 @@ TEST_F(ActivationFitDefaultHead, BadInputIsRefusedWithExactMessages) {
 // with warping off (the fixture's model) it does not run.
 // A rig made by the model itself, in both spellings: every reachable shape is recovered, ICT's
 // halves of browInnerUp add into one entry, mouthClose is stored as its difference from jawOpen,
-// the eye rotations are listed with their reason and not fitted, a name that is no ARKit name is
-// skipped; the map reads back to itself.
+// an eye turn the rig has (eyeLookIn_L) is derived from its definition, not fitted, a name that is no
+// ARKit name is skipped; the map reads back to itself.
 TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsADifference) {
   const std::vector<std::pair<std::string, double>> jaw = {{"depressor_labii_inferioris_left", 0.5},
                                                            {"depressor_labii_inferioris_right", 0.5}};
@@ -341,12 +341,12 @@ TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsA
   FitSettings plain;  // λ = 0: the exact activations come back
   const RigFit fit = fitRig(*skin_, rig, plain);
 
-  // The rig's five ARKit shapes (eyeLookInLeft, jawOpen, mouthClose, mouthSmileLeft, browInnerUp)
-  // are fitted; every other ARKit name is unreachable with its reason or derived from its FACS
-  // units for this skin's muscles, all in ARKit order.
-  ASSERT_EQ(fit.shapes.size(), 5u);
-  EXPECT_EQ(fit.shapes[0].name, "eyeLookInLeft");
-  EXPECT_FALSE(fit.shapes[0].fit.has_value());
+  // The rig's four shapes muscles make (jawOpen, mouthClose, mouthSmileLeft, browInnerUp) are
+  // fitted; every other ARKit name, eyeLookInLeft among them, is unreachable with its reason or
+  // derived from its FACS units for this skin's muscles, all in ARKit order.
+  ASSERT_EQ(fit.shapes.size(), 4u);
+  EXPECT_EQ(fit.map.find("eyeLookInLeft")->source, RetargetSource::Derived);
+  EXPECT_EQ(fit.map.find("eyeLookInLeft")->gaze, (NamedValues{{"left_yaw", -25.0}}));
   std::vector<std::string> skinMuscles;
   for (const auto& m : skin_->muscles()) skinMuscles.push_back(m.muscle.def.name);
   const std::vector<std::string> fitted = {"jawOpen", "mouthClose", "mouthSmileLeft", "browInnerUp"};
@@ -366,6 +366,7 @@ TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsA
       ASSERT_NE(s, nullptr) << name;
       EXPECT_EQ(s->source, RetargetSource::Derived) << name;
       EXPECT_EQ(s->activations, fromFacs->activations) << name;
+      EXPECT_EQ(s->gaze, fromFacs->gaze) << name;
       EXPECT_FALSE(s->fit.has_value()) << name;
       derived.push_back(name);
     } else {
@@ -386,7 +387,7 @@ TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsA
   EXPECT_NEAR(value("mouthSmile_L", "zygomaticus_major_left"), 0.7, 1e-6);
   EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_left"), 0.6, 1e-6);
   EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_right"), 0.3, 1e-6);
-  EXPECT_EQ(fit.shapes[4].sources, (std::vector<std::string>{"browInnerUp_L", "browInnerUp_R"}));
+  EXPECT_EQ(fit.shapes[3].sources, (std::vector<std::string>{"browInnerUp_L", "browInnerUp_R"}));
   const RetargetShape& close = *fit.map.find("mouthClose");
   EXPECT_EQ(close.correctiveOf, "jawOpen");
   EXPECT_NEAR(value("mouthClose", "depressor_labii_inferioris_left"), 0.2 - 0.5, 1e-6);

@@ -329,6 +329,66 @@ TEST_F(EyelidsDefaultHead, ABlinkTearsNoSkinAtTheCanthi) {
   }
 }
 
+// The lids follow the gaze (EyeGaze; docs/eyelids.md, "The lids follow the gaze"): the rest placed
+// with one eye turned 25° by the placement every path uses.
+MatX3 gazed(const AnatomicalFace& face, int eye, double pitchDeg, double yawDeg) {
+  EyeGaze gaze;
+  gaze.pitchDeg[static_cast<size_t>(eye)] = pitchDeg;
+  gaze.yawDeg[static_cast<size_t>(eye)] = yawDeg;
+  MatX3 out;
+  const MatX3 u = MatX3::Zero(face.head().mesh.vertexCount(), 3);
+  face.skin().placement().place(u, JawPose{}, VecX::Zero(face.muscleCount()), out, true, gaze);
+  return out;
+}
+
+TEST_F(EyelidsDefaultHead, TheLidsFollowTheGazeUpDownAndSideways) {
+  const MatX3& V = rest();
+  const int upper = lids().eyes[1].gapPairs[0][0], lower = lids().eyes[1].gapPairs[0][1];  // the left eye's mid-lid pair
+  const MatX3 up = gazed(*face_, 1, 25.0, 0.0), down = gazed(*face_, 1, -25.0, 0.0), out = gazed(*face_, 1, 0.0, 25.0);
+  RecordProperty("up_upper_lid_mm", std::to_string(10 * (up(upper, 1) - V(upper, 1))));
+  RecordProperty("down_upper_lid_mm", std::to_string(10 * (V(upper, 1) - down(upper, 1))));
+  RecordProperty("down_lower_lid_mm", std::to_string(10 * (V(lower, 1) - down(lower, 1))));
+  RecordProperty("out_upper_lid_mm", std::to_string(10 * (out(upper, 0) - V(upper, 0))));
+  // Looking up lifts the upper lid by millimetres and the lower lid less (0.84 and 0.45 of the turn).
+  EXPECT_GT(up(upper, 1) - V(upper, 1), 0.2);
+  EXPECT_GT(up(lower, 1) - V(lower, 1), 0.0);
+  EXPECT_GT(up(upper, 1) - V(upper, 1), 1.3 * (up(lower, 1) - V(lower, 1)));
+  // Looking down lowers both, the upper more: the fissure narrows (Read et al. 2006).
+  EXPECT_GT(V(upper, 1) - down(upper, 1), 0.2);
+  EXPECT_GT(V(lower, 1) - down(lower, 1), 0.0);
+  EXPECT_LT(lidGap(lids(), 1, down), lidGap(lids(), 1, V));
+  // Looking towards the subject's left (+x) draws the lids that way; the other eye stays at rest.
+  EXPECT_GT(out(upper, 0) - V(upper, 0), 0.05);
+  for (const MatX3* P : {&up, &down, &out})
+    for (int i : lids().eyes[0].lidVertices) ASSERT_TRUE(P->row(i) == V.row(i)) << "the right eye's lid moved";
+  // No tear at the canthi (as ABlinkTearsNoSkinAtTheCanthi): the turn fades there too.
+  std::set<int> orbit(lids().eyes[1].orbitVertices.begin(), lids().eyes[1].orbitVertices.end());
+  const MatX3i& F = face_->head().mesh.F;
+  for (const MatX3* P : {&up, &down, &out}) {
+    double worst = 0.0;
+    for (Eigen::Index t = 0; t < F.rows(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = F(t, k), b = F(t, (k + 1) % 3);
+        if (orbit.count(a) && orbit.count(b)) worst = std::max(worst, (P->row(a) - P->row(b)).norm() / (V.row(a) - V.row(b)).norm());
+      }
+    RecordProperty("worst_stretch", std::to_string(worst));
+    EXPECT_LT(worst, 3.0);
+  }
+}
+
+// The right eye's gaze is the left's mirror image (the built-in head is symmetric about x = 0):
+// looking up, and looking in (towards the nose: −x for the left eye, +x for the right).
+TEST_F(EyelidsDefaultHead, TheRightEyesGazeMirrorsTheLefts) {
+  const MatX3& V = rest();
+  const test::MirrorMap mirror = test::mirrorMap(V);
+  for (const auto& [pitch, yawLeft] : std::vector<std::pair<double, double>>{{25.0, 0.0}, {0.0, -25.0}}) {
+    const MatX3 uL = gazed(*face_, 1, pitch, yawLeft) - V, uR = gazed(*face_, 0, pitch, -yawLeft) - V;
+    const double peak = uL.rowwise().norm().maxCoeff();
+    EXPECT_GT(peak, 0.1) << pitch << " " << yawLeft;  // at least 1 mm
+    EXPECT_LT(test::mirrorMismatch(mirror, uL, uR), 0.05 * peak) << pitch << " " << yawLeft;
+  }
+}
+
 // The fit's columns hold a lid muscle's secant (its placed shape at a = 1); the Gauss–Newton on the
 // placed shape (docs/fitting.md) then recovers a half blink the model made itself, which the secant
 // alone misses because the lid's turn is not linear in the activation.

@@ -44,7 +44,8 @@ std::set<int> ausOfFacsField(const std::string& facs) {
 
 TEST(FacsMap, TheShippedMapReadsAgainstTheFaceLibraryAndIsTheFileOnDisk) {
   const FacsMap& map = builtinFacsMap();
-  ASSERT_EQ(map.entries.size(), 28u);  // OpenFace's 17, the eight more the muscles make, and the jaw's AU27, 29, 30
+  // OpenFace's 17, the eight more the muscles make, the jaw's AU27, 29, 30 and the eyes' AU61–64.
+  ASSERT_EQ(map.entries.size(), 32u);
   const FacsMap fromFile = readFacsMapFile((test::sourceDir() / "assets/facs/au_map.json").string(), faceMuscleNames());
   EXPECT_EQ(serialiseFacsMap(fromFile), serialiseFacsMap(map));
   std::vector<int> order;
@@ -79,7 +80,7 @@ TEST(FacsMap, EveryFaceMuscleIsDrivenByExactlyTheAusItsDefinitionNames) {
 TEST(FacsMap, EveryAuDrivesMusclesOrTheJawAndTheLidsAusDriveTheLids) {
   std::map<int, std::string> needs;
   for (const FacsEntry& e : builtinFacsMap().entries) {
-    EXPECT_EQ(e.muscles.empty() && !e.movesJaw(), !e.needs.empty()) << "AU" << e.au;
+    EXPECT_EQ(e.muscles.empty() && !e.movesJaw() && !e.turnsEyes(), !e.needs.empty()) << "AU" << e.au;
     if (!e.needs.empty()) needs[e.au] = e.needs;
   }
   EXPECT_TRUE(needs.empty());
@@ -101,6 +102,12 @@ TEST(FacsMap, EveryAuDrivesMusclesOrTheJawAndTheLidsAusDriveTheLids) {
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(27)->jawOpenDeg, 35.0);
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(29)->jawForwardCm, 0.8);
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(30)->jawLateralCm, 1.0);
+  // The eyes' AUs turn them 25° (pitch + up, yaw + the subject's left), muscles none: the lids follow.
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(61)->gazeYawDeg, 25.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(62)->gazeYawDeg, -25.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(63)->gazePitchDeg, 25.0);
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(64)->gazePitchDeg, -25.0);
+  for (int au : {61, 62, 63, 64}) EXPECT_TRUE(builtinFacsMap().find(au)->muscles.empty()) << "AU" << au;
 }
 
 TEST(FacsMap, ReadsBackToItselfWithEveryNumberExact) {
@@ -109,10 +116,16 @@ TEST(FacsMap, ReadsBackToItselfWithEveryNumberExact) {
   map.entries.push_back({12, "lip corner puller", true, {{"b", 0.1 + 0.2}, {"a", 1.0}}, "", "first b, then a"});
   map.entries.push_back({26, "jaw drop", true, {}, "jaw", ""});
   map.entries.push_back({11, "nasolabial deepener", false, {{"c", 0.0}}, "", ""});
+  FacsEntry eyes{63, "eyes up", false, {}, "", ""};
+  eyes.gazePitchDeg = 0.1 + 24.8;
+  eyes.gazeYawDeg = -3.0;
+  map.entries.push_back(eyes);
   const std::string text = serialiseFacsMap(map);
   const FacsMap back = parseFacsMap(text, "map.json");
   EXPECT_EQ(serialiseFacsMap(back), text);
-  ASSERT_EQ(back.entries.size(), 3u);
+  ASSERT_EQ(back.entries.size(), 4u);
+  EXPECT_EQ(back.entries[3].gazePitchDeg, 0.1 + 24.8);
+  EXPECT_EQ(back.entries[3].gazeYawDeg, -3.0);
   EXPECT_EQ(back.note, "by hand");
   EXPECT_EQ(back.entries[0].muscles, (std::vector<std::pair<std::string, double>>{{"b", 0.1 + 0.2}, {"a", 1.0}}));
   EXPECT_EQ(back.entries[0].note, "first b, then a");
@@ -141,6 +154,12 @@ TEST(FacsMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
   EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1}}], "version": 1})"),
             "map.json:1:57: key 'version': unknown key");
   EXPECT_EQ(error(R"({"note": "x"})"), "map.json:1:1: key 'aus': missing required key");
+  EXPECT_EQ(error(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {"pitch": 50}}]})"),
+            "map.json:1:67: key 'aus[0].gaze.pitch': must lie in [-45, 45] (got 50)");
+  EXPECT_EQ(error(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {"roll": 5}}]})"),
+            "map.json:1:58: key 'aus[0].gaze.roll': unknown key");
+  EXPECT_EQ(error(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {}}]})"),
+            "map.json:1:57: key 'aus[0].gaze': turns nothing: give pitch or yaw, or leave the key out");
   EXPECT_EQ(error(R"({"aus": []})"), "map.json:1:9: key 'aus': must hold at least one action unit");
   EXPECT_EQ(error(R"({"aus": {"au": 1}})"), "map.json:1:9: key 'aus': must be a list of {au, name, muscles, …}");
   EXPECT_EQ(error(R"({"aus": [{"au": 0, "name": "x", "muscles": {"a": 1}}]})"),
@@ -176,17 +195,18 @@ TEST(FacsMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
             "map.json:1:46: key 'aus[0].muscles.frontalis': unknown muscle 'frontalis' (the muscles: procerus, "
             "mentalis_left)");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {"a": 1}, "needs": "jaw"}]})"),
-            "map.json:1:64: key 'aus[0].needs': an AU with muscles or a jaw needs nothing more: give muscles and jaw, or needs, not both");
+            "map.json:1:64: key 'aus[0].needs': an AU with muscles, a jaw or a gaze needs nothing more: give those, or needs, not "
+            "both");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}}]})"),
-            "map.json:1:45: key 'aus[0].muscles': drives no muscle: list its muscles, give its jaw, or say in 'needs' what "
-            "the model lacks");
+            "map.json:1:45: key 'aus[0].muscles': drives no muscle: list its muscles, give its jaw or gaze, or say in 'needs' "
+            "what the model lacks");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 50}}]})"),
             "map.json:1:65: key 'aus[0].jaw.open': must lie in [0, 40] (got 50)");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {}}]})"),
             "map.json:1:56: key 'aus[0].jaw': moves nothing: give open, forward or lateral, or leave the key out");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 5}, "needs": "lids"}]})"),
-            "map.json:1:78: key 'aus[0].needs': an AU with muscles or a jaw needs nothing more: give muscles and jaw, or "
-            "needs, not both");
+            "map.json:1:78: key 'aus[0].needs': an AU with muscles, a jaw or a gaze needs nothing more: give those, or needs, "
+            "not both");
   EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "needs": ""}]})"),
             "map.json:1:58: key 'aus[0].needs': must say what the model lacks (e.g. \"lids\")");
   EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": [1]}]})"),

@@ -24,6 +24,10 @@
 // where they stood above each other. The slide fades with the fissure's height to nothing at the
 // canthi, as the turn does: the canthal tendons hold the lids' ends (a full slide there tore the skin
 // beside the inner canthus into a dark crack; docs/eyelids.md).
+// The lids follow the eye's turn (EyeGaze: pitch φ_g, yaw ψ_g): a lid vertex also turns by
+//   −κ·φ_g·|w_i|·Δ(x_i)/Δmax about the horizontal axis (κ = upperGazeFollow or lowerGazeFollow)
+//   κ_s·ψ_g·|w_i|·Δ(x_i)/Δmax about the vertical axis (κ_s = sideGazeFollow)
+// fading at the canthi as the nasal slide does; the eyeball itself is not part of the skin.
 //
 // As the jaw (jaw.h), the rest rides with the lid and the physics acts on the residual: a lid vertex
 // is placed at c + R(θ_i)(x_i − c), x_i its (jawed) position rest + u, so the residual turns with the
@@ -56,6 +60,27 @@ struct LidSettings {
   double lowerTarsus = 0.02;     // the lower lid's pretarsal skin, ~2 mm
   double lowerFalloff = 0.05;    // to the lower lid crease (~6 mm below the margin)
   double orbitReach = 2.0;       // vertices within this many eyeball radii of the centre are projected
+  // Lid–gaze coupling (docs/eyelids.md, "The lids follow the gaze"): the share of the eye's vertical
+  // turn each lid takes. The upper lid follows the eye nearly one for one: in 30° of downgaze the
+  // upper margin to corneal reflex distance falls by only 1.0 mm of the cornea's ~6.3 mm travel
+  // (1 − 1.0/6.3 = 0.84); the fissure narrows from 9.7 to 6.4 mm in 40° of downgaze (Read et al.
+  // 2006), so the lower lid takes 0.84 − 3.3/8.4 = 0.45 of the turn.
+  double upperGazeFollow = 0.84;
+  double lowerGazeFollow = 0.45;
+  // The share of the eye's sideways turn the lids take, riding on the cornea's bulge: a choice (no
+  // measurement found), ICT's artist shapes only reported against it.
+  double sideGazeFollow = 0.25;
+};
+
+// The eyes' turn, degrees, index 0 the subject's right eye, 1 the left: pitch + up, yaw + towards
+// the subject's left (the face frame's +x). ARKit's eyeLook* at 1 and FACS AU61–64 at full
+// intensity turn an eye 25° (assets/facs/au_map.json).
+// An eye's turn stays within ±45° either way (its mechanical range; ±25° is the comfortable one).
+constexpr double kGazeMaxDeg = 45.0;
+struct EyeGaze {
+  std::array<double, 2> pitchDeg{0.0, 0.0};
+  std::array<double, 2> yawDeg{0.0, 0.0};
+  bool isZero() const { return pitchDeg[0] == 0.0 && pitchDeg[1] == 0.0 && yawDeg[0] == 0.0 && yawDeg[1] == 0.0; }
 };
 
 // One eye's lids and eyeball proxy (head space, cm).
@@ -73,6 +98,7 @@ struct EyeLids {
   std::vector<double> raiseAngle;    // β per lid vertex, radians (from the rest fissure)
   double lowerShare = 0.1;           // f (LidSettings::lowerShare)
   double nasalTurn = 0.0;            // radians: the lids' nasal turn about `up` at c = 1 and |w| = 1
+  double upperGazeFollow = 0.84, lowerGazeFollow = 0.45, sideGazeFollow = 0.25;  // (LidSettings)
   std::vector<int> orbitVertices;    // vertices projected out of the proxy
   std::vector<int> upperMargin, lowerMargin;  // the margin paths, inner corner to outer corner
   // The mid-lid landmark pairs whose distance is the lid gap (upper, lower): 37/41 and 38/40 on the
@@ -90,7 +116,8 @@ struct LidRig {
 struct LidPose {
   std::array<double, 2> close{0.0, 0.0};
   std::array<double, 2> raise{0.0, 0.0};
-  bool isZero() const { return close[0] == 0.0 && close[1] == 0.0 && raise[0] == 0.0 && raise[1] == 0.0; }
+  EyeGaze gaze;  // the lids follow the eyes' turn (LidSettings' gaze follows)
+  bool isZero() const { return close[0] == 0.0 && close[1] == 0.0 && raise[0] == 0.0 && raise[1] == 0.0 && gaze.isZero(); }
 };
 
 // The muscles that drive the lids, by side index (0 right, 1 left).

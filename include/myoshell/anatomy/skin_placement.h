@@ -48,8 +48,10 @@ class SkinPlacement {
   ContactReport place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
     return place(u, jaw, activations, out, contact_);
   }
-  // The same with the projection on or off whatever the switch says (`project`).
-  ContactReport place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out, bool project) const;
+  // The same with the projection on or off whatever the switch says (`project`), and the lids
+  // following the eyes' turn `gaze` (eyelids.h; nothing on a head without lids).
+  ContactReport place(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out, bool project,
+                      const EyeGaze& gaze = {}) const;
 
  private:
   MatX3 rest_;

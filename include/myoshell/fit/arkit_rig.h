@@ -26,6 +26,7 @@ struct ArkitRigShape {
 struct ArkitRig {
   std::vector<ArkitRigShape> shapes;  // arkitNames() order, all 52
   int made = 0;                       // how many are mapped
+  std::vector<std::string> warnings;  // e.g. gaze shapes on a head without open eyes (left zero)
 };
 
 // Settles every reachable shape of `map` without gravity load (the shapes are the muscles' alone),
@@ -33,7 +34,8 @@ struct ArkitRig {
 // built from the skin's head and muscles when null), as the playing face places it: a shape with jaw
 // values (open in degrees, forward and lateral in cm: rig_fit.h) is carried by the jaw in that pose,
 // its lids turned by its lid muscles, the eyeballs', teeth's and lips' contact projected; minus the
-// rest. A corrective rides on its base's jaw. InputError for a muscle the skin does not have (read
+// rest; a shape with a gaze (eyeLook*) turns the lids after the eyes (eyelids.h): on a head
+// without open eyes it stays zero and `warnings` says so. A corrective rides on its base's jaw. InputError for a muscle the skin does not have (read
 // the map with the skin's names to name the file), for jaw values on a head without a jaw (no
 // 68-point jaw line) or outside their ranges; NumericalError when a warped solve does not converge
 // ("rig: the warped static solve did not converge (residual R)").
@@ -42,5 +44,8 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
 // The jaw pose a map's shape names (its "open", "forward", "lateral" values summed); InputError
 // naming the shape for another name.
 JawPose jawPoseOf(const RetargetShape& shape);
+
+// The eyes' turn a map's shape names (its "left_pitch", "left_yaw", "right_pitch", "right_yaw").
+EyeGaze gazeOf(const RetargetShape& shape);
 
 }  // namespace myo

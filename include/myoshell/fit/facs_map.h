@@ -11,7 +11,8 @@
 // An AU at intensity x drives each of its muscles at x · weight (weights in [0, 1]); where several
 // AUs drive one muscle their contributions add and the sum is clamped to 1. An AU the model cannot
 // make yet has no muscles and says in `needs` what is missing ("lids"). An AU may move the jaw
-// (`jaw`: {"open": degrees, "forward": cm, "lateral": cm} at intensity 1), with or without muscles.
+// (`jaw`: {"open": degrees, "forward": cm, "lateral": cm} at intensity 1), with or without muscles,
+// and turn the eyes (`gaze`: {"pitch": degrees, "yaw": degrees} at intensity 1; AU61–64).
 #pragma once
 
 #include <string>
@@ -37,6 +38,10 @@ struct FacsEntry {
   // and lateral shift in cm (+ towards the subject's left). Scaled by the intensity like the weights.
   double jawOpenDeg = 0.0, jawForwardCm = 0.0, jawLateralCm = 0.0;
   bool movesJaw() const { return jawOpenDeg != 0.0 || jawForwardCm != 0.0 || jawLateralCm != 0.0; }
+  // The eyes' turn at intensity 1 (anatomy/eyelids.h, EyeGaze; AU61–64), degrees in [−45, 45]: pitch
+  // + up, yaw + towards the subject's left. The lids follow it; the eyeball is not part of the skin.
+  double gazePitchDeg = 0.0, gazeYawDeg = 0.0;
+  bool turnsEyes() const { return gazePitchDeg != 0.0 || gazeYawDeg != 0.0; }
 };
 
 struct FacsMap {

@@ -9,6 +9,7 @@
 // muscle both sides share), and moves the jaw sideways towards its side.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <utility>
@@ -23,7 +24,11 @@ namespace myo {
 struct FacsDrive {
   std::vector<std::pair<std::string, double>> muscles;  // muscle → weight (> 0), first-seen order, summed
   Vec3 jaw = Vec3::Zero();  // opening (degrees), protrusion and lateral shift (cm, + the subject's left)
-  bool empty() const { return muscles.empty() && jaw.isZero(); }
+  // Each eye's turn (index 0 the subject's right, 1 the left): pitch, yaw in degrees (+ up, + the
+  // subject's left). A sided name turns its side's eye only (eyeLookUpLeft the left eye).
+  std::array<Vec2, 2> gaze{Vec2::Zero(), Vec2::Zero()};
+  bool turnsEyes() const { return !gaze[0].isZero() || !gaze[1].isZero(); }
+  bool empty() const { return muscles.empty() && jaw.isZero() && !turnsEyes(); }
 };
 
 // The share of a muscle a sided shape drives: 1 on `side` ("left" | "right"), 0 on the other, ½ for
@@ -40,7 +45,8 @@ FacsDrive facsDriveOfArkitName(const FacsMap& facs, const std::string& arkitName
 
 // A retargeting map's entry for `arkitName` made from its FACS units (source "derived"), the
 // activations of the muscles among `muscleNames` (each clamped to [0, 1]; the others left out), the
-// jaw values ("open", "forward", "lateral") it moves. Nothing when it drives none of them.
+// jaw values ("open", "forward", "lateral") it moves and the eyes' turn ("left_pitch", "left_yaw",
+// "right_pitch", "right_yaw", degrees). Nothing when it drives none of them.
 std::optional<RetargetShape> derivedRetargetShape(const FacsMap& facs, const std::string& arkitName,
                                                   const std::vector<std::string>& muscleNames);
 

@@ -9,6 +9,7 @@
 //      {"name": "mouthSmileLeft", "source": "fitted", "activations": {"zygomaticus_major_L": 0.93}, "jaw": {},
 //       "fit": {"cosine": 0.81, "magnitude_ratio": 0.9, "rms_mm": 1.2, "max_mm": 4.1}},
 //      {"name": "browDownLeft", "source": "derived", "activations": {"corrugator_supercilii_left": 1}, "jaw": {}},
+//      {"name": "eyeLookUpLeft", "source": "derived", "activations": {}, "jaw": {}, "gaze": {"left_pitch": 25}},
 //      {"name": "mouthClose", "corrective_of": "jawOpen", "activations": {…}},
 //      {"name": "eyeLookInLeft", "reachable": false, "reason": "eye rotation: …"}, …]}
 //
@@ -56,6 +57,9 @@ struct RetargetShape {
   NamedValues jaw;                  // jaw degree of freedom → value
   std::optional<RetargetFitFigures> fit;
   RetargetSource source = RetargetSource::Fitted;  // reachable shapes: fitted to a rig's shape or derived
+  // The eyes' turn, degrees in [−45, 45]: "left_pitch", "left_yaw", "right_pitch", "right_yaw"
+  // (anatomy/eyelids.h, EyeGaze; + up, + the subject's left). The lids follow it.
+  NamedValues gaze;
 };
 
 struct RetargetMap {
