@@ -2,9 +2,11 @@
 
 #include <fmt/core.h>
 
+#include <map>
 #include <optional>
 #include <vector>
 
+#include "myoshell/anatomy/mouth_pressure.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/parallel.h"
 #include "myoshell/fit/arkit_names.h"
@@ -36,7 +38,14 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
   // The muscles' settled displacement, placed (the jaw in `pose`, the lids, the contact).
-  auto settle = [&](const NamedValues& activations, const JawPose& pose, const EyeGaze& gaze = {}) -> MatX3 {
+  // Air in the mouth (cheekPuff): the skin's full-space response to the pressure's load, once per
+  // pressure (the reduced basis holds no pattern for it); added to the muscles' residual.
+  std::map<double, MatX3> airResponse;
+  for (const RetargetShape& s : map.shapes)
+    if (s.reachable && s.mouthPressureKpa > 0.0 && !airResponse.count(s.mouthPressureKpa))
+      airResponse[s.mouthPressureKpa] = skin.linearFullResponse(mouthPressureLoad(skin.head(), s.mouthPressureKpa));
+  auto settle = [&](const NamedValues& activations, const JawPose& pose, const EyeGaze& gaze = {},
+                    double airKpa = 0.0) -> MatX3 {
     SkinLoads loads;
     loads.gravity = skin.restGravity();  // no gravity load: the rig's shapes are the muscles' alone
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
@@ -45,9 +54,10 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     // No contact penalty: a blendshape rig is linear, and fit-rig reads it back with the fit's linear
     // columns; the shapes are placed with the projection (docs/mouth_contact.md, "Penalty forces").
     loads.jaw = pose;
-    const SettledSkin s = skin.settle(loads, warped);
+    SettledSkin s = skin.settle(loads, warped);
     if (!s.converged || !s.u.allFinite())
       throw NumericalError(fmt::format("rig: the warped static solve did not converge (residual {:.3g})", s.residual));
+    if (airKpa > 0.0) s.u += airResponse.at(airKpa);
     if (placement->isPlain()) return s.u;
     MatX3 moved;
     placement->place(s.u, pose, loads.activations, moved, placement->contact(), gaze);
@@ -80,7 +90,7 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
     shape.delta = MatX3::Zero(n, 3);
     if (s && s->reachable) {
       const JawPose& pose = poses[static_cast<size_t>(k)];
-      shape.delta = settle(map.totalActivations(*s), pose, gazeOf(*s)) - rest;
+      shape.delta = settle(map.totalActivations(*s), pose, gazeOf(*s), s->mouthPressureKpa) - rest;
       if (!s->correctiveOf.empty())
         shape.delta -= settle(map.totalActivations(*map.find(s->correctiveOf)), pose) - rest;
       shape.mapped = true;

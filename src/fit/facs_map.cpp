@@ -12,6 +12,7 @@
 #include "myoshell/core/doc_reader.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/anatomy/eyelids.h"
+#include "myoshell/anatomy/mouth_pressure.h"
 #include "myoshell/head/jaw.h"
 #include "myoshell/muscles/muscle_def.h"
 
@@ -100,11 +101,13 @@ FacsEntry readEntry(DocReader& r, const std::set<std::string>& known, const std:
     g.finish();
     if (!e.turnsEyes()) r.fail("gaze", "turns nothing: give pitch or yaw, or leave the key out");
   }
+  e.mouthPressureKpa = r.number("mouth_pressure_kpa", 0.0);
+  r.requireWithin("mouth_pressure_kpa", e.mouthPressureKpa, 0.0, kMouthPressureMaxKpa);
   e.needs = r.string("needs", "");
   if (r.has("needs") && e.needs.empty()) r.fail("needs", "must say what the model lacks (e.g. \"lids\")");
-  if (!e.needs.empty() && (!e.muscles.empty() || e.movesJaw() || e.turnsEyes()))
+  if (!e.needs.empty() && (!e.muscles.empty() || e.movesJaw() || e.turnsEyes() || e.mouthPressureKpa > 0.0))
     r.fail("needs", "an AU with muscles, a jaw or a gaze needs nothing more: give those, or needs, not both");
-  if (e.needs.empty() && e.muscles.empty() && !e.movesJaw() && !e.turnsEyes())
+  if (e.needs.empty() && e.muscles.empty() && !e.movesJaw() && !e.turnsEyes() && !(e.mouthPressureKpa > 0.0))
     r.failAt(muscles, mpath, "drives no muscle: list its muscles, give its jaw or gaze, or say in 'needs' what the model lacks");
   e.note = r.string("note", "");
   r.finish();
@@ -166,6 +169,7 @@ std::string serialiseFacsMap(const FacsMap& map) {
       if (e.jawForwardCm != 0.0) a["jaw"]["forward"] = e.jawForwardCm;
       if (e.jawLateralCm != 0.0) a["jaw"]["lateral"] = e.jawLateralCm;
     }
+    if (e.mouthPressureKpa > 0.0) a["mouth_pressure_kpa"] = e.mouthPressureKpa;
     if (e.turnsEyes()) {
       a["gaze"] = nlohmann::ordered_json::object();
       if (e.gazePitchDeg != 0.0) a["gaze"]["pitch"] = e.gazePitchDeg;

@@ -29,7 +29,8 @@ double facsSideShare(const std::string& muscle, const std::string& side) {
 
 std::optional<FacsDrive> facsDriveOfAu(const FacsMap& facs, int au, const std::string& side) {
   const FacsEntry* entry = facs.find(au);
-  if (!entry || (entry->muscles.empty() && !entry->movesJaw() && !entry->turnsEyes())) return std::nullopt;
+  if (!entry || (entry->muscles.empty() && !entry->movesJaw() && !entry->turnsEyes() && entry->mouthPressureKpa == 0.0))
+    return std::nullopt;
   FacsDrive d;
   for (const auto& [muscle, w] : entry->muscles) {
     const double share = w * facsSideShare(muscle, side);
@@ -40,6 +41,7 @@ std::optional<FacsDrive> facsDriveOfAu(const FacsMap& facs, int au, const std::s
   const Vec2 turn(entry->gazePitchDeg, entry->gazeYawDeg);
   if (side != "left") d.gaze[0] = turn;
   if (side != "right") d.gaze[1] = turn;
+  d.mouthPressureKpa = entry->mouthPressureKpa;
   return d;
 }
 
@@ -56,6 +58,7 @@ FacsDrive facsDriveOfArkitName(const FacsMap& facs, const std::string& arkitName
     out.jaw += one->jaw;
     out.gaze[0] += one->gaze[0];
     out.gaze[1] += one->gaze[1];
+    out.mouthPressureKpa += one->mouthPressureKpa;
   }
   return out;
 }
@@ -77,7 +80,8 @@ std::optional<RetargetShape> derivedRetargetShape(const FacsMap& facs, const std
     if (drive.gaze[static_cast<size_t>(e)].x() != 0.0) s.gaze.emplace_back(std::string(eyes[e]) + "_pitch", drive.gaze[static_cast<size_t>(e)].x());
     if (drive.gaze[static_cast<size_t>(e)].y() != 0.0) s.gaze.emplace_back(std::string(eyes[e]) + "_yaw", drive.gaze[static_cast<size_t>(e)].y());
   }
-  if (s.activations.empty() && s.jaw.empty() && s.gaze.empty()) return std::nullopt;
+  s.mouthPressureKpa = drive.mouthPressureKpa;
+  if (s.activations.empty() && s.jaw.empty() && s.gaze.empty() && s.mouthPressureKpa == 0.0) return std::nullopt;
   return s;
 }
 

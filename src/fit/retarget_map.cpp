@@ -7,6 +7,7 @@
 #include <set>
 
 #include "myoshell/anatomy/eyelids.h"
+#include "myoshell/anatomy/mouth_pressure.h"
 #include "myoshell/core/check.h"
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/doc_reader.h"
@@ -152,6 +153,8 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
       if (!(std::abs(v) <= kGazeMaxDeg))
         r.failAt(value, at, "turn " + value.Scalar() + " degrees is outside [-45, 45]");
     });
+    s.mouthPressureKpa = r.number("mouth_pressure_kpa", 0.0);
+    r.requireWithin("mouth_pressure_kpa", s.mouthPressureKpa, 0.0, kMouthPressureMaxKpa);
     if (r.has("fit")) {
       DocReader f = r.child("fit");
       RetargetFitFigures fig;
@@ -172,9 +175,13 @@ RetargetMap readRetargetMap(const YAML::Node& root, const std::string& name, con
     if (s.reachable && !s.reason.empty()) r.fail("reason", "only an unreachable shape (reachable: false) has a reason");
     if (!s.reachable) {
       if (s.reason.empty()) r.fail("reason", "an unreachable shape needs a reason (why muscles cannot make it)");
-      if (!s.activations.empty() || !s.jaw.empty() || !s.gaze.empty() || !s.correctiveOf.empty())
-        r.fail(!s.activations.empty() ? "activations" : !s.jaw.empty() ? "jaw" : !s.gaze.empty() ? "gaze" : "corrective_of",
-               "an unreachable shape has no activations, jaw, gaze or base");
+      if (!s.activations.empty() || !s.jaw.empty() || !s.gaze.empty() || s.mouthPressureKpa > 0.0 || !s.correctiveOf.empty())
+        r.fail(!s.activations.empty() ? "activations"
+               : !s.jaw.empty()       ? "jaw"
+               : !s.gaze.empty()      ? "gaze"
+               : s.mouthPressureKpa > 0.0 ? "mouth_pressure_kpa"
+                                          : "corrective_of",
+               "an unreachable shape has no activations, jaw, gaze, air or base");
     }
     r.finish();
     map.shapes.push_back(std::move(s));
@@ -230,6 +237,7 @@ std::string serialiseRetargetMap(const RetargetMap& map) {
       e["gaze"] = nlohmann::ordered_json::object();
       for (const auto& [dof, v] : s.gaze) e["gaze"][dof] = v;
     }
+    if (s.mouthPressureKpa > 0.0) e["mouth_pressure_kpa"] = s.mouthPressureKpa;
     if (s.fit) {
       e["fit"] = {{"cosine", s.fit->cosine},
                   {"magnitude_ratio", s.fit->magnitudeRatio},

@@ -161,9 +161,10 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   for (const std::string& name : arkitNames()) {
     auto it = byName.find(name);
     if (it == byName.end()) continue;
-    // A shape that turns the eyes (eyeLook*) is derived from its definition even where the rig has
-    // it: muscles cannot make it, and the artist's shape is only compared (docs/eyelids.md).
-    if (facsDriveOfArkitName(facs, name).turnsEyes()) continue;
+    // A shape that turns the eyes (eyeLook*) or holds air in the mouth (cheekPuff) is derived from
+    // its definition even where the rig has it: muscles alone cannot make it, and the artist's shape
+    // is only compared (docs/eyelids.md, docs/anatomical_model.md "Air in the mouth").
+    if (const FacsDrive d = facsDriveOfArkitName(facs, name); d.turnsEyes() || d.mouthPressureKpa > 0.0) continue;
     RigShapeFit s = std::move(it->second);
     if (const std::optional<std::string> reason = unreachableReason(name)) {
       s.reachable = false;

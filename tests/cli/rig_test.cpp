@@ -16,6 +16,7 @@
 #include "myoshell/fit/arkit_names.h"
 #include "myoshell/fit/facs_route.h"
 #include "myoshell/fit/retarget_map.h"
+#include "myoshell/head/face_frame.h"
 #include "myoshell/head/head.h"
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
@@ -129,7 +130,7 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
                                               quoted(dir / "back.json") + " --report " + quoted(dir / "report") + " --json");
   ASSERT_EQ(fitted.exitCode, 0) << fitted.merged;
   const nlohmann::json j = nlohmann::json::parse(fitted.out);
-  ASSERT_EQ(j["shapes"].size(), 44u);  // the rig's 52 but the 8 eye turns, which are derived, not fitted
+  ASSERT_EQ(j["shapes"].size(), 43u);  // the rig's 52 but the 8 eye turns and cheekPuff, derived, not fitted
   int unreachable = 0;
   for (const auto& s : j["shapes"])
     if (!s["reachable"].get<bool>()) {
@@ -137,7 +138,7 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
       EXPECT_FALSE(s["reason"].get<std::string>().empty());
       EXPECT_TRUE(s["cosine"].is_null());
     }
-  EXPECT_EQ(unreachable, 2);  // cheekPuff, tongueOut; the eyes' turns are derived
+  EXPECT_EQ(unreachable, 1);  // tongueOut; the eyes' turns and cheekPuff are derived
   EXPECT_GT(j["median_cosine"].get<double>(), 0.999);
   const RetargetMap original = parseRetargetMap(kMap, "map.json");
   const RetargetMap back = readRetargetMapFile((dir / "back.json").string());
@@ -199,14 +200,15 @@ TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFi
         ASSERT_TRUE(d.has_value()) << s.name;
         EXPECT_EQ(s.activations, d->activations) << file << " " << s.name;
         EXPECT_EQ(s.gaze, d->gaze) << file << " " << s.name;
+        EXPECT_EQ(s.mouthPressureKpa, d->mouthPressureKpa) << file << " " << s.name;
       }
     }
-    // The rig's 37 ICT shapes are 35 ARKit names (two pairs of halves); its 8 eye turns are derived
-    // (the lids follow the gaze) and cheekPuff is unreachable.
+    // The rig's 37 ICT shapes are 35 ARKit names (two pairs of halves); its 8 eye turns (the lids
+    // follow the gaze) and cheekPuff (air in the mouth) are derived, not fitted.
     EXPECT_EQ(fitted, 26) << file;
     // The 16 names ICT's rig lacks that the FACS map makes (tongueOut is unreachable), the built-in
-    // library's ten muscles 7 of them; and the 8 eye turns.
-    EXPECT_EQ(derived, (library == "face" ? 16 : 7) + 8) << file;
+    // library's ten muscles 7 of them; the 8 eye turns and cheekPuff.
+    EXPECT_EQ(derived, (library == "face" ? 16 : 7) + 9) << file;
     if (library == "face") EXPECT_EQ(map.shapes.size(), 52u);
   }
 }
@@ -227,13 +229,26 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
   EXPECT_TRUE(readText(dir / "rig.glb") == readText(dir / "named.glb"));
   const RigFile made_ = readRig((dir / "rig.glb").string());
   {
-    // Every target moves at least 1 mm but tongueOut (no tongue) and cheekPuff (air, not yet made).
+    // Every target moves at least 1 mm but tongueOut (no tongue).
     for (const std::string& name : arkitNames()) {
       const double peak = made_.delta(name).rowwise().norm().maxCoeff();
       RecordProperty(name + "_mm", std::to_string(10 * peak));
-      if (name == "tongueOut" || name == "cheekPuff") EXPECT_EQ(peak, 0.0) << name;
+      if (name == "tongueOut") EXPECT_EQ(peak, 0.0) << name;
       else EXPECT_GE(peak, 0.1) << name;
     }
+    // cheekPuff: the air pushes the cheeks out of the face (the frame's +z) on both sides alike.
+    const Head hp = loadDefaultHead();
+    const MatX3 puff = made_.delta("cheekPuff");
+    const FaceFrame frame = hp.frame();
+    double outL = 0, outR = 0;
+    for (Eigen::Index i = 0; i < puff.rows(); ++i) {
+      const double out = puff.row(i).dot(frame.axes.col(2).transpose());
+      double& side = frame.toFrame(Vec3(hp.mesh.V.row(i).transpose())).x() > 0 ? outL : outR;
+      side = std::max(side, out);
+    }
+    RecordProperty("cheekPuff_out_left_mm", std::to_string(10 * outL));
+    EXPECT_GT(outL, 0.5);  // at least 5 mm out
+    EXPECT_NEAR(outL, outR, 0.05 * outL);
     // Left and right mirror within 5 % (relative L2 over the moved region) but two pairs whose
     // activations were fitted on ICT's own left and right artist shapes, which are not mirror images
     // (measured 0.19 for mouthLeft, 0.074 for mouthUpperUpLeft on 2026-11-28): docs/fitting.md.

@@ -1,6 +1,7 @@
 // Retargeting maps (fit/retarget_map.h): a map reads back to itself, ICT spellings become ARKit's,
 // a corrective's total is its base's plus its difference, the unreachable list is the shipped one,
 // and every fault of a map file is refused with file:line:col and the fault.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -58,14 +59,16 @@ TEST(RetargetMap, IctSpellingsBecomeArkitNamesAndCorrectivesAddTheirBase) {
   EXPECT_EQ(map.totalActivations(map.shapes[1]), (NamedValues{{"a", 1.0}}));
 }
 
-TEST(RetargetMap, TheUnreachableShapesAreAirAndTongueInArkitOrder) {
+TEST(RetargetMap, TheOnlyUnreachableShapeIsTheTongue) {
   std::vector<std::string> names;
   for (const auto& [name, reason] : unreachableArkitShapes()) {
     names.push_back(name);
     EXPECT_FALSE(reason.empty()) << name;
   }
-  // The eyes' turns are derived (their lids follow the gaze: docs/eyelids.md), not unreachable.
-  EXPECT_EQ(names, (std::vector<std::string>{"cheekPuff", "tongueOut"}));
+  // The eyes' turns (their lids follow the gaze: docs/eyelids.md) and cheekPuff (air in the mouth)
+  // are derived, not unreachable.
+  EXPECT_EQ(names, (std::vector<std::string>{"tongueOut"}));
+  EXPECT_TRUE(unreachableReason("tongueOut").has_value());
   EXPECT_EQ(unreachableReason("cheekPuff_L"), unreachableReason("cheekPuff"));  // ICT's half names the whole
   EXPECT_FALSE(unreachableReason("mouthSmile_L").has_value());
   EXPECT_FALSE(unreachableReason("jawOpen").has_value());  // the jaw is fitted: nothing else is excluded
@@ -87,12 +90,19 @@ TEST(RetargetMap, AGazeReadsBackAndABadOneIsNamed) {
   ASSERT_EQ(map.shapes.size(), 1u);
   EXPECT_EQ(map.shapes[0].gaze, (NamedValues{{"left_pitch", 25.0}, {"left_yaw", -1.5}}));
   EXPECT_EQ(parseRetargetMap(serialiseRetargetMap(map), "back.json").shapes[0].gaze, map.shapes[0].gaze);
+  // The air in the mouth reads back too, and more than 10 kPa is refused.
+  const RetargetMap puff = parseRetargetMap(kHead + R"("shapes": [{"name": "cheekPuff", "source": "derived", )"
+                                                    R"("activations": {}, "mouth_pressure_kpa": 2.5}]})", "map.json");
+  EXPECT_EQ(puff.shapes[0].mouthPressureKpa, 2.5);
+  EXPECT_EQ(parseRetargetMap(serialiseRetargetMap(puff), "back.json").shapes[0].mouthPressureKpa, 2.5);
+  EXPECT_THAT(error(kHead + R"("shapes": [{"name": "cheekPuff", "mouth_pressure_kpa": 12}]})"),
+              ::testing::HasSubstr("key 'shapes[0].mouth_pressure_kpa': must lie in [0, 10] (got 12)"));
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "gaze": {"left_roll": 5}}]})"),
             "map.json:1:97: key 'shapes[0].gaze.left_roll': 'left_roll' is not left_pitch, left_yaw, right_pitch or right_yaw");
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "gaze": {"left_pitch": 60}}]})"),
             "map.json:1:111: key 'shapes[0].gaze.left_pitch': turn 60 degrees is outside [-45, 45]");
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "reachable": false, "reason": "r", "gaze": {"left_pitch": 5}}]})"),
-            "map.json:1:131: key 'shapes[0].gaze': an unreachable shape has no activations, jaw, gaze or base");
+            "map.json:1:131: key 'shapes[0].gaze': an unreachable shape has no activations, jaw, gaze, air or base");
 }
 
 TEST(RetargetMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
@@ -117,7 +127,7 @@ TEST(RetargetMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookIn_L", "reachable": false}]})"),
             "map.json:1:62: key 'shapes[0].reason': an unreachable shape needs a reason (why muscles cannot make it)");
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookIn_L", "reachable": false, "reason": "eyes", "activations": {"a": 0.5}}]})"),
-            "map.json:1:139: key 'shapes[0].activations': an unreachable shape has no activations, jaw, gaze or base");
+            "map.json:1:139: key 'shapes[0].activations': an unreachable shape has no activations, jaw, gaze, air or base");
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"frontalis": 0.5}}]})", {"a", "b"}),
             "map.json:1:98: key 'shapes[0].activations.frontalis': unknown muscle 'frontalis' (the model's muscles: a, b)");
   EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "weight": 1}]})"),

@@ -61,7 +61,7 @@ TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
 // The eyes' turns are derived, never fitted (the lids follow the gaze: docs/eyelids.md): ICT's artist
 // eyeLook shapes only measure them. The rig `myoshell rig --head ICT` makes with the shipped map,
 // each of the eight against ICT's own by the shape metric: cosine at least 0.7 (the bar).
-TEST(WholeFaceIct, TheDerivedEyeTurnsFollowTheArtistsLids) {
+TEST(WholeFaceIct, TheDerivedEyeTurnsAndCheekPuffFollowTheArtists) {
   MYO_REQUIRE_SHARED_DATA();
   FitHeadOptions head;
   head.head = (test::sharedDataDir() / "ict").string();
@@ -81,6 +81,16 @@ TEST(WholeFaceIct, TheDerivedEyeTurnsFollowTheArtistsLids) {
       RecordProperty(name + "_ratio", std::to_string(c.magnitudeRatio));
       EXPECT_GE(c.cosine, 0.7) << name;
     }
+  // cheekPuff is derived too: the lips sealed and 2 kPa of air (anatomy/mouth_pressure.h), against
+  // ICT's two halves together.
+  const auto puff = std::find_if(made.settled.shapes.begin(), made.settled.shapes.end(),
+                                 [](const ArkitRigShape& s) { return s.name == "cheekPuff"; });
+  ASSERT_NE(puff, made.settled.shapes.end());
+  const ShapeComparison c = compareShapes(puff->delta, artist.delta("cheekPuff_L") + artist.delta("cheekPuff_R"), rest);
+  RecordProperty("cheekPuff_cosine", std::to_string(c.cosine));
+  RecordProperty("cheekPuff_ratio", std::to_string(c.magnitudeRatio));
+  RecordProperty("cheekPuff_peak_mm", std::to_string(10 * puff->maxDisplacementCm));
+  EXPECT_GE(c.cosine, 0.7);
 }
 
 }  // namespace

@@ -12,7 +12,8 @@
 // AUs drive one muscle their contributions add and the sum is clamped to 1. An AU the model cannot
 // make yet has no muscles and says in `needs` what is missing ("lids"). An AU may move the jaw
 // (`jaw`: {"open": degrees, "forward": cm, "lateral": cm} at intensity 1), with or without muscles,
-// and turn the eyes (`gaze`: {"pitch": degrees, "yaw": degrees} at intensity 1; AU61–64).
+// turn the eyes (`gaze`: {"pitch": degrees, "yaw": degrees} at intensity 1; AU61–64) and hold air
+// in the mouth (`mouth_pressure_kpa` at intensity 1; AU34).
 #pragma once
 
 #include <string>
@@ -42,6 +43,8 @@ struct FacsEntry {
   // + up, yaw + towards the subject's left. The lids follow it; the eyeball is not part of the skin.
   double gazePitchDeg = 0.0, gazeYawDeg = 0.0;
   bool turnsEyes() const { return gazePitchDeg != 0.0 || gazeYawDeg != 0.0; }
+  // Air held in the mouth at intensity 1, kPa in [0, 10] (anatomy/mouth_pressure.h; AU34, puff).
+  double mouthPressureKpa = 0.0;
 };
 
 struct FacsMap {

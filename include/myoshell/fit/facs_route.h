@@ -28,7 +28,8 @@ struct FacsDrive {
   // subject's left). A sided name turns its side's eye only (eyeLookUpLeft the left eye).
   std::array<Vec2, 2> gaze{Vec2::Zero(), Vec2::Zero()};
   bool turnsEyes() const { return !gaze[0].isZero() || !gaze[1].isZero(); }
-  bool empty() const { return muscles.empty() && jaw.isZero() && !turnsEyes(); }
+  double mouthPressureKpa = 0.0;  // air held in the mouth (anatomy/mouth_pressure.h)
+  bool empty() const { return muscles.empty() && jaw.isZero() && !turnsEyes() && mouthPressureKpa == 0.0; }
 };
 
 // The share of a muscle a sided shape drives: 1 on `side` ("left" | "right"), 0 on the other, ½ for
@@ -46,7 +47,7 @@ FacsDrive facsDriveOfArkitName(const FacsMap& facs, const std::string& arkitName
 // A retargeting map's entry for `arkitName` made from its FACS units (source "derived"), the
 // activations of the muscles among `muscleNames` (each clamped to [0, 1]; the others left out), the
 // jaw values ("open", "forward", "lateral") it moves and the eyes' turn ("left_pitch", "left_yaw",
-// "right_pitch", "right_yaw", degrees). Nothing when it drives none of them.
+// "right_pitch", "right_yaw", degrees) and the air in the mouth. Nothing when it drives none of them.
 std::optional<RetargetShape> derivedRetargetShape(const FacsMap& facs, const std::string& arkitName,
                                                   const std::vector<std::string>& muscleNames);
 

@@ -60,6 +60,8 @@ struct RetargetShape {
   // The eyes' turn, degrees in [−45, 45]: "left_pitch", "left_yaw", "right_pitch", "right_yaw"
   // (anatomy/eyelids.h, EyeGaze; + up, + the subject's left). The lids follow it.
   NamedValues gaze;
+  // Air held in the mouth, kPa in [0, 10] (anatomy/mouth_pressure.h: cheekPuff), 0 for none.
+  double mouthPressureKpa = 0.0;
 };
 
 struct RetargetMap {

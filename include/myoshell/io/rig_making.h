@@ -23,8 +23,8 @@ void checkRigOutputPath(const std::string& path);
 // its name as --library gives it). A map that records another library (its "library" key) says
 // "the map is for the muscle library 'face', and the head's is 'builtin': give --library face"; an
 // older map without the key, of the whole face's muscles, read with another library says "the map
-// uses the whole face's muscles (NAME, …): give --library face"; a shape with jaw values is
-// refused (the anatomical model has no jaw in its maps yet). InputError naming the file. An empty
+// uses the whole face's muscles (NAME, …): give --library face"; a jaw value that is not open,
+// forward or lateral is refused naming the shape. InputError naming the file. An empty
 // path is the library's shipped map (fit/retarget_map.h shippedRetargetMap: the whole face's for
 // "face", the built-in ten's for "builtin"); a library file has none (InputError).
 RetargetMap readRigMap(const std::string& path, const std::vector<MuscleDef>& muscles, const std::string& library);
