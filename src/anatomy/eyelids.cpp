@@ -271,12 +271,13 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
       const double w = eye.lidWeights[k];  // + upper lid, − lower lid
       double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
       double slide = 0.0;               // Δ(x)/Δmax: the share of the nasal slide and of the gaze's turn
-      if ((c != 0.0 || gazing) && x > now.xLow && x < now.xHigh) {
-        const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+      const bool inside = x > now.xLow && x < now.xHigh;
+      double gap = 0.0;                 // Δ(x)
+      if ((c != 0.0 || gazing) && inside) {
+        gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
         if (gapMax > 0.0) slide = std::min(1.0, gap / gapMax);
       }
-      if (c != 0.0 && x > now.xLow && x < now.xHigh) {
-        const double gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+      if (c != 0.0 && inside) {
         const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
         const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
         alpha = share * gap * w;

@@ -2,23 +2,13 @@
 
 #include <cmath>
 
+#include "myoshell/core/curves.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/head/face_frame.h"
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/muscles/tissue_attachment.h"
 
 namespace myo {
-namespace {
-
-// 0 for s ≤ 0, 1 for s ≥ 1, smooth between (Hermite).
-double smoothStep(double s) {
-  if (s <= 0.0) return 0.0;
-  if (s >= 1.0) return 1.0;
-  return s * s * (3.0 - 2.0 * s);
-}
-
-}  // namespace
-
 VecX mouthVestibuleWeights(const Head& head) {
   const FaceFrame frame = head.frame();
   const Landmarks& lm = head.landmarks;
