@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -241,6 +242,71 @@ NewtonEnrichment enrichWithNewtonSteps(FullSpaceNewton& newton, const VecX& mass
       u = flat(r.u);
     }
   }
+  return out;
+}
+
+NonlinearResponse nonlinearFullResponse(const AnatomicalSkin& skin, const MatX3& load, double tolerance,
+                                        int maxIterations, int memory) {
+  if (!(tolerance > 0.0) || maxIterations < 1 || memory < 1)
+    throw InputError("nonlinear response: tolerance must be > 0, maxIterations and memory ≥ 1");
+  if (load.rows() != skin.head().mesh.vertexCount()) throw InputError("nonlinear response: the load must be n×3");
+  NonlinearResponse out;
+  out.u = skin.linearFullResponse(load);
+  const VecX F = flat(load);
+  if (!(F.squaredNorm() > 0.0)) {
+    out.converged = true;
+    return out;
+  }
+  // Only FullSpaceNewton's energy is used: nothing is factorised.
+  const FullSpaceNewton energy(skin.shell(), skin.extraStiffness() - skin.releaseStiffness());
+  VecX u = flat(out.u), g, gNext;
+  double e = energy.energy(F, u, &g, nullptr, HessianMode::Exact);
+  std::vector<VecX> S, Y;  // the last steps s_k and gradient changes y_k, oldest first
+  std::vector<double> rho, alpha;
+  for (int it = 0; it < maxIterations; ++it) {
+    // The two-loop recursion (Alg. 7.4) with H₀ = K⁻¹.
+    VecX q = -g;
+    const size_t m = S.size();
+    alpha.assign(m, 0.0);
+    for (size_t k = m; k-- > 0;) {
+      alpha[k] = rho[k] * S[k].dot(q);
+      q -= alpha[k] * Y[k];
+    }
+    VecX p = flat(skin.linearFullResponse(rows3(q)));
+    for (size_t k = 0; k < m; ++k) p += (alpha[k] - rho[k] * Y[k].dot(p)) * S[k];
+    const double slope = g.dot(p);
+    if (!(slope < 0.0)) break;  // not a descent direction: at the round-off floor
+    double a = 1.0, eNext = e;
+    bool moved = false;
+    for (int ls = 0; ls < 30 && !moved; ++ls) {
+      eNext = energy.energy(F, u + a * p, &gNext, nullptr, HessianMode::Exact);
+      if (eNext <= e + 1e-4 * a * slope) moved = true;
+      else a *= 0.5;
+    }
+    if (!moved) break;  // no step decreases E: the energy's round-off
+    const VecX s = a * p;
+    u += s;
+    VecX y = gNext - g;
+    ++out.iterations;
+    out.lastStep = s.norm() / std::max(u.norm(), 1e-300);
+    if (y.dot(s) > 1e-12 * y.norm() * s.norm()) {  // curvature condition: the pair keeps H positive definite
+      S.push_back(s);
+      Y.push_back(std::move(y));
+      rho.push_back(1.0 / Y.back().dot(S.back()));
+      if (static_cast<int>(S.size()) > memory) {
+        S.erase(S.begin());
+        Y.erase(Y.begin());
+        rho.erase(rho.begin());
+      }
+    }
+    g = gNext;
+    e = eNext;
+    if (out.lastStep <= tolerance) {
+      out.converged = true;
+      break;
+    }
+  }
+  out.u = rows3(u);
   return out;
 }
 

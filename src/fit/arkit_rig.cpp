@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "myoshell/anatomy/mouth_pressure.h"
+#include "myoshell/anatomy/nonlinear_settle.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/parallel.h"
 #include "myoshell/fit/arkit_names.h"
@@ -38,12 +39,18 @@ ArkitRig settleArkitRig(const AnatomicalSkin& skin, const RetargetMap& map, cons
   const bool warped = skin.settings().warping;
   const MatX3& restPositions = skin.head().mesh.V;
   // The muscles' settled displacement, placed (the jaw in `pose`, the lids, the contact).
-  // Air in the mouth (cheekPuff): the skin's full-space response to the pressure's load, once per
-  // pressure (the reduced basis holds no pattern for it); added to the muscles' residual.
+  // Air in the mouth (cheekPuff): the skin's full-space response to the pressure's load with the
+  // shell's large deflection, once per pressure (the reduced basis holds no pattern for it); added
+  // to the muscles' residual.
   std::map<double, MatX3> airResponse;
   for (const RetargetShape& s : map.shapes)
-    if (s.reachable && s.mouthPressureKpa > 0.0 && !airResponse.count(s.mouthPressureKpa))
-      airResponse[s.mouthPressureKpa] = skin.linearFullResponse(mouthPressureLoad(skin.head(), s.mouthPressureKpa));
+    if (s.reachable && s.mouthPressureKpa > 0.0 && !airResponse.count(s.mouthPressureKpa)) {
+      NonlinearResponse air = nonlinearFullResponse(skin, mouthPressureLoad(skin.head(), s.mouthPressureKpa));
+      if (!air.converged || !air.u.allFinite())
+        throw NumericalError(fmt::format("rig: the skin's response to {:.3g} kPa of air in the mouth did not converge (last step {:.3g})",
+                                         s.mouthPressureKpa, air.lastStep));
+      airResponse[s.mouthPressureKpa] = std::move(air.u);
+    }
   auto settle = [&](const NamedValues& activations, const JawPose& pose, const EyeGaze& gaze = {},
                     double airKpa = 0.0) -> MatX3 {
     SkinLoads loads;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "myoshell/anatomy/mouth_pressure.h"
 #include "myoshell/fit/arkit_names.h"
 #include "myoshell/fit/facs_route.h"
 #include "myoshell/fit/retarget_map.h"
@@ -249,6 +250,12 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
     RecordProperty("cheekPuff_out_left_mm", std::to_string(10 * outL));
     EXPECT_GT(outL, 0.5);  // at least 5 mm out
     EXPECT_NEAR(outL, outR, 0.05 * outL);
+    // The cheeks (the vestibule lateral of the mouth corners) move out along their normals by the
+    // 5–15 mm a cheek puff shows (measured 10.2 mm on 2026-11-28; docs/anatomical_model.md).
+    const double cheeks = cheekOutwardMoveCm(hp, puff);
+    RecordProperty("cheekPuff_cheeks_out_mm", std::to_string(10 * cheeks));
+    EXPECT_GE(cheeks, 0.5);
+    EXPECT_LE(cheeks, 1.5);
     // Left and right mirror within 5 % (relative L2 over the moved region) but two pairs whose
     // activations were fitted on ICT's own left and right artist shapes, which are not mirror images
     // (measured 0.19 for mouthLeft, 0.074 for mouthUpperUpLeft on 2026-11-28): docs/fitting.md.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/mouth_pressure.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/fit/facs_map.h"
 #include "myoshell/io/facs_map_file.h"
@@ -81,7 +82,7 @@ TEST(FacsMap, EveryFaceMuscleIsDrivenByExactlyTheAusItsDefinitionNames) {
 TEST(FacsMap, EveryAuDrivesMusclesOrTheJawAndTheLidsAusDriveTheLids) {
   std::map<int, std::string> needs;
   for (const FacsEntry& e : builtinFacsMap().entries) {
-    EXPECT_EQ(e.muscles.empty() && !e.movesJaw() && !e.turnsEyes(), !e.needs.empty()) << "AU" << e.au;
+    EXPECT_EQ(e.muscles.empty() && !e.movesJaw() && !e.turnsEyes() && e.mouthPressureKpa == 0.0, !e.needs.empty()) << "AU" << e.au;
     if (!e.needs.empty()) needs[e.au] = e.needs;
   }
   EXPECT_TRUE(needs.empty());
@@ -109,6 +110,9 @@ TEST(FacsMap, EveryAuDrivesMusclesOrTheJawAndTheLidsAusDriveTheLids) {
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(63)->gazePitchDeg, 25.0);
   EXPECT_DOUBLE_EQ(builtinFacsMap().find(64)->gazePitchDeg, -25.0);
   for (int au : {61, 62, 63, 64}) EXPECT_TRUE(builtinFacsMap().find(au)->muscles.empty()) << "AU" << au;
+  // The puff holds 2 kPa of air and drives no muscle (docs/anatomical_model.md, "Air in the mouth").
+  EXPECT_DOUBLE_EQ(builtinFacsMap().find(34)->mouthPressureKpa, kCheekPuffPressureKpa);
+  EXPECT_TRUE(builtinFacsMap().find(34)->muscles.empty());
 }
 
 TEST(FacsMap, ReadsBackToItselfWithEveryNumberExact) {

@@ -78,7 +78,7 @@ TEST(FacsRoute, ADerivedEntryDrivesAPerformanceExactlyAsTheFacsRouteDoes) {
   }
   // All but tongueOut (AU19), which the FACS map has nothing for, and mouthClose, mouthLeft,
   // mouthRight, which have no FACS unit. The eyes' turns (AU61–64) are entries with a gaze and no
-  // muscle, cheekPuff (AU34) the lips' seal and air: a performance plays neither gaze nor air yet,
+  // muscle, cheekPuff (AU34) air and no muscle: a performance plays neither gaze nor air yet,
   // so both ways give the same muscles.
   ASSERT_EQ(derived.shapes.size(), 52u - 4u);
   OneEuroSettings filter;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/anatomy/mouth_pressure.h"
 #include "myoshell/fit/arkit_names.h"
 #include "myoshell/fit/rig_fit.h"
 #include "myoshell/fit/shape_metric.h"
@@ -81,8 +82,8 @@ TEST(WholeFaceIct, TheDerivedEyeTurnsAndCheekPuffFollowTheArtists) {
       RecordProperty(name + "_ratio", std::to_string(c.magnitudeRatio));
       EXPECT_GE(c.cosine, 0.7) << name;
     }
-  // cheekPuff is derived too: the lips sealed and 2 kPa of air (anatomy/mouth_pressure.h), against
-  // ICT's two halves together.
+  // cheekPuff is derived too: 2 kPa of air (anatomy/mouth_pressure.h), against ICT's two halves
+  // together; the cheeks move out by the 5–15 mm a cheek puff shows (measured 6.4 mm on 2026-11-28).
   const auto puff = std::find_if(made.settled.shapes.begin(), made.settled.shapes.end(),
                                  [](const ArkitRigShape& s) { return s.name == "cheekPuff"; });
   ASSERT_NE(puff, made.settled.shapes.end());
@@ -91,6 +92,10 @@ TEST(WholeFaceIct, TheDerivedEyeTurnsAndCheekPuffFollowTheArtists) {
   RecordProperty("cheekPuff_ratio", std::to_string(c.magnitudeRatio));
   RecordProperty("cheekPuff_peak_mm", std::to_string(10 * puff->maxDisplacementCm));
   EXPECT_GE(c.cosine, 0.7);
+  const double cheeks = cheekOutwardMoveCm(inputs.head, puff->delta);
+  RecordProperty("cheekPuff_cheeks_out_mm", std::to_string(10 * cheeks));
+  EXPECT_GE(cheeks, 0.5);
+  EXPECT_LE(cheeks, 1.5);
 }
 
 }  // namespace

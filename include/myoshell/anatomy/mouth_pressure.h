@@ -7,8 +7,10 @@
 // with w_i the vestibule's footprint in the face frame (1 over the cheeks beside the teeth and over
 // both lips, falling smoothly to 0 at its edges): laterally to 0.2 frame units (≈ 2 cm) beyond the
 // mouth corners, up to the nose's base, down to the labiomental fold above the chin. The response
-// is the skin's full-space linear one to that load (AnatomicalSkin::linearFullResponse): the mouth's
-// pressure is no pattern of the reduced basis.
+// is the skin's full-space one to that load with the shell's large deflection (nonlinearFullResponse,
+// anatomy/nonlinear_settle.h): the mouth's pressure is no pattern of the reduced basis, and at a
+// puff's size the cheek's stretch stiffens it (the linear response overshoots the cheeks by 19 % on
+// the built-in head and 30 % on ICT at 2 kPa).
 #pragma once
 
 #include "myoshell/core/types.h"
@@ -28,5 +30,10 @@ VecX mouthVestibuleWeights(const Head& head);
 
 // The load (n×3, dyn) of air at `pressureKpa` kPa in the mouth of `head`.
 MatX3 mouthPressureLoad(const Head& head, double pressureKpa);
+
+// How far a shape `delta` (n×3, cm) moves the cheeks out (cm): the largest δ_i·n_i (n_i the rest
+// outward unit normal, as the load's) over the cheeks, the vestibule's footprint (w_i ≥ 0.5)
+// lateral of the mouth corners (|x| beyond the corners' mean |x| in the face frame).
+double cheekOutwardMoveCm(const Head& head, const MatX3& delta);
 
 }  // namespace myo
