@@ -103,9 +103,6 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
     }
     // Zygomatic ligament (McGregor's patch): below the outer canthus on the zygomatic body.
     w = std::max(w, bump((p - Vec2(eye.x(), eye.y() - 0.32)).norm(), 0.05, 0.06));
-    // Mandibular ligament: anterior mandible, below and just lateral of the mouth corner.
-    w = std::max(w, bump((p - Vec2(corner.x() + side * 0.02, menton.y() + 0.12)).norm(), 0.05, 0.06));
-    map.held(i) = w;
 
     // Soft-tissue thickness: cheek (lateral of the nasolabial region, between the zygoma and the
     // mandible), lips and chin, thin elsewhere.
@@ -116,8 +113,20 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
     const double soft = std::max(cheek, lipChin);
     const double hSoft = cheek >= lipChin ? s.cheekTissue : s.lipChinTissue;
     const double h = (1.0 - soft) * s.thinTissue + soft * hSoft;
+    const double kFree = s.fatShearModulus / h;
+
+    // Mandibular ligament: anterior mandible, below and just lateral of the mouth corner. Its hold
+    // reaches the skin through the chin's fat and fades geometrically with the distance d from it:
+    // k = k_free (k_held / k_free)^b(d), b = 1 at its centre falling smoothly to 0 at 0.25, so the
+    // compliance 1/k grows smoothly over the whole 0.25 (docs/anatomical_model.md, "The chin's
+    // notch"). As a held weight of the linear mix below, w = (k − k_free)/(k_held − k_free).
+    if (s.heldStiffness > kFree) {
+      const double b = bump((p - Vec2(corner.x() + side * 0.02, menton.y() + 0.12)).norm(), 0.0, 0.25);
+      w = std::max(w, kFree * (std::pow(s.heldStiffness / kFree, b) - 1.0) / (s.heldStiffness - kFree));
+    }
+    map.held(i) = w;
     map.thickness(i) = h;
-    map.attachment(i) = (1.0 - w) * s.fatShearModulus / h + w * s.heldStiffness;
+    map.attachment(i) = (1.0 - w) * kFree + w * s.heldStiffness;
   }
   return map;
 }

@@ -251,7 +251,7 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
     EXPECT_GT(outL, 0.5);  // at least 5 mm out
     EXPECT_NEAR(outL, outR, 0.05 * outL);
     // The cheeks (the vestibule lateral of the mouth corners) move out along their normals by the
-    // 5–15 mm a cheek puff shows (measured 10.2 mm on 2026-11-28; docs/anatomical_model.md).
+    // 5–15 mm a cheek puff shows (measured 9.9 mm on 2026-11-28; docs/anatomical_model.md).
     const double cheeks = cheekOutwardMoveCm(hp, puff);
     RecordProperty("cheekPuff_cheeks_out_mm", std::to_string(10 * cheeks));
     EXPECT_GE(cheeks, 0.5);

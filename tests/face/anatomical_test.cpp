@@ -393,8 +393,10 @@ TEST_F(AnatomicalIct, AgainstTheFullSpaceNonlinearReference) {
 // stretches a skin edge beyond what skin takes in an expression (tens of per cent) in the linear
 // settled shape; with muscle nodes tied to their closest skin points the zygomaticus stretched a
 // mouth-corner edge by 110 %. Since the muscles slide over their bed the zygomaticus stretches the
-// skin beside the mouth corner by 47 % (it drew the corner into the cheek before, 24 %); ICT's
-// own mouthSmile_L stretches 515 edges there by more than 30 %, its largest by 527 %.
+// skin beside the mouth corner by 47 % (it drew the corner into the cheek before, 24 %); 59 % at
+// 20 % shortening, 63 % once the mandibular ligament's hold fades over 0.25 (2026-11-28,
+// docs/anatomical_model.md "The chin's notch"): the bound is 65 %. ICT's own mouthSmile_L stretches
+// 515 edges there by more than 30 %, its largest by 527 %.
 // The warped shape is recorded beside it (docs/anatomical_model.md: warping vs linear).
 // The mouth's rings have no insertion: at a = 1 they pucker the lips (45 % shortening), and they are
 // held to what ICT's own mouthPucker does to the skin (its largest edge stretch 474 %, 722 edges
@@ -415,7 +417,7 @@ TEST_F(AnatomicalIct, InsertionsStretchTheSkinModerately) {
       EXPECT_LT(linear, puckerStrain) << name;
       EXPECT_LT(edgesStretchedBeyond(skin_->head().mesh, u, 0.3), puckerEdges) << name;
     } else {
-      EXPECT_LE(linear, 0.6) << name;
+      EXPECT_LE(linear, 0.65) << name;
     }
   }
 }

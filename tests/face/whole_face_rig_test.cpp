@@ -83,7 +83,7 @@ TEST(WholeFaceIct, TheDerivedEyeTurnsAndCheekPuffFollowTheArtists) {
       EXPECT_GE(c.cosine, 0.7) << name;
     }
   // cheekPuff is derived too: 2 kPa of air (anatomy/mouth_pressure.h), against ICT's two halves
-  // together; the cheeks move out by the 5–15 mm a cheek puff shows (measured 6.4 mm on 2026-11-28).
+  // together; the cheeks move out by the 5–15 mm a cheek puff shows (measured 6.3 mm on 2026-11-28).
   const auto puff = std::find_if(made.settled.shapes.begin(), made.settled.shapes.end(),
                                  [](const ArkitRigShape& s) { return s.name == "cheekPuff"; });
   ASSERT_NE(puff, made.settled.shapes.end());

@@ -8,7 +8,9 @@
 //   k_att(x) = (1 − w(x))·G_fat/h(x) + w(x)·k_held                           (dyn/cm³)
 // with w ∈ [0, 1] the smooth "held" weight (scalp behind the hairline, ears and the back of the
 // head, neck, nasal dorsum, zygomatic arch, the orbital, zygomatic and mandibular retaining
-// ligaments) and h(x) the soft-tissue thickness (cm).
+// ligaments) and h(x) the soft-tissue thickness (cm). The mandibular ligament's w is the one whose
+// k_att falls geometrically with distance, G_fat/h · (k_held h/G_fat)^b(d) (docs/anatomical_model.md,
+// "The chin's notch").
 #pragma once
 
 #include <vector>
