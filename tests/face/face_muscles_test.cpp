@@ -22,6 +22,7 @@
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/muscles/muscle.h"
 #include "myoshell/muscles/muscle_def.h"
+#include "myoshell/muscles/muscle_mirror.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -34,11 +35,7 @@ int nearestVertex(const MatX3& V, const Vec3& p) {
   return static_cast<int>(best);
 }
 
-std::string mirrorName(std::string name) {
-  if (name.size() > 5 && name.substr(name.size() - 5) == "_left") return name.substr(0, name.size() - 5) + "_right";
-  if (name.size() > 6 && name.substr(name.size() - 6) == "_right") return name.substr(0, name.size() - 6) + "_left";
-  return name;
-}
+std::string mirrorName(const std::string& name) { return mirroredMuscleName(name); }  // the library's rule
 
 std::string mirrorLandmark(std::string lm) {
   if (lm.find("left") != std::string::npos) return std::regex_replace(lm, std::regex("left"), "right");
