@@ -43,6 +43,7 @@
 
 #include "myoshell/anatomy/contact_report.h"
 #include "myoshell/core/types.h"
+#include "myoshell/head/eye_gaze.h"  // EyeGaze, kGazeMaxDeg
 #include "myoshell/head/landmarks.h"
 #include "myoshell/mesh/tri_mesh.h"
 
@@ -70,17 +71,6 @@ struct LidSettings {
   // The share of the eye's sideways turn the lids take, riding on the cornea's bulge: a choice (no
   // measurement found), ICT's artist shapes only reported against it.
   double sideGazeFollow = 0.25;
-};
-
-// The eyes' turn, degrees, index 0 the subject's right eye, 1 the left: pitch + up, yaw + towards
-// the subject's left (the face frame's +x). ARKit's eyeLook* at 1 and FACS AU61–64 at full
-// intensity turn an eye 25° (assets/facs/au_map.json).
-// An eye's turn stays within ±45° either way (its mechanical range; ±25° is the comfortable one).
-constexpr double kGazeMaxDeg = 45.0;
-struct EyeGaze {
-  std::array<double, 2> pitchDeg{0.0, 0.0};
-  std::array<double, 2> yawDeg{0.0, 0.0};
-  bool isZero() const { return pitchDeg[0] == 0.0 && pitchDeg[1] == 0.0 && yawDeg[0] == 0.0 && yawDeg[1] == 0.0; }
 };
 
 // One eye's lids and eyeball proxy (head space, cm).
