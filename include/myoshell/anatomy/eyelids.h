@@ -27,7 +27,9 @@
 // The lids follow the eye's turn (EyeGaze: pitch φ_g, yaw ψ_g): a lid vertex also turns by
 //   −κ·φ_g·|w_i|·Δ(x_i)/Δmax about the horizontal axis (κ = upperGazeFollow or lowerGazeFollow)
 //   κ_s·ψ_g·|w_i|·Δ(x_i)/Δmax about the vertical axis (κ_s = sideGazeFollow)
-// fading at the canthi as the nasal slide does; the eyeball itself is not part of the skin.
+// fading at the canthi as the nasal slide does; the eyeball itself is not part of the skin. The
+// closure then closes the fissure the gaze leaves: α_i takes Δ(x) + (κ_u − κ_l)·φ_g·Δ(x)/Δmax
+// (not below 0) for Δ(x), so at c = 1 the margins meet wherever the eye looks.
 //
 // As the jaw (jaw.h), the rest rides with the lid and the physics acts on the residual: a lid vertex
 // is placed at c + R(θ_i)(x_i − c), x_i its (jawed) position rest + u, so the residual turns with the
