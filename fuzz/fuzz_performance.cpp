@@ -1,8 +1,8 @@
 // Fuzzes the performance readers (anim/performance.h): detected, and forced to each of the three
 // layouts, with the options a user can give. A performance that reads has at least two frames at
 // strictly increasing times from 0, one value per frame in every channel, each in [0, 1], a finite
-// head pose per frame or none, a finite positive frame rate, and a dropped-frame count ≥ 0 with a
-// warning when it is not 0; channel names are unique.
+// head pose and gaze per frame or none, a finite positive frame rate, and a dropped-frame count
+// ≥ 0 with a warning when it is not 0; channel names are unique.
 #include <cmath>
 #include <optional>
 #include <set>
@@ -29,6 +29,10 @@ void check(const myo::Performance& p) {
   }
   FUZZ_EXPECT(p.headPose.empty() || p.headPose.size() == p.times.size(), "a head pose per frame or none");
   for (const myo::Vec3& r : p.headPose) FUZZ_EXPECT(r.allFinite(), "finite head pose");
+  FUZZ_EXPECT(p.gaze.empty() || p.gaze.size() == p.times.size(), "a gaze per frame or none");
+  for (const myo::EyeGaze& g : p.gaze)
+    for (size_t e = 0; e < 2; ++e)
+      FUZZ_EXPECT(std::isfinite(g.pitchDeg[e]) && std::isfinite(g.yawDeg[e]), "finite gaze");
   FUZZ_EXPECT(p.droppedFrames >= 0, "dropped frames counted");
   FUZZ_EXPECT(p.droppedFrames == 0 || !p.warnings.empty(), "dropped frames are warned about");
 }

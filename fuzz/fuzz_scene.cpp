@@ -1,7 +1,7 @@
 // Fuzzes the scene parser (YAML or JSON through yaml-cpp and nlohmann-json). A scene that parses
 // prints as JSON (sceneToJson), and that JSON parses back to a scene that prints the same
 // (docs/scene_format.md: "parseScene(sceneToJson(d)) gives d back"); its tracks evaluate to
-// finite values, activations within [−1, 1].
+// finite values, activations within [−1, 1], the gaze within ±45°.
 #include <cmath>
 
 #include "fuzz_common.h"
@@ -34,5 +34,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (double t : times) FUZZ_EXPECT(std::isfinite(scene.gravity.at(t)), "finite gravity scale");
   for (const auto& [name, track] : scene.dragForces)
     for (double t : times) FUZZ_EXPECT(track.at(t).allFinite(), "finite drag force");
+  for (double t : times) {
+    const myo::EyeGaze g = scene.gazeAt(t);
+    for (size_t e = 0; e < 2; ++e)
+      FUZZ_EXPECT(std::abs(g.pitchDeg[e]) <= myo::kGazeMaxDeg && std::abs(g.yawDeg[e]) <= myo::kGazeMaxDeg,
+                  "gaze within the eye's range");
+  }
   return 0;
 }

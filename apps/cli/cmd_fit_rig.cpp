@@ -88,7 +88,8 @@ std::vector<std::string> writeReport(const fs::path& dir, const FaceSystem& face
   std::string md = fmt::format(
       "# fit-rig report: {}\n\nHead {} ({} vertices), anatomical model, {} muscles. Cosine and magnitude ratio over the "
       "vertices where the target or the fit moves more than 0.5 mm; RMS and maximum error there, in mm "
-      "(docs/fitting.md).\n\n| shape | cosine | magnitude ratio | RMS mm | max mm | activations |\n|---|---|---|---|---|---|\n",
+      "(docs/fitting.md). A left/right pair the rig has both of is fitted together: the right shape's activations are the "
+      "left's mirror image, each side's figures its own.\n\n| shape | cosine | magnitude ratio | RMS mm | max mm | activations |\n|---|---|---|---|---|---|\n",
       rig, face.head().name, face.head().mesh.vertexCount(), face.muscleCount());
   for (size_t i = 0; i < fit.shapes.size(); ++i) {
     const RigShapeFit& s = fit.shapes[i];

@@ -10,6 +10,7 @@
 #include "activations.h"
 #include "bindings.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/head/eye_gaze.h"
 #include "myoshell/head/jaw.h"
 
 namespace myo::python {
@@ -94,6 +95,15 @@ steps: activations (0 at first), the gravity scale (1), the head pose (upright) 
             s.sim.setJaw(pose);
           }, py::arg("open_deg") = 0.0, py::arg("forward_cm") = 0.0, py::arg("lateral_cm") = 0.0,
            "The jaw: opening [0, 40] degrees, protrusion [-0.5, 1.5] cm, lateral shift [-1.5, 1.5] cm.")
+      .def("set_gaze", [](SimulatorHandle& s, double leftPitch, double leftYaw, double rightPitch, double rightYaw) {
+            EyeGaze gaze;
+            gaze.pitchDeg = {rightPitch, leftPitch};
+            gaze.yawDeg = {rightYaw, leftYaw};
+            s.sim.setGaze(gaze);
+          }, py::arg("left_pitch") = 0.0, py::arg("left_yaw") = 0.0, py::arg("right_pitch") = 0.0,
+           py::arg("right_yaw") = 0.0,
+           "The eyes' turn, degrees in [-45, 45]: pitch + up, yaw + towards the subject's left; the lids follow "
+           "it (docs/eyelids.md).")
       .def("step", &step, py::arg("n") = 1,
            "Advances n steps of dt (the GIL is released; Ctrl-C stops between blocks of steps). SimulationError "
            "when the skin blows up.")

@@ -92,6 +92,11 @@ void AnatomicalSimulator::setJaw(const JawPose& pose) {
   loads_.jaw = pose;
 }
 
+void AnatomicalSimulator::setGaze(const EyeGaze& gaze) {
+  validateEyeGaze(gaze);
+  loads_.gaze = gaze;
+}
+
 void AnatomicalSimulator::updateGravity() {
   const AnatomicalSkin& skin = face_->skin();
   if (!face_->gravityEnabled()) loads_.gravity = skin.restGravity();  // no change from rest: no load
@@ -150,7 +155,7 @@ void AnatomicalSimulator::reset() {
 }
 
 void AnatomicalSimulator::skinPositions(MatX3& out) const {
-  face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out);
+  face_->placeSkin(stepper_->displacement(), jaw_, loads_.activations, out, loads_.gaze);
 }
 
 void AnatomicalSimulator::channelDisplacement(int channel, MatX3& out) const {

@@ -408,7 +408,8 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
   // at the linear solution it adds nothing and the result is the linear one bit for bit.
   const ContactPenalty* pen = loads.contact ? penalty_.get() : nullptr;
   if (pen && !loads.jaw.isZero()) validateJawPose(loads.jaw);
-  const LidPose lids = placement_->lidPose(loads.activations);
+  LidPose lids = placement_->lidPose(loads.activations);
+  lids.gaze = loads.gaze;
   std::optional<ContactPenalty::Workspace> ws;
   if (pen) {
     ws.emplace(pen->workspace());

@@ -107,8 +107,9 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     if (const ContactPenalty* pen = loads.contact ? penalty_.get() : nullptr) {
       contactForce_.setZero();
       contactStiffness_.setZero();
-      pen->evaluate(integrator_.q(), loads.jaw, skin_->placement_->lidPose(loads.activations), contact_, &contactForce_,
-                    &contactStiffness_);
+      LidPose lids = skin_->placement_->lidPose(loads.activations);
+      lids.gaze = loads.gaze;
+      pen->evaluate(integrator_.q(), loads.jaw, lids, contact_, &contactForce_, &contactStiffness_);
       if (!contact_.active.empty()) {
         const VecX& q = integrator_.q();
         const VecX& g = integrator_.stepQFromForce();

@@ -280,7 +280,13 @@ void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::arr
       if (c != 0.0 && inside) {
         const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
         const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
-        alpha = share * gap * w;
+        // The gaze turns the upper margin by κ_u·φ_g·s and the lower by κ_l·φ_g·s (below), so it
+        // leaves a fissure Δ + (κ_u − κ_l)·φ_g·s: the closure closes that one, and at c = 1 the
+        // margins meet wherever the eye looks (closing the rest fissure, they crossed in down-gaze
+        // and stayed apart in up-gaze).
+        const double narrowing = (eye.upperGazeFollow - eye.lowerGazeFollow) * gazePitch * slide;
+        const double closed = gazePitch != 0.0 ? std::max(0.0, gap + narrowing) : gap;
+        alpha = share * closed * w;
         kappa = share * step * w;
       }
       // The lids follow the gaze: up-gaze raises them (θ + lowers a point).

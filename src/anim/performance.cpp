@@ -166,6 +166,16 @@ CellRead readCell(std::string_view cell, double& out) {
 
 namespace {
 
+// The eyes' turn a fraction s of the way from a to b, angle by angle (gaps are short).
+EyeGaze gazeBetween(const EyeGaze& a, const EyeGaze& b, double s) {
+  EyeGaze g;
+  for (size_t e = 0; e < 2; ++e) {
+    g.pitchDeg[e] = a.pitchDeg[e] + s * (b.pitchDeg[e] - a.pitchDeg[e]);
+    g.yawDeg[e] = a.yawDeg[e] + s * (b.yawDeg[e] - a.yawDeg[e]);
+  }
+  return g;
+}
+
 // "3 with empty cells, 1 with success 0": each reason with its count, in order of first appearance.
 std::string dropReasons(const std::vector<Frame>& frames, const std::vector<Frame>& leftOut) {
   std::vector<std::pair<std::string, int>> reasons;
@@ -221,8 +231,9 @@ Performance assemblePerformance(FrameTable table, PerformanceInput input, const 
     out.channels[c].values.resize(n);
   }
   if (table.hasPose) out.headPose.resize(n);
+  if (table.hasGaze) out.gaze.resize(n);
   // Walk the kept span; between valid frames a and b every dropped frame gets the linear
-  // interpolation in time of their values (pose component-wise: gaps are short, angles small).
+  // interpolation in time of their values (pose and gaze component-wise: gaps are short, angles small).
   for (size_t k = 0; k + 1 < valid.size(); ++k) {
     const size_t a = valid[k];
     const size_t b = valid[k + 1];
@@ -233,10 +244,12 @@ Performance assemblePerformance(FrameTable table, PerformanceInput input, const 
         out.channels[c].values[i - first] =
             std::clamp(frames[a].values[c] + s * (frames[b].values[c] - frames[a].values[c]), 0.0, 1.0);
       if (table.hasPose) out.headPose[i - first] = frames[a].pose + s * (frames[b].pose - frames[a].pose);
+      if (table.hasGaze) out.gaze[i - first] = gazeBetween(frames[a].gaze, frames[b].gaze, s);
     }
   }
   for (size_t c = 0; c < out.channels.size(); ++c) out.channels[c].values[n - 1] = frames[last].values[c];
   if (table.hasPose) out.headPose[n - 1] = frames[last].pose;
+  if (table.hasGaze) out.gaze[n - 1] = frames[last].gaze;
 
   out.fps = table.fps > 0 ? table.fps : static_cast<double>(n - 1) / out.duration();
   if (!std::isfinite(out.fps))  // times that increase by less than double's range can hold

@@ -43,12 +43,14 @@ struct Frame {
   double time = 0.0;            // s, as written (assemblePerformance subtracts the first kept frame's)
   std::vector<double> values;   // one per FrameTable::channels (anything when dropped)
   Vec3 pose = Vec3::Zero();     // [pitch, yaw, roll] degrees (face frame), when FrameTable::hasPose
+  EyeGaze gaze;                 // the eyes' turn in the head, degrees, when FrameTable::hasGaze
   std::string dropped;          // why the frame is dropped ("with empty cells", …); empty: valid
 };
 
 struct FrameTable {
   std::vector<std::string> channels;
   bool hasPose = false;
+  bool hasGaze = false;
   std::vector<Frame> frames;
   std::vector<Frame> leftOut;  // dropped rows with no place in time (an empty time cell), reason set
   double fps = 0.0;            // > 0: the file's own rate (Live Link's timecode); 0: (frames − 1) / duration

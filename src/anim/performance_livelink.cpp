@@ -14,8 +14,16 @@
 // face, HeadPitch, HeadYaw, HeadRoll come out as right-handed angles about the face frame's x, y, z:
 // [pitch, yaw, roll] = 180·[HeadPitch, HeadYaw, HeadRoll] degrees. This sign reading is derived from
 // the plugin's code, not checked against a recording of a known head motion
-// (docs/performance_input.md). The eyes' rotations are read past: the face model has no eyeballs
-// that turn.
+// (docs/performance_input.md).
+//
+// The eyes: the plugin turns ARKit's leftEyeTransform and rightEyeTransform (each eye's pose in the
+// face anchor's frame, +z along the eye's gaze; Apple, ARFaceAnchor) into LeftEyePitch, LeftEyeYaw, …
+// exactly as the head's (the same conversion, the same sign flips, degrees / 180, the eyes' sides
+// kept as ARKit names them), so 180·[LeftEyePitch, LeftEyeYaw] are right-handed angles about the
+// face frame's x and y. A right-handed turn about x (the face's left) takes +z (the gaze) down, so
+// the eyes' turn (head/eye_gaze.h: pitch + up) is pitch = −180·LeftEyePitch, yaw = 180·LeftEyeYaw
+// (+ towards the subject's left), and the right eye's alike. The roll (the eye's torsion about its
+// gaze) moves no lid and is not read. Derived from the plugin's code, as the head's.
 #include <algorithm>
 #include <cmath>
 
@@ -80,6 +88,9 @@ bool readTimecode(std::string_view s, Timecode& tc) {
 
 enum class Role { Weight, Head, Eye, Ignored, Unknown };
 
+// The four eye columns read: LeftEyePitch, LeftEyeYaw, RightEyePitch, RightEyeYaw.
+constexpr const char* kEyeColumns[4] = {"LeftEyePitch", "LeftEyeYaw", "RightEyePitch", "RightEyeYaw"};
+
 }  // namespace
 
 Performance parseLiveLink(const std::string& text, const std::string& name, const PerformanceOptions& options) {
@@ -95,6 +106,7 @@ Performance parseLiveLink(const std::string& text, const std::string& name, cons
   std::vector<Role> role(header.size(), Role::Unknown);
   std::vector<size_t> channelOf(header.size(), 0);
   int headOf[3] = {-1, -1, -1};  // columns of HeadPitch, HeadYaw, HeadRoll
+  int eyeOf[4] = {-1, -1, -1, -1};  // columns of kEyeColumns
   std::vector<std::string> unknown;
   role[0] = Role::Ignored;
   for (size_t c = 1; c < header.size(); ++c) {
@@ -109,9 +121,17 @@ Performance parseLiveLink(const std::string& text, const std::string& name, cons
                              " and " + std::to_string(c + 1) + ")",
                          name, headerLine);
       headOf[axis] = static_cast<int>(c);
-    } else if (f == "LeftEyeYaw" || f == "LeftEyePitch" || f == "LeftEyeRoll" || f == "RightEyeYaw" ||
-               f == "RightEyePitch" || f == "RightEyeRoll") {
+    } else if (f == "LeftEyeRoll" || f == "RightEyeRoll") {
+      role[c] = Role::Ignored;  // the eye's torsion about its gaze: no lid follows it
+    } else if (const auto* eye = std::find(std::begin(kEyeColumns), std::end(kEyeColumns), f);
+               eye != std::end(kEyeColumns)) {
       role[c] = Role::Eye;
+      int& at = eyeOf[eye - std::begin(kEyeColumns)];
+      if (at >= 0)
+        throw InputError("column " + quoted(f) + " appears twice (columns " + std::to_string(at + 1) + " and " +
+                             std::to_string(c + 1) + ")",
+                         name, headerLine);
+      at = static_cast<int>(c);
     } else {
       // PascalCase ARKit names: EyeBlinkLeft → eyeBlinkLeft. Only ARKit's own spelling counts (not
       // ICT's, which findArkitName also knows).
@@ -138,7 +158,15 @@ Performance parseLiveLink(const std::string& text, const std::string& name, cons
                      name, headerLine);
   if (table.channels.empty())
     throw InputError("no ARKit blendshape column (EyeBlinkLeft … TongueOut)", name, headerLine);
+  const int eyeColumns =
+      static_cast<int>(std::count_if(std::begin(eyeOf), std::end(eyeOf), [](int c) { return c >= 0; }));
+  if (eyeColumns != 0 && eyeColumns != 4)
+    throw InputError(std::string("missing required column '") +
+                         kEyeColumns[std::find(std::begin(eyeOf), std::end(eyeOf), -1) - std::begin(eyeOf)] +
+                         "' (the eyes' turn needs LeftEyePitch, LeftEyeYaw, RightEyePitch and RightEyeYaw)",
+                     name, headerLine);
   table.hasPose = headColumns == 3;
+  table.hasGaze = eyeColumns == 4;
   if (!unknown.empty())
     table.warnings.push_back("ignored " + std::to_string(unknown.size()) + " unknown column" +
                              (unknown.size() == 1 ? "" : "s") + ": " + joinNames(unknown));
@@ -172,7 +200,7 @@ Performance parseLiveLink(const std::string& text, const std::string& name, cons
     f.values.resize(table.channels.size());
     bool empty = false;
     for (size_t c = 1; c < cells.size(); ++c) {
-      if (role[c] != Role::Weight && role[c] != Role::Head) continue;
+      if (role[c] != Role::Weight && role[c] != Role::Head && role[c] != Role::Eye) continue;
       double v = 0;
       switch (readCell(cells[c], v)) {
         case CellRead::Number: break;
@@ -191,8 +219,17 @@ Performance parseLiveLink(const std::string& text, const std::string& name, cons
         if (std::fabs(v) > 1 + kRangeSlack)
           throw InputError(std::string(header[c]) + " is " + numberText(v) + ", outside [-1, 1] (degrees / 180)", name,
                            line);
-        const int axis = static_cast<int>(c) == headOf[0] ? 0 : static_cast<int>(c) == headOf[1] ? 1 : 2;
-        f.pose[axis] = 180.0 * v;  // degrees / 180 as written (above)
+        const int col = static_cast<int>(c);
+        if (role[c] == Role::Head) {
+          const int axis = col == headOf[0] ? 0 : col == headOf[1] ? 1 : 2;
+          f.pose[axis] = 180.0 * v;  // degrees / 180 as written (above)
+        } else {
+          // kEyeColumns' order: left pitch, left yaw, right pitch, right yaw; EyeGaze's eye 0 is the right.
+          const int k = static_cast<int>(std::find(std::begin(eyeOf), std::end(eyeOf), col) - std::begin(eyeOf));
+          const size_t eye = k < 2 ? 1 : 0;
+          if (k % 2 == 0) f.gaze.pitchDeg[eye] = -180.0 * v;  // a right-handed turn about x looks down (above)
+          else f.gaze.yawDeg[eye] = 180.0 * v;
+        }
       }
     }
     if (empty) f.dropped = "with empty cells";

@@ -1,6 +1,7 @@
 #include "myoshell/anim/performance_map.h"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <optional>
 #include <set>
@@ -10,18 +11,22 @@
 #include "myoshell/core/close_names.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/fit/arkit_names.h"
+#include "myoshell/fit/arkit_rig.h"
 #include "myoshell/fit/facs_route.h"
 #include "myoshell/head/jaw.h"
 
 namespace myo {
 namespace {
 
-// One input curve's reach: model muscle index → weight per unit of the curve, and the jaw per unit
-// of the curve ([open degrees, forward cm, lateral cm]).
+// One input curve's reach: model muscle index → weight per unit of the curve, the jaw per unit of
+// the curve ([open degrees, forward cm, lateral cm]) and each eye's turn per unit ([pitch, yaw]
+// degrees, index 0 the subject's right eye, as FacsDrive::gaze).
 struct MuscleWeights {
   std::map<int, double> muscles;
   Vec3 jaw = Vec3::Zero();
-  bool empty() const { return muscles.empty() && jaw.isZero(); }
+  std::array<Vec2, 2> gaze{Vec2::Zero(), Vec2::Zero()};
+  bool turnsEyes() const { return !gaze[0].isZero() || !gaze[1].isZero(); }
+  bool empty() const { return muscles.empty() && jaw.isZero() && !turnsEyes(); }
 };
 
 class Mapper {
@@ -50,6 +55,8 @@ class Mapper {
     if (!drive) return false;
     for (const auto& [muscle, w] : drive->muscles) add(out, muscle, w);
     out.jaw += drive->jaw;
+    out.gaze[0] += drive->gaze[0];
+    out.gaze[1] += drive->gaze[1];
     return true;
   }
 
@@ -58,8 +65,6 @@ class Mapper {
     const FacsEntry* entry = facs_.find(au);
     if (!entry) return "AU" + std::to_string(au) + " is not in the FACS map";
     if (!entry->needs.empty()) return "AU" + std::to_string(au) + " needs " + (entry->needs == "jaw" ? "the jaw" : entry->needs);
-    if (entry->turnsEyes() && entry->muscles.empty())
-      return "AU" + std::to_string(au) + " turns the eyes: the lids follow a gaze in rigs (myoshell rig), not yet in a performance";
     return "AU" + std::to_string(au) + " drives no muscle of this model";
   }
 
@@ -83,6 +88,19 @@ Vec3 clampJaw(const Vec3& j) {
               std::clamp(j.z(), -kJawLateralMaxCm, kJawLateralMaxCm));
 }
 
+// Each eye's angles within the eye's range (head/eye_gaze.h): where inputs add past it, the eye stops.
+EyeGaze clampGaze(EyeGaze g) {
+  for (size_t e = 0; e < 2; ++e) {
+    g.pitchDeg[e] = std::clamp(g.pitchDeg[e], -kGazeMaxDeg, kGazeMaxDeg);
+    g.yawDeg[e] = std::clamp(g.yawDeg[e], -kGazeMaxDeg, kGazeMaxDeg);
+  }
+  return g;
+}
+
+// One of EyeGaze's four angles: k = 2·eye + (0 pitch, 1 yaw).
+double& gazeAngle(EyeGaze& g, int k) { return (k % 2 == 0 ? g.pitchDeg : g.yawDeg)[static_cast<size_t>(k / 2)]; }
+double gazeAngle(const EyeGaze& g, int k) { return (k % 2 == 0 ? g.pitchDeg : g.yawDeg)[static_cast<size_t>(k / 2)]; }
+
 // "AU12" → 12, or 0 for any other name.
 int auNumber(const std::string& name) {
   if (name.size() < 3 || name.compare(0, 2, "AU") != 0) return 0;
@@ -101,12 +119,14 @@ Performance cropPerformance(const Performance& p, double start, double end, cons
   Performance out = p;
   out.times.clear();
   out.headPose.clear();
+  out.gaze.clear();
   for (auto& c : out.channels) c.values.clear();
   const double eps = 1e-9;
   for (size_t f = 0; f < p.times.size(); ++f) {
     if (p.times[f] < start - eps || (end >= 0.0 && p.times[f] > end + eps)) continue;
     out.times.push_back(p.times[f]);
     if (!p.headPose.empty()) out.headPose.push_back(p.headPose[f]);
+    if (!p.gaze.empty()) out.gaze.push_back(p.gaze[f]);
     for (size_t c = 0; c < p.channels.size(); ++c) out.channels[c].values.push_back(p.channels[c].values[f]);
   }
   if (out.times.size() < 2)
@@ -128,6 +148,9 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
   const size_t frames = p.times.size();
   out.activations.assign(muscleNames.size(), std::vector<double>(frames, 0.0));
   Mapper mapper(muscleNames, facs);
+  // The file's eye angles, when it has them, are the eyes' turn; the curves that also turn the eyes
+  // (eyeLook*, AU61–64) then turn nothing, so that one gaze is not added twice (docs/performance_input.md).
+  const bool anglesTurnEyes = !p.gaze.empty();
 
   for (const PerformanceChannel& channel : p.channels) {
     MYO_CHECK(channel.values.size() == frames, "mapPerformance: curve " << channel.name << " has the wrong length");
@@ -150,6 +173,8 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
           else if (dof == "forward") weights.jaw.y() += value;
           else if (dof == "lateral") weights.jaw.z() += value;
         }
+        const EyeGaze turn = gazeOf(*shape);
+        for (size_t e = 0; e < 2; ++e) weights.gaze[e] += Vec2(turn.pitchDeg[e], turn.yawDeg[e]);
       }
       // What the map does not make (no entry, unreachable, or nothing this model has): its FACS units.
       if (name && weights.empty()) {
@@ -160,6 +185,8 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
           if (mapper.addAu(one, au, facs.side) && !one.empty()) {
             for (const auto& [muscle, w] : one.muscles) weights.muscles[muscle] += w;
             weights.jaw += one.jaw;
+            weights.gaze[0] += one.gaze[0];
+            weights.gaze[1] += one.gaze[1];
           } else {
             reasons += (reasons.empty() ? "" : "; ") + mapper.whyNot(au);
           }
@@ -171,6 +198,10 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
                        : "the retargeting map has no " + *name) + ", and it has no FACS unit";
         else why = reasons;
       }
+    }
+    if (anglesTurnEyes && weights.turnsEyes()) {
+      weights.gaze = {Vec2::Zero(), Vec2::Zero()};
+      if (weights.empty()) continue;  // the eyes turn, by the angles
     }
     if (weights.empty()) {
       out.unmapped.push_back(channel.name);
@@ -184,7 +215,27 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
       if (out.jaw.empty()) out.jaw.assign(frames, Vec3::Zero());
       for (size_t f = 0; f < frames; ++f) out.jaw[f] += weights.jaw * x[f];
     }
+    if (weights.turnsEyes()) {
+      if (out.gaze.empty()) out.gaze.assign(frames, EyeGaze{});
+      for (size_t f = 0; f < frames; ++f)
+        for (size_t e = 0; e < 2; ++e) {
+          out.gaze[f].pitchDeg[e] += weights.gaze[e].x() * x[f];
+          out.gaze[f].yawDeg[e] += weights.gaze[e].y() * x[f];
+        }
+    }
   }
+  // The file's eye angles, each filtered as the curves are.
+  if (anglesTurnEyes) {
+    MYO_CHECK(p.gaze.size() == frames, "mapPerformance: the gaze has the wrong length");
+    out.gaze.assign(frames, EyeGaze{});
+    for (int k = 0; k < 4; ++k) {
+      std::vector<double> angle(frames);
+      for (size_t f = 0; f < frames; ++f) angle[f] = gazeAngle(p.gaze[f], k);
+      angle = oneEuroFilter(p.times, angle, filter);
+      for (size_t f = 0; f < frames; ++f) gazeAngle(out.gaze[f], k) = angle[f];
+    }
+  }
+  for (EyeGaze& g : out.gaze) g = clampGaze(g);
   for (auto& curve : out.activations)
     for (double& a : curve) a = std::clamp(a, 0.0, 1.0);
   for (Vec3& j : out.jaw) j = clampJaw(j);
@@ -254,6 +305,19 @@ void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
       std::vector<double> curve(frames);
       for (size_t f = 0; f < frames; ++f) curve[f] = mapped.jaw[f][dof];
       *tracks[dof] = playedTrack(mapped.times, curve, *tracks[dof], lo[dof], hi[dof], names[dof]);
+    }
+  }
+  // The eyes: the performance's turn plus the scene's own keys, within the eye's range; an angle the
+  // performance leaves at 0 throughout keeps the scene's own track (or none).
+  if (!mapped.gaze.empty()) {
+    const char* names[4] = {"performance right eye pitch", "performance right eye yaw", "performance left eye pitch",
+                            "performance left eye yaw"};
+    for (int k = 0; k < 4; ++k) {
+      std::vector<double> curve(frames);
+      for (size_t f = 0; f < frames; ++f) curve[f] = gazeAngle(mapped.gaze[f], k);
+      if (std::all_of(curve.begin(), curve.end(), [](double a) { return a == 0.0; })) continue;
+      ScalarTrack& track = (k % 2 == 0 ? scene.gazePitch : scene.gazeYaw)[static_cast<size_t>(k / 2)];
+      track = playedTrack(mapped.times, curve, track, -kGazeMaxDeg, kGazeMaxDeg, names[k]);
     }
   }
   if (!mapped.headPose.empty() && scene.headPose.empty()) {

@@ -2,8 +2,8 @@
 // wiki's "Output Format" page (github.com/TadasBaltrusaitis/OpenFace/wiki/Output-Format): frame,
 // face_id, timestamp (s), confidence, success, gaze_*, eye_lmk_*, pose_T* (mm), pose_R* (rad),
 // x_*/y_* (px), X_*/Y_*/Z_* (mm), p_* (shape parameters), AUxx_r (intensity 0–5), AUxx_c (presence
-// 0/1). We read timestamp, confidence, success, face_id, pose_R* and AUxx_r; the rest are known and
-// skipped without a word.
+// 0/1). We read timestamp, confidence, success, face_id, pose_R*, gaze_angle_x/y and AUxx_r; the
+// rest are known and skipped without a word.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -45,6 +45,13 @@ bool isOtherOpenFaceColumn(std::string_view f) {
   return false;
 }
 
+// OpenFace's head rotation as a matrix in face-frame coordinates (below): Rx(rx)·Ry(−ry)·Rz(−rz).
+Mat3 faceFrameRotation(double rx, double ry, double rz) {
+  return (Eigen::AngleAxisd(rx, Vec3::UnitX()) * Eigen::AngleAxisd(-ry, Vec3::UnitY()) *
+          Eigen::AngleAxisd(-rz, Vec3::UnitZ()))
+      .toRotationMatrix();
+}
+
 // OpenFace's head rotation, converted to the face frame's [pitch, yaw, roll] degrees.
 //
 // OpenFace (lib/local/Utilities/include/RotationHelpers.h, Euler2RotationMatrix) builds
@@ -59,9 +66,7 @@ bool isOtherOpenFaceColumn(std::string_view f) {
 // so the matrix is decomposed again rather than the angles copied. The camera is taken as level: a
 // tilted camera tilts gravity by as much.
 Vec3 faceFramePose(double rx, double ry, double rz) {
-  const Mat3 R = (Eigen::AngleAxisd(rx, Vec3::UnitX()) * Eigen::AngleAxisd(-ry, Vec3::UnitY()) *
-                  Eigen::AngleAxisd(-rz, Vec3::UnitZ()))
-                     .toRotationMatrix();
+  const Mat3 R = faceFrameRotation(rx, ry, rz);
   // R = Rz(roll)·Ry(yaw)·Rx(pitch): R(2,0) = −sin yaw, R(2,1) = cos yaw sin pitch, R(2,2) = cos yaw
   // cos pitch, R(1,0) = sin roll cos yaw, R(0,0) = cos roll cos yaw.
   const double yaw = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
@@ -69,6 +74,31 @@ Vec3 faceFramePose(double rx, double ry, double rz) {
   const double roll = std::atan2(R(1, 0), R(0, 0));
   const double deg = 180.0 / M_PI;
   return Vec3(pitch * deg, yaw * deg, roll * deg);
+}
+
+// OpenFace's gaze (gaze_angle_x, gaze_angle_y, radians) as the eyes' turn in the head, degrees.
+//
+// OpenFace (GazeAnalysis::GetGazeAngle; its wiki's "Output Format") averages the two eyes' unit gaze
+// vectors g, in the camera's coordinates (x to the image's right, y down, z away from the camera),
+// and writes gaze_angle_x = atan2(g_x, −g_z), gaze_angle_y = atan2(g_y, −g_z): 0 looking into the
+// camera, gaze_angle_x > 0 towards the image's right (the subject's left), gaze_angle_y > 0 DOWN.
+// So g ∝ (tan x, tan y, −1), and in the face frame's orientation (C = diag(1, −1, −1), as the pose
+// above) w = C·g ∝ (tan x, −tan y, 1). The angles are the camera's, not the head's: a face turned
+// down by 10° that looks into the camera has its eyes turned up by 10° in their orbits, which is
+// what the lids follow. With the head's rotation H (face frame, faceFrameRotation) the direction in
+// the head is e = Hᵀ·w, and pitch = atan2(e_y, e_z) (+ up), yaw = atan2(e_x, e_z) (+ towards the
+// subject's left) — OpenFace's own tangent-plane angles, so without a pose pitch = −y and yaw = x.
+// Both eyes get the mean: the per-eye vectors (gaze_0_*, gaze_1_*) differ by more than the vergence
+// they would add (docs/performance_input.md).
+EyeGaze headGaze(double x, double y, const Mat3* head) {
+  Vec3 e(std::tan(x), -std::tan(y), 1.0);
+  if (head) e = head->transpose() * e;
+  const double deg = 180.0 / M_PI;
+  const double pitch = std::atan2(e.y(), e.z()) * deg, yaw = std::atan2(e.x(), e.z()) * deg;
+  EyeGaze g;
+  g.pitchDeg = {pitch, pitch};
+  g.yawDeg = {yaw, yaw};
+  return g;
 }
 
 struct AuColumn {
@@ -111,6 +141,12 @@ Performance parseOpenFace(const std::string& text, const std::string& name, cons
                          "' (the head's rotation needs pose_Rx, pose_Ry and pose_Rz)",
                      name, headerLine);
 
+  const std::ptrdiff_t gazeXCol = column("gaze_angle_x"), gazeYCol = column("gaze_angle_y");
+  if ((gazeXCol >= 0) != (gazeYCol >= 0))
+    throw InputError(std::string("missing required column '") + (gazeXCol < 0 ? "gaze_angle_x" : "gaze_angle_y") +
+                         "' (the gaze needs gaze_angle_x and gaze_angle_y)",
+                     name, headerLine);
+
   std::vector<AuColumn> aus;
   bool hasPresence = false;
   std::vector<std::string> unknown;
@@ -139,6 +175,7 @@ Performance parseOpenFace(const std::string& text, const std::string& name, cons
 
   FrameTable table;
   table.hasPose = poseColumns == 3;
+  table.hasGaze = gazeXCol >= 0;
   // The scale (issue 18; ../shared/data/openface/README.md): raw OpenFace writes 0–5 and always
   // writes face_id and the AUxx_c columns; cleaned files (FACSvatar's) keep neither and are 0–1.
   const bool raw = faceCol >= 0 || hasPresence;
@@ -181,7 +218,7 @@ Performance parseOpenFace(const std::string& text, const std::string& name, cons
     double x = 0;
     if (faceCol >= 0) {
       if (!number(faceCol, x)) {  // the row belongs to no face
-        table.leftOut.push_back(Frame{line, 0.0, {}, Vec3::Zero(), "with no face_id"});
+        table.leftOut.push_back(Frame{line, 0.0, {}, Vec3::Zero(), EyeGaze{}, "with no face_id"});
         continue;
       }
       if (x != std::floor(x) || std::fabs(x) > 1e9)
@@ -210,11 +247,35 @@ Performance parseOpenFace(const std::string& text, const std::string& name, cons
                          name, line);
       f.values[k] = std::clamp(v / scale, 0.0, 1.0);
     }
+    double r[3] = {0, 0, 0};
+    bool poseRead = false;
     if (table.hasPose) {
-      double r[3] = {0, 0, 0};
       const std::ptrdiff_t cols[3] = {rxCol, ryCol, rzCol};
-      for (int a = 0; a < 3; ++a) empty = !number(cols[a], r[a]) || empty;
-      if (!empty) f.pose = faceFramePose(r[0], r[1], r[2]);
+      poseRead = true;
+      for (int a = 0; a < 3; ++a) poseRead = number(cols[a], r[a]) && poseRead;
+      empty = empty || !poseRead;
+      if (poseRead) f.pose = faceFramePose(r[0], r[1], r[2]);
+    }
+    if (table.hasGaze) {
+      double g[2] = {0, 0};
+      const std::ptrdiff_t cols[2] = {gazeXCol, gazeYCol};
+      bool read = true;
+      for (int a = 0; a < 2; ++a) {
+        if (!number(cols[a], g[a])) {
+          read = false;
+          continue;
+        }
+        // Beyond ±π/2 the vector points away from the camera: no angle OpenFace's atan2 gives a face it sees.
+        if (!(std::fabs(g[a]) < 0.5 * M_PI))
+          throw InputError(std::string(header[static_cast<size_t>(cols[a])]) + " is " + numberText(g[a]) +
+                               " radians, outside (-π/2, π/2)",
+                           name, line);
+      }
+      empty = empty || !read;
+      if (read) {
+        const Mat3 head = faceFrameRotation(r[0], r[1], r[2]);
+        f.gaze = headGaze(g[0], g[1], poseRead ? &head : nullptr);
+      }
     }
     double success = 1, confidence = 1;
     if (successCol >= 0) empty = !number(successCol, success) || empty;

@@ -423,6 +423,19 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
                                              kJawLateralMaxCm, "cm " + note);
       j.finish();
     }
+    onlyFor(anatomical, scene, t, "gaze");
+    if (t.has("gaze")) {
+      DocReader g = t.child("gaze");
+      const char* eyes[2] = {"right", "left"};
+      for (size_t e = 0; e < 2; ++e)
+        for (const bool pitch : {true, false}) {
+          const std::string key = std::string(eyes[e]) + (pitch ? "_pitch" : "_yaw");
+          if (!g.has(key)) continue;
+          (pitch ? scene.gazePitch : scene.gazeYaw)[e] = readTrack<double>(
+              g, g.node(key), g.keyPath(key), -kGazeMaxDeg, kGazeMaxDeg, "degrees (the eye's range, docs/eyelids.md)");
+        }
+      g.finish();
+    }
     if (t.has("drags")) {
       DocReader d = t.child("drags");
       for (auto it = d.self().begin(); it != d.self().end(); ++it) {
@@ -592,6 +605,15 @@ std::string sceneToJson(const SceneDesc& scene) {
     if (!scene.jawForward.empty()) jaw["forward"] = trackJson(scene.jawForward);
     if (!scene.jawLateral.empty()) jaw["lateral"] = trackJson(scene.jawLateral);
     timeline["jaw"] = jaw;
+  }
+  if (scene.hasGaze()) {
+    json gaze = json::object();
+    const char* eyes[2] = {"right", "left"};
+    for (size_t e = 0; e < 2; ++e) {
+      if (!scene.gazePitch[e].empty()) gaze[std::string(eyes[e]) + "_pitch"] = trackJson(scene.gazePitch[e]);
+      if (!scene.gazeYaw[e].empty()) gaze[std::string(eyes[e]) + "_yaw"] = trackJson(scene.gazeYaw[e]);
+    }
+    timeline["gaze"] = gaze;
   }
   j["timeline"] = timeline;
   return j.dump(2) + "\n";

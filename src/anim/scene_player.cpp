@@ -73,6 +73,7 @@ void ScenePlayer::applyTimeline(double t) {
     if (!scene_.jawLateral.empty()) jaw.lateralCm = scene_.jawLateral.at(t);
     sim_->setJaw(jaw);
   }
+  if (scene_.hasGaze()) sim_->setGaze(scene_.gazeAt(t));
   for (const DragTrack& d : dragTracks_) sim_->setDragForce(d.drag, d.track->at(t));
 }
 

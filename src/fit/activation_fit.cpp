@@ -12,6 +12,7 @@
 #include "myoshell/anatomy/skin_placement.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
+#include "myoshell/muscles/muscle_mirror.h"
 
 namespace myo {
 
@@ -193,17 +194,26 @@ MatX3 placed(const SkinPlacement& placement, const MatX3& rest, const MatX3& u, 
 
 }  // namespace
 
-ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings,
-                             const SkinPlacement* placement, const std::vector<MatX3>* everyColumn) {
-  const Stopwatch clock;
-  settings.validate();
-  const MatX3& rest = skin.head().mesh.V;
-  const Eigen::Index n = rest.rows();
-  const auto mAll = static_cast<Eigen::Index>(skin.muscles().size());
+namespace {
 
-  // The weighted vertices and the target's positions there (in the target's own frame).
+// One side of a fit: the target, its weighted vertices and its positions there (in the target's own
+// frame), and for each fitted activation j the fitted muscle whose column it drives on this side
+// (`twin[j]`, a position in the fitted list: j itself for the shape, j's mirror twin for the mirror
+// image of a pair).
+struct Side {
+  const FitTarget* target = nullptr;
   std::vector<int> rows;
-  MatX3 P;
+  MatX3 P, restRows;
+  std::vector<Eigen::Index> twin;
+  Eigen::Index offset = 0;  // this side's first row in the stacked equations
+  SimilarityTransform alignment;
+  Eigen::Index size() const { return 3 * static_cast<Eigen::Index>(rows.size()); }
+};
+
+// The side's weighted vertices and target positions, with the target's errors.
+void readTarget(Side& s, const MatX3& rest, const FitSettings& settings) {
+  const FitTarget& target = *s.target;
+  const Eigen::Index n = rest.rows();
   if (target.isMarkers()) {
     if (target.markerPositions.rows() != static_cast<Eigen::Index>(target.markerVertices.size()))
       throw InputError("fit: " + std::to_string(target.markerVertices.size()) + " marker vertices but " +
@@ -216,99 +226,164 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
       if (seen[static_cast<size_t>(v)]) throw InputError("fit: marker vertex " + std::to_string(v) + " is given twice");
       seen[static_cast<size_t>(v)] = true;
     }
-    rows = target.markerVertices;
-    P = target.markerPositions;
+    s.rows = target.markerVertices;
+    s.P = target.markerPositions;
   } else {
     if (target.displacement.rows() != n)
       throw InputError("fit: the target has " + std::to_string(target.displacement.rows()) +
                        " vertices, the head " + std::to_string(n));
-    rows.resize(static_cast<size_t>(n));
-    for (Eigen::Index i = 0; i < n; ++i) rows[static_cast<size_t>(i)] = static_cast<int>(i);
-    P = rest + target.displacement;
+    s.rows.resize(static_cast<size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) s.rows[static_cast<size_t>(i)] = static_cast<int>(i);
+    s.P = rest + target.displacement;
   }
-  if (!P.allFinite()) throw InputError("fit: the target has a coordinate that is not a finite number");
-  if (settings.alignment != FitAlignment::None && rows.size() < 3)
-    throw InputError("fit: alignment needs at least 3 markers, got " + std::to_string(rows.size()));
+  if (!s.P.allFinite()) throw InputError("fit: the target has a coordinate that is not a finite number");
+  if (settings.alignment != FitAlignment::None && s.rows.size() < 3)
+    throw InputError("fit: alignment needs at least 3 markers, got " + std::to_string(s.rows.size()));
+  s.restRows = gatherPoints(rest, s.rows);
+}
 
-  ActivationFit fit;
-  fit.activations = VecX::Zero(mAll);
+// The fitted activations a as one side sees them, on the fitted muscles' positions: b[twin[j]] = a[j].
+VecX asSeenBy(const Side& s, const VecX& a) {
+  VecX b(a.size());
+  for (size_t j = 0; j < s.twin.size(); ++j) b(s.twin[j]) = a(static_cast<Eigen::Index>(j));
+  return b;
+}
+
+// The fit of one activation vector to every side's target at once (one side: fitActivations; two:
+// a shape and its mirror image, fitMirroredActivations). `mirror` (null for one side) gives each
+// muscle's twin. The figures of each side are its own.
+std::vector<ActivationFit> fitSides(const AnatomicalSkin& skin, std::vector<Side>& sides, const std::vector<int>* mirror,
+                                    const FitSettings& settings, const SkinPlacement* placement,
+                                    const std::vector<MatX3>* everyColumn) {
+  const Stopwatch clock;
+  settings.validate();
+  const MatX3& rest = skin.head().mesh.V;
+  const Eigen::Index n = rest.rows();
+  const auto mAll = static_cast<Eigen::Index>(skin.muscles().size());
+  for (Side& s : sides) readTarget(s, rest, settings);
+
+  std::vector<int> fitted;
   if (settings.muscles.empty())
-    for (int k = 0; k < mAll; ++k) fit.fitted.push_back(k);
+    for (int k = 0; k < mAll; ++k) fitted.push_back(k);
   for (const std::string& name : settings.muscles) {
     const int k = skin.muscleIndex(name);
-    if (std::find(fit.fitted.begin(), fit.fitted.end(), k) != fit.fitted.end())
+    if (std::find(fitted.begin(), fitted.end(), k) != fitted.end())
       throw InputError("fit: muscle '" + name + "' is listed twice");
-    fit.fitted.push_back(k);
+    fitted.push_back(k);
   }
-  const auto m = static_cast<Eigen::Index>(fit.fitted.size());
+  const auto m = static_cast<Eigen::Index>(fitted.size());
+  // Each side's muscle for each activation: the fitted muscle itself, or its twin on a mirror side.
+  for (size_t si = 0; si < sides.size(); ++si) {
+    Side& s = sides[si];
+    s.twin.resize(static_cast<size_t>(m));
+    for (Eigen::Index j = 0; j < m; ++j) s.twin[static_cast<size_t>(j)] = j;
+    if (si == 0) continue;
+    if (!mirror || mirror->size() != static_cast<size_t>(mAll))
+      throw CheckError("fitMirroredActivations: the mirror names a twin for each of the " + std::to_string(mAll) + " muscles");
+    const std::vector<std::string> names = skin.muscleNames();
+    std::vector<bool> taken(static_cast<size_t>(m), false);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const int k = fitted[static_cast<size_t>(j)];
+      const int t = (*mirror)[static_cast<size_t>(k)];
+      const std::string& name = names[static_cast<size_t>(k)];
+      if (t < 0)
+        throw InputError("fit: muscle '" + name + "' has no mirror twin ('" + mirroredMuscleName(name) +
+                         "' is no muscle of the library): a mirror pair is fitted with both sides' muscles");
+      const auto at = std::find(fitted.begin(), fitted.end(), t);
+      if (at == fitted.end())
+        throw InputError("fit: muscle '" + name + "' is fitted and its mirror twin '" + names[static_cast<size_t>(t)] +
+                         "' is not: a mirror pair is fitted with both sides' muscles");
+      const auto tj = static_cast<Eigen::Index>(at - fitted.begin());
+      if (taken[static_cast<size_t>(tj)]) throw CheckError("fitMirroredActivations: two muscles have the twin '" + names[static_cast<size_t>(t)] + "'");
+      taken[static_cast<size_t>(tj)] = true;
+      s.twin[static_cast<size_t>(j)] = tj;
+    }
+  }
   if (everyColumn && everyColumn->size() != static_cast<size_t>(mAll))
     throw CheckError("fitActivations: " + std::to_string(everyColumn->size()) + " columns for " + std::to_string(mAll) +
                      " muscles");
   std::vector<MatX3> cols;
   if (everyColumn)
-    for (int k : fit.fitted) cols.push_back((*everyColumn)[static_cast<size_t>(k)]);
+    for (int k : fitted) cols.push_back((*everyColumn)[static_cast<size_t>(k)]);
   else
-    cols = activationColumns(skin, fit.fitted);
+    cols = activationColumns(skin, fitted);
   // A lid muscle's column is its placed shape at a = 1 (its physics and the lid fully turned): a
   // secant of the lid's rotation, so the bounded least squares stays linear; the fitted shape is
   // then placed exactly (below), and the figures measure that.
   if (!placement) placement = &skin.placement();
   auto allActivations = [&](const VecX& act) {
     VecX full = VecX::Zero(mAll);
-    for (Eigen::Index j = 0; j < m; ++j) full(fit.fitted[static_cast<size_t>(j)]) = act(j);
+    for (Eigen::Index j = 0; j < m; ++j) full(fitted[static_cast<size_t>(j)]) = act(j);
     return full;
   };
   std::vector<MatX3> fitCols = cols;
   for (Eigen::Index j = 0; j < m; ++j)
-    if (placement->turnsALid(fit.fitted[static_cast<size_t>(j)]))
+    if (placement->turnsALid(fitted[static_cast<size_t>(j)]))
       fitCols[static_cast<size_t>(j)] = placed(*placement, rest, cols[static_cast<size_t>(j)], allActivations(VecX::Unit(m, j)));
-  const MatX A = columnMatrix(fitCols, rows);
+  // The stacked equations: each side's rows, activation j driving that side's muscle twin[j].
+  Eigen::Index stacked = 0;
+  for (Side& s : sides) s.offset = stacked, stacked += s.size();
+  MatX A(stacked, m);
+  for (const Side& s : sides)
+    for (Eigen::Index j = 0; j < m; ++j)
+      A.block(s.offset, j, s.size(), 1) = gatherRows(fitCols[static_cast<size_t>(s.twin[static_cast<size_t>(j)])], s.rows);
   const MatX H = A.transpose() * A;
-  const MatX3 restRows = gatherPoints(rest, rows);
   const VecX lo = VecX::Zero(m), hi = VecX::Ones(m);
 
-  // Alternate: align the target to rest + the fitted displacement, fit the aligned target.
+  // Alternate: align each side's target to its rest + the fitted displacement, fit the aligned targets.
+  int iterations = 0, solverIterations = 0;
   VecX a = VecX::Zero(m);
-  VecX eRows;
+  VecX eRows(stacked);
   double eNorm2 = 0;
   for (int round = 0; round < settings.maxAlignmentRounds; ++round) {
-    ++fit.iterations;
-    if (settings.alignment != FitAlignment::None) {
-      MatX3 goal = restRows;
-      flat(goal) += A * a;
-      fit.alignment = fitSimilarity(P, goal, settings.alignment == FitAlignment::Similarity);
+    ++iterations;
+    for (Side& s : sides) {
+      if (settings.alignment != FitAlignment::None) {
+        MatX3 goal = s.restRows;
+        flat(goal) += A.middleRows(s.offset, s.size()) * a;
+        s.alignment = fitSimilarity(s.P, goal, settings.alignment == FitAlignment::Similarity);
+      }
+      const MatX3 aligned = s.alignment.apply(s.P) - s.restRows;
+      eRows.segment(s.offset, s.size()) = flat(aligned);
     }
-    const MatX3 aligned = fit.alignment.apply(P) - restRows;
-    eRows = flat(aligned);
+    // The sparsity term is scaled by the stacked target's squared norm, so λ keeps its meaning.
     eNorm2 = eRows.squaredNorm();
     // ‖Aa − e‖² + λ‖e‖²Σa = aᵀHa − 2(Aᵀe − ½λ‖e‖²1)ᵀa + const.
     const VecX c = A.transpose() * eRows - VecX::Constant(m, 0.5 * settings.lambda * eNorm2);
     const BoxQpResult qp = solveBoxQp(H, c, lo, hi);
-    fit.solverIterations += qp.iterations;
+    solverIterations += qp.iterations;
     if (!qp.converged) throw NumericalError("fit: the bounded least-squares solve did not converge");
     const double change = (qp.x - a).cwiseAbs().maxCoeff();
     a = qp.x;
     if (settings.alignment == FitAlignment::None || (round > 0 && change < 1e-10)) break;
   }
 
-  MatX3 u = MatX3::Zero(n, 3);
-  for (Eigen::Index j = 0; j < m; ++j) u += a(j) * cols[static_cast<size_t>(j)];
-  u = placed(*placement, rest, u, allActivations(a));
+  // Each side's shape: its activations' linear shape, placed.
+  std::vector<MatX3> us;
+  for (const Side& s : sides) {
+    const VecX b = asSeenBy(s, a);
+    MatX3 u = MatX3::Zero(n, 3);
+    for (Eigen::Index j = 0; j < m; ++j) u += b(j) * cols[static_cast<size_t>(j)];
+    us.push_back(placed(*placement, rest, u, allActivations(b)));
+  }
 
   // Gauss–Newton on the model's own shape, the alignment kept: r(a) = u(a)|rows − e, where u(a) is
   // nonlinear in a when warping is on (the warped static solve) or the fit turns a lid (the lid's
   // rotation, whose secant the columns above hold; exact at a = 0 and 1 only).
   bool turnsALid = false;
-  for (Eigen::Index j = 0; j < m; ++j) turnsALid = turnsALid || (a(j) > 0.0 && placement->turnsALid(fit.fitted[static_cast<size_t>(j)]));
+  for (const Side& s : sides)
+    for (Eigen::Index j = 0; j < m; ++j)
+      turnsALid = turnsALid || (a(j) > 0.0 && placement->turnsALid(fitted[static_cast<size_t>(s.twin[static_cast<size_t>(j)])]));
   const bool warping = skin.settings().warping;
+  bool refined = false;
   if ((warping || turnsALid) && settings.refineSteps > 0) {
-    fit.refined = true;
+    refined = true;
     SkinLoads loads;
     loads.activations = VecX::Zero(mAll);
     loads.gravity = skin.restGravity();
     loads.drags.assign(static_cast<size_t>(skin.dragCount()), Vec3::Zero());
     const MatX3 u0 = warping ? skin.settle(loads, true).u : MatX3();
-    // The model's shape at these activations: the warped solve, or the placed linear shape.
+    // The model's shape at these activations (of the fitted muscles): the warped solve, or the placed linear shape.
     auto shapeAt = [&](const VecX& act) {
       if (!warping) {
         MatX3 linear = MatX3::Zero(n, 3);
@@ -316,17 +391,29 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
           if (act(j) != 0.0) linear += act(j) * cols[static_cast<size_t>(j)];
         return placed(*placement, rest, linear, allActivations(act));
       }
-      for (Eigen::Index j = 0; j < m; ++j) loads.activations(fit.fitted[static_cast<size_t>(j)]) = act(j);
+      for (Eigen::Index j = 0; j < m; ++j) loads.activations(fitted[static_cast<size_t>(j)]) = act(j);
       const SettledSkin s = skin.settle(loads, true);
       if (!s.converged || !s.u.allFinite())
         throw NumericalError("fit: the warped static solve did not converge (residual " + std::to_string(s.residual) + ")");
       return placed(*placement, rest, MatX3(s.u - u0), allActivations(act));
     };
-    auto objective = [&](const MatX3& uu, const VecX& act) {
-      return (gatherRows(uu, rows) - eRows).squaredNorm() + settings.lambda * eNorm2 * act.sum();
+    // Every side's shape at the activations a, and those shapes at the stacked rows.
+    auto shapesAt = [&](const VecX& act) {
+      std::vector<MatX3> out;
+      for (const Side& s : sides) out.push_back(shapeAt(asSeenBy(s, act)));
+      return out;
     };
-    u = shapeAt(a);
-    double f = objective(u, a);
+    auto stackedRows = [&](const std::vector<MatX3>& uu) {
+      VecX out(stacked);
+      for (size_t si = 0; si < sides.size(); ++si)
+        out.segment(sides[si].offset, sides[si].size()) = gatherRows(uu[si], sides[si].rows);
+      return out;
+    };
+    auto objective = [&](const std::vector<MatX3>& uu, const VecX& act) {
+      return (stackedRows(uu) - eRows).squaredNorm() + settings.lambda * eNorm2 * act.sum();
+    };
+    us = shapesAt(a);
+    double f = objective(us, a);
     // The warped solve refines every fitted muscle; the lids' turn only the muscles the linear fit
     // uses (a > 0): the others' columns are exact there, and each refined muscle costs a placement
     // per step.
@@ -335,8 +422,9 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
       if (warping || a(j) > 0.0) free.push_back(j);
     const auto k = static_cast<Eigen::Index>(free.size());
     for (int step = 0; step < settings.refineSteps; ++step) {
-      ++fit.iterations;
-      const VecX r = gatherRows(u, rows) - eRows;
+      ++iterations;
+      const VecX uRows = stackedRows(us);
+      const VecX r = uRows - eRows;
       MatX J(r.size(), k);
       VecX lower(k), upper(k);
       constexpr double h = 1e-3;  // forward difference, backward at the upper bound
@@ -345,21 +433,21 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
         VecX ah = a;
         const double hj = a(j) + h <= 1.0 ? h : -h;
         ah(j) += hj;
-        J.col(q) = (gatherRows(shapeAt(ah), rows) - gatherRows(u, rows)) / hj;
+        J.col(q) = (stackedRows(shapesAt(ah)) - uRows) / hj;
         lower(q) = -a(j), upper(q) = 1.0 - a(j);
       }
       const VecX c = -J.transpose() * r - VecX::Constant(k, 0.5 * settings.lambda * eNorm2);
       const BoxQpResult qp = solveBoxQp(J.transpose() * J, c, lower, upper);
-      fit.solverIterations += qp.iterations;
+      solverIterations += qp.iterations;
       bool improved = false;
       for (double t = 1.0; t >= 1.0 / 16; t *= 0.5) {
         VecX at = a;
         for (Eigen::Index q = 0; q < k; ++q) at(free[static_cast<size_t>(q)]) += t * qp.x(q);
         at = at.cwiseMax(0.0).cwiseMin(1.0);
-        const MatX3 ut = shapeAt(at);
+        std::vector<MatX3> ut = shapesAt(at);
         const double ft = objective(ut, at);
         if (ft < f) {
-          a = at, u = ut, f = ft, improved = true;
+          a = at, us = std::move(ut), f = ft, improved = true;
           break;
         }
       }
@@ -367,40 +455,79 @@ ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target
     }
   }
 
-  for (Eigen::Index j = 0; j < m; ++j) fit.activations(fit.fitted[static_cast<size_t>(j)]) = a(j);
-  fit.displacement = u;
-
-  // The compared vertices and the figures over them.
-  std::vector<int> compared;
-  if (target.isMarkers()) {
-    fit.target = rows3(eRows);
-    const MatX3 uRows = gatherPoints(u, rows);
-    fit.metric = compareShapes(uRows, fit.target, restRows, ShapeMetricSettings{settings.threshold, 20});
-    for (size_t r = 0; r < rows.size(); ++r) compared.push_back(static_cast<int>(r));
-    double sum = 0, worst = 0;
-    for (Eigen::Index r = 0; r < uRows.rows(); ++r) {
-      const double d = (uRows.row(r) - fit.target.row(r)).norm();
-      sum += d * d, worst = std::max(worst, d);
-    }
-    fit.rmsMm = 10.0 * std::sqrt(sum / std::max<double>(1.0, static_cast<double>(uRows.rows())));
-    fit.maxMm = 10.0 * worst;
-    fit.conditionNumber = conditionNumber(A);
-  } else {
-    fit.target = rows3(eRows);
-    fit.metric = compareShapes(u, fit.target, rest, ShapeMetricSettings{settings.threshold, 20});
-    double sum = 0, worst = 0;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (u.row(i).norm() > settings.threshold || fit.target.row(i).norm() > settings.threshold) {
-        compared.push_back(static_cast<int>(i));
-        const double d = (u.row(i) - fit.target.row(i)).norm();
+  // Each side's fit, its figures over its own compared vertices.
+  std::vector<ActivationFit> fits;
+  for (size_t si = 0; si < sides.size(); ++si) {
+    const Side& s = sides[si];
+    ActivationFit fit;
+    fit.fitted = fitted;
+    fit.activations = allActivations(asSeenBy(s, a));
+    fit.displacement = std::move(us[si]);
+    fit.alignment = s.alignment;
+    fit.iterations = iterations;
+    fit.solverIterations = solverIterations;
+    fit.refined = refined;
+    const MatX3& u = fit.displacement;
+    fit.target = rows3(VecX(eRows.segment(s.offset, s.size())));
+    std::vector<int> compared;
+    if (s.target->isMarkers()) {
+      const MatX3 uRows = gatherPoints(u, s.rows);
+      fit.metric = compareShapes(uRows, fit.target, s.restRows, ShapeMetricSettings{settings.threshold, 20});
+      for (size_t r = 0; r < s.rows.size(); ++r) compared.push_back(static_cast<int>(r));
+      double sum = 0, worst = 0;
+      for (Eigen::Index r = 0; r < uRows.rows(); ++r) {
+        const double d = (uRows.row(r) - fit.target.row(r)).norm();
         sum += d * d, worst = std::max(worst, d);
       }
-    fit.rmsMm = compared.empty() ? 0.0 : 10.0 * std::sqrt(sum / static_cast<double>(compared.size()));
-    fit.maxMm = 10.0 * worst;
-    fit.conditionNumber = conditionNumber(columnMatrix(cols, compared));
+      fit.rmsMm = 10.0 * std::sqrt(sum / std::max<double>(1.0, static_cast<double>(uRows.rows())));
+      fit.maxMm = 10.0 * worst;
+      fit.conditionNumber = conditionNumber(columnMatrix(fitCols, s.rows));
+    } else {
+      fit.metric = compareShapes(u, fit.target, rest, ShapeMetricSettings{settings.threshold, 20});
+      double sum = 0, worst = 0;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (u.row(i).norm() > settings.threshold || fit.target.row(i).norm() > settings.threshold) {
+          compared.push_back(static_cast<int>(i));
+          const double d = (u.row(i) - fit.target.row(i)).norm();
+          sum += d * d, worst = std::max(worst, d);
+        }
+      fit.rmsMm = compared.empty() ? 0.0 : 10.0 * std::sqrt(sum / static_cast<double>(compared.size()));
+      fit.maxMm = 10.0 * worst;
+      fit.conditionNumber = conditionNumber(columnMatrix(cols, compared));
+    }
+    fits.push_back(std::move(fit));
   }
-  fit.seconds = clock.seconds();
-  return fit;
+  for (ActivationFit& fit : fits) fit.seconds = clock.seconds();
+  return fits;
+}
+
+}  // namespace
+
+ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings,
+                             const SkinPlacement* placement, const std::vector<MatX3>* everyColumn) {
+  std::vector<Side> sides(1);
+  sides[0].target = &target;
+  return std::move(fitSides(skin, sides, nullptr, settings, placement, everyColumn).front());
+}
+
+MirroredFit fitMirroredActivations(const AnatomicalSkin& skin, const FitTarget& shape, const FitTarget& mirrorShape,
+                                   const std::vector<int>& mirror, const FitSettings& settings,
+                                   const SkinPlacement* placement, const std::vector<MatX3>* everyColumn) {
+  std::vector<Side> sides(2);
+  sides[0].target = &shape;
+  sides[1].target = &mirrorShape;
+  std::vector<ActivationFit> fits = fitSides(skin, sides, &mirror, settings, placement, everyColumn);
+  return {std::move(fits[0]), std::move(fits[1])};
+}
+
+std::vector<int> mirroredMuscles(const AnatomicalSkin& skin) {
+  const std::vector<std::string> names = skin.muscleNames();
+  std::vector<int> twin(names.size(), -1);
+  for (size_t k = 0; k < names.size(); ++k) {
+    const auto it = std::find(names.begin(), names.end(), mirroredMuscleName(names[k]));
+    if (it != names.end()) twin[k] = static_cast<int>(it - names.begin());
+  }
+  return twin;
 }
 
 }  // namespace myo

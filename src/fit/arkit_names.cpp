@@ -2,6 +2,7 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/close_names.h"
@@ -62,6 +63,18 @@ std::string canonicalArkitName(const std::string& spelling) {
   if (!list.empty()) throw InputError("unknown blendshape name '" + spelling + "' (did you mean " + list + "?)");
   for (const std::string& a : table().arkit) list += (list.empty() ? "" : ", ") + a;
   throw InputError("unknown blendshape name '" + spelling + "' (use one of the 52 ARKit names: " + list + ")");
+}
+
+std::optional<std::string> mirroredArkitName(const std::string& spelling) {
+  const std::string name = canonicalArkitName(spelling);
+  // Every sided ARKit name ends in Left or Right, and its twin is the other (the table's 52).
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"Left", "Right"}, {"Right", "Left"}}) {
+    if (!name.ends_with(from)) continue;
+    const std::string twin = name.substr(0, name.size() - from.size()) + to;
+    MYO_CHECK(table().canonical.count(twin) > 0, "assets/retarget/arkit_names.json: " + name + " has no " + twin);
+    return twin;
+  }
+  return std::nullopt;
 }
 
 const ArkitFacs& arkitFacs(const std::string& spelling) { return table().facs.at(canonicalArkitName(spelling)); }

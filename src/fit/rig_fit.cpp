@@ -58,6 +58,12 @@ JawPose poseOf(int dof, double value) {
   return pose;
 }
 
+// A pose's mirror image across the face's midplane (x → −x): the lateral shift to the other side.
+JawPose mirroredPose(JawPose pose) {
+  if (pose.lateralCm != 0.0) pose.lateralCm = -pose.lateralCm;
+  return pose;
+}
+
 // The value in [lo, hi] that minimises `misfit`, by golden-section search (the misfit of one jaw
 // degree of freedom is smooth and, over the jaw's range, unimodal); the ends are candidates too, so
 // a shape that does not move the jaw gets exactly 0 where 0 is an end.
@@ -179,50 +185,93 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
                                shapes.begin());
   };
 
-  // One shape's fit. A jaw shape: its jaw degree of freedom and the muscles together — for each value
-  // the muscles are fitted to what the jaw's rigid motion leaves, and the value with the smallest
-  // total misfit wins. A corrective rides on its base's jaw (`basePose`).
-  auto fitShape = [&](RigShapeFit& s, const JawPose* basePose) {
+  // One shape's fit, or a left/right pair's (`mirror` the right shape, fitted with the left's
+  // activations by twin: fitMirroredActivations). A jaw shape: its jaw degree of freedom and the
+  // muscles together — for each value the muscles are fitted to what the jaw's rigid motion leaves,
+  // and the value with the smallest total misfit wins (a pair's right jaw is the left's mirror
+  // image). A corrective rides on its base's jaw (`basePose`).
+  const std::vector<int> twins = mirroredMuscles(skin);
+  auto fitShape = [&](RigShapeFit& s, RigShapeFit* mirror, const JawPose* basePose) {
+    auto motionOf = [&](const JawPose& p) { return p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest); };
+    // The fit (and its mirror's) with the jaw in pose p (at rest on a head without the jaw).
     auto fitWithJaw = [&](const JawPose& p) {
-      const MatX3 jawMotion = p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest);
+      const MatX3 motion = jaw ? motionOf(p) : MatX3::Zero(n, 3);
       FitTarget t;
-      t.displacement = s.target - jawMotion;
-      ActivationFit f = fitActivations(skin, t, settings, &placement, &columns);
-      if (!p.isZero()) remeasure(f, jawMotion, s.target, rest, settings.threshold);
+      t.displacement = s.target - motion;
+      MirroredFit f;
+      if (mirror) {
+        const JawPose q = mirroredPose(p);
+        const MatX3 mirrorMotion = jaw ? motionOf(q) : MatX3::Zero(n, 3);
+        FitTarget tm;
+        tm.displacement = mirror->target - mirrorMotion;
+        f = fitMirroredActivations(skin, t, tm, twins, settings, &placement, &columns);
+        if (!q.isZero()) remeasure(f.mirrorFit, mirrorMotion, mirror->target, rest, settings.threshold);
+      } else {
+        f.fit = fitActivations(skin, t, settings, &placement, &columns);
+      }
+      if (!p.isZero()) remeasure(f.fit, motion, s.target, rest, settings.threshold);
       return f;
+    };
+    auto misfit = [&](const MirroredFit& f) {  // summed over the pair
+      double sum = (f.fit.displacement - s.target).squaredNorm();
+      if (mirror) sum += (f.mirrorFit.displacement - mirror->target).squaredNorm();
+      return sum;
     };
     JawPose pose;
     const JawDof dof = jawDofOf(s.name);
     if (jaw && dof.index >= 0)
-      pose = poseOf(dof.index, goldenSection(
-                                   [&](double v) {
-                                     const ActivationFit f = fitWithJaw(poseOf(dof.index, v));
-                                     return (f.displacement - s.target).squaredNorm();
-                                   },
-                                   dof.lo, dof.hi));
+      pose = poseOf(dof.index, goldenSection([&](double v) { return misfit(fitWithJaw(poseOf(dof.index, v))); }, dof.lo, dof.hi));
     if (jaw && basePose) pose = *basePose;
-    if (jaw) {
-      s.fit = fitWithJaw(pose);
-    } else {
-      FitTarget target;
-      target.displacement = s.target;
-      s.fit = fitActivations(skin, target, settings, &placement, &columns);
-    }
+    MirroredFit f = fitWithJaw(pose);
+    s.fit = std::move(f.fit);
+    if (mirror) mirror->fit = std::move(f.mirrorFit);
     return pose;
   };
-  // The shapes are independent of each other (the skin is read only): side by side on
-  // parallelThreads(), each into its own slot; then the corrective on its fitted base.
+  // Each left/right pair the rig has both sides of (mirroredArkitName: mouthSmileLeft and
+  // mouthSmileRight, mouthLeft and mouthRight, jawLeft and jawRight) is one fit, the right shape's
+  // entry exactly the mirror of the left's, when every fitted muscle has its twin; other shapes alone.
+  // A side whose target is zero is a name the rig does not make (a rig written for all 52 names
+  // holds zeros for the others): its twin is fitted alone, not pulled towards nothing.
+  bool twinned = true;  // every fitted muscle's twin is fitted too
+  {
+    std::vector<int> fitted;
+    for (const std::string& name : settings.muscles) fitted.push_back(skin.muscleIndex(name));
+    if (settings.muscles.empty())
+      for (size_t k = 0; k < twins.size(); ++k) fitted.push_back(static_cast<int>(k));
+    for (const int k : fitted)
+      twinned = twinned && twins[static_cast<size_t>(k)] >= 0 &&
+                std::find(fitted.begin(), fitted.end(), twins[static_cast<size_t>(k)]) != fitted.end();
+  }
+  std::vector<size_t> mirrorOf(shapes.size(), shapes.size());  // the right shape fitted with shape i
+  std::vector<bool> fittedByItsTwin(shapes.size(), false);
+  for (size_t i = 0; twinned && i < shapes.size(); ++i) {
+    const std::optional<std::string> twin = mirroredArkitName(shapes[i].name);
+    if (!twin || !shapes[i].name.ends_with("Left") || !shapes[i].reachable || !shapes[i].correctiveOf.empty()) continue;
+    const size_t j = indexOf(*twin);
+    if (j == shapes.size() || !shapes[j].reachable || !shapes[j].correctiveOf.empty()) continue;
+    if (shapes[i].target.isZero(0.0) || shapes[j].target.isZero(0.0)) continue;
+    mirrorOf[i] = j;
+    fittedByItsTwin[j] = true;
+    shapes[i].pairedWith = shapes[j].name;
+    shapes[j].pairedWith = shapes[i].name;
+  }
+  // The shapes and pairs are independent of each other (the skin is read only): side by side on
+  // parallelThreads(), each into its own slots; then the corrective on its fitted base.
   std::vector<JawPose> poses(shapes.size());
   parallelFor(static_cast<std::int64_t>(shapes.size()), [&](std::int64_t i) {
-    RigShapeFit& s = shapes[static_cast<size_t>(i)];
-    if (s.reachable && s.correctiveOf.empty()) poses[static_cast<size_t>(i)] = fitShape(s, nullptr);
+    const auto k = static_cast<size_t>(i);
+    RigShapeFit& s = shapes[k];
+    if (!s.reachable || !s.correctiveOf.empty() || fittedByItsTwin[k]) return;
+    const size_t j = mirrorOf[k];
+    poses[k] = fitShape(s, j < shapes.size() ? &shapes[j] : nullptr, nullptr);
+    if (j < shapes.size()) poses[j] = mirroredPose(poses[k]);
   });
   for (size_t i = 0; i < shapes.size(); ++i) {
     RigShapeFit& s = shapes[i];
     if (!s.reachable || s.correctiveOf.empty()) continue;
     const size_t base = indexOf(s.correctiveOf);
     s.target += shapes[base].target;  // the corrective only makes sense on its base
-    poses[i] = fitShape(s, &poses[base]);
+    poses[i] = fitShape(s, nullptr, &poses[base]);
   }
 
   std::vector<double> cosines, rms;

@@ -282,4 +282,10 @@ void Simulator::setJaw(const JawPose& pose) {
   throw InputError("the jaw (timeline.jaw, pose --jaw) needs \"model\": \"anatomical\"; the thesis model has no jaw");
 }
 
+void Simulator::setGaze(const EyeGaze& gaze) {
+  if (gaze.isZero()) return;
+  throw InputError(
+      "the eyes' turn (timeline.gaze) needs \"model\": \"anatomical\"; the thesis model has no eyes to turn");
+}
+
 }  // namespace myo

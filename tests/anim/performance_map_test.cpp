@@ -113,10 +113,13 @@ TEST(PerformanceMap, ArkitWeightsGoThroughTheRetargetingMap) {
   EXPECT_DOUBLE_EQ(activationOf(m, "levator_labii_superioris_alaeque_nasi_right", 1), 0.4);
   EXPECT_DOUBLE_EQ(activationOf(m, "levator_labii_superioris_alaeque_nasi_left", 1), 0.0);
   EXPECT_NEAR(activationOf(m, "procerus", 1), 0.6 * 1.0 * 0.5 + 0.4 * 0.5 * 0.5, 1e-15);
-  EXPECT_EQ(m.unmapped, (std::vector<std::string>{"eyeLookUpLeft", "mouthClose"}));
-  ASSERT_EQ(m.warnings.size(), 2u);
-  EXPECT_EQ(m.warnings[0], "eyeLookUpLeft drives nothing: eye rotation");
-  EXPECT_EQ(m.warnings[1], "mouthClose drives nothing: the retargeting map has no mouthClose, and it has no FACS unit");
+  // eyeLookUpLeft, unreachable in this map, turns the left eye up through AU63 (25° at 1).
+  ASSERT_EQ(m.gaze.size(), 5u);
+  EXPECT_DOUBLE_EQ(m.gaze[1].pitchDeg[1], 0.9 * 25.0);
+  EXPECT_DOUBLE_EQ(m.gaze[1].pitchDeg[0], 0.0);
+  EXPECT_EQ(m.unmapped, (std::vector<std::string>{"mouthClose"}));
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_EQ(m.warnings[0], "mouthClose drives nothing: the retargeting map has no mouthClose, and it has no FACS unit");
 }
 
 TEST(PerformanceMap, ArkitJawShapesMoveTheJawTowardsTheirSide) {

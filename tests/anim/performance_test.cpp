@@ -247,7 +247,7 @@ TEST(PerformanceOpenFace, HeadPoseIsConvertedIntoTheFaceFrame) {
 
 TEST(PerformanceOpenFace, UnknownColumnsWarnOnceByName) {
   const Performance p = parsePerformance(
-      "timestamp,AU12_r,mood,x_0,gaze_angle_x,note\n0,1,a,3,0,x\n0.1,1,b,3,0,y\n0.2,1,c,3,0,z\n", "u.csv");
+      "timestamp,AU12_r,mood,x_0,gaze_0_x,note\n0,1,a,3,0,x\n0.1,1,b,3,0,y\n0.2,1,c,3,0,z\n", "u.csv");
   ASSERT_EQ(p.warnings.size(), 1u);
   EXPECT_EQ(p.warnings[0], "ignored 2 unknown columns: mood, note");
 }
@@ -316,7 +316,7 @@ TEST(PerformanceOpenFace, TheFacsvatarDemo) {
 TEST(PerformanceLiveLink, ReadsATakeWithAllSixtyOneValues) {
   const Performance p = readPerformanceFile((samples() / "livelink_take.csv").string());
   EXPECT_EQ(p.input, PerformanceInput::LiveLink);
-  EXPECT_EQ(p.channels.size(), 52u);  // the 52 ARKit weights; the eyes' rotations are not channels
+  EXPECT_EQ(p.channels.size(), 52u);  // the 52 ARKit weights; the eyes' rotations are the gaze, not channels
   EXPECT_EQ(p.channels[0].name, "eyeBlinkLeft");  // PascalCase lowered, in the file's order
   EXPECT_EQ(p.channels.back().name, "tongueOut");
   EXPECT_EQ(p.find("EyeBlinkLeft"), nullptr);

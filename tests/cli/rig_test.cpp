@@ -6,10 +6,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -22,6 +24,7 @@
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
 #include "myoshell/muscles/muscle_def.h"
+#include "myoshell/muscles/muscle_mirror.h"
 #include "support/cli_runner.h"
 #include "support/test_data.h"
 
@@ -82,6 +85,24 @@ double mirrorMismatch(const MatX3& left, const MatX3& right, const std::vector<i
     norm += left.row(i).squaredNorm();
   }
   return std::sqrt(diff / norm);
+}
+
+// Each left/right pair of ARKit names of a rig (mirroredArkitName) within 5 % of the mirror image of
+// the other, over the moved region, or within its own bound in `wider`; a pair that moves no vertex
+// more than 0.5 mm (the built-in ten's eyeSquint and eyeWide: traces) is skipped.
+void expectPairsMirror(const RigFile& rig, const std::string& what, const std::map<std::string, double>& wider = {}) {
+  const std::vector<int> mirror = mirrorVertices(rig.base.V);
+  int pairs = 0;
+  for (const std::string& left : arkitNames()) {
+    if (!left.ends_with("Left")) continue;
+    const std::string right = *mirroredArkitName(left);
+    if (rig.delta(left).rowwise().norm().maxCoeff() <= 0.05 && rig.delta(right).rowwise().norm().maxCoeff() <= 0.05) continue;
+    const double mismatch = mirrorMismatch(rig.delta(left), rig.delta(right), mirror);
+    ::testing::Test::RecordProperty(left + "_mirror_mismatch", std::to_string(mismatch));
+    EXPECT_LT(mismatch, wider.count(left) ? wider.at(left) : 0.05) << what << ": " << left << " / " << right;
+    ++pairs;
+  }
+  EXPECT_GE(pairs, 1) << what;
 }
 
 TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
@@ -204,6 +225,24 @@ TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFi
         EXPECT_EQ(s.mouthPressureKpa, d->mouthPressureKpa) << file << " " << s.name;
       }
     }
+    // Each fitted left/right pair is one fit: the right entry is the left's mirror image exactly (the
+    // twins' names, the same doubles, the lateral jaw shift negated).
+    int pairs = 0;
+    for (const RetargetShape& s : map.shapes) {
+      if (!s.name.ends_with("Left") || s.source != RetargetSource::Fitted) continue;
+      const RetargetShape* right = map.find(*mirroredArkitName(s.name));
+      ASSERT_NE(right, nullptr) << s.name;
+      NamedValues mirrored, jaw;
+      for (const auto& [muscle, a] : s.activations) mirrored.emplace_back(mirroredMuscleName(muscle), a);
+      for (const auto& [dof, v] : s.jaw) jaw.emplace_back(dof, dof == "lateral" ? -v : v);
+      NamedValues got = right->activations;
+      std::sort(mirrored.begin(), mirrored.end());
+      std::sort(got.begin(), got.end());
+      EXPECT_EQ(got, mirrored) << file << " " << s.name;
+      EXPECT_EQ(right->jaw, jaw) << file << " " << s.name;
+      ++pairs;
+    }
+    EXPECT_EQ(pairs, 9) << file;  // the eyes' blink, squint and wide, jaw, mouth, smile, frown, stretch, upper lip
     // The rig's 37 ICT shapes are 35 ARKit names (two pairs of halves); its 8 eye turns (the lids
     // follow the gaze) and cheekPuff (air in the mouth) are derived, not fitted.
     EXPECT_EQ(fitted, 26) << file;
@@ -256,18 +295,10 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
     RecordProperty("cheekPuff_cheeks_out_mm", std::to_string(10 * cheeks));
     EXPECT_GE(cheeks, 0.5);
     EXPECT_LE(cheeks, 1.5);
-    // Left and right mirror within 5 % (relative L2 over the moved region) but two pairs whose
-    // activations were fitted on ICT's own left and right artist shapes, which are not mirror images
-    // (measured 0.19 for mouthLeft, 0.074 for mouthUpperUpLeft on 2026-11-28): docs/fitting.md.
-    const std::vector<int> mirror = mirrorVertices(made_.base.V);
-    for (const std::string& left : arkitNames()) {
-      if (left.size() < 4 || left.substr(left.size() - 4) != "Left") continue;
-      const std::string right = left.substr(0, left.size() - 4) + "Right";
-      const double mismatch = mirrorMismatch(made_.delta(left), made_.delta(right), mirror);
-      RecordProperty(left + "_mirror_mismatch", std::to_string(mismatch));
-      const bool fittedApart = left == "mouthLeft" || left == "mouthUpperUpLeft";
-      EXPECT_LT(mismatch, fittedApart ? 0.25 : 0.05) << left << " / " << right;
-    }
+    // Every left/right pair mirrors within 5 % (relative L2 over the moved region): fit-rig fits a
+    // pair as one problem, so the map's right entry is the left's mirror (docs/fitting.md, "Mirror
+    // pairs"; fitted apart, mouthLeft was 0.19 and mouthUpperUpLeft 0.074).
+    expectPairsMirror(made_, "built-in head, whole face");
     // eyeLookUpLeft lifts the left upper lid (the lids follow the gaze); the right stays.
     const Head h = loadDefaultHead();
     const MatX3 up = made_.delta("eyeLookUpLeft");
@@ -291,6 +322,30 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
   EXPECT_LT(std::abs(close(chin, 1)), 0.2 * std::abs(open(chin, 1))) << close.row(chin);
   EXPECT_GT(close.norm(), 0.0);
   (void)V;
+  fs::remove_all(dir);
+}
+
+// The other shipped rigs: the built-in ten's map on the built-in head, and both maps on ICT
+// (../shared/data; skipped without it). Every pair mirrors within 5 % but, on ICT, the shapes the
+// lower lip's ring makes: that muscle alone is not its own mirror image there (0.14; the upper
+// ring's 0.0065; ICT's vertices mirror to 0.05 mm), whatever the map's activations, which are the
+// mirror image exactly. Measured on 2026-11-28 (docs/fitting.md, "Mirror pairs"): mouthPress 0.076
+// (whole face) and 0.071 (built-in ten; derived: the rings at 0.5), mouthLeft 0.123, mouthUpperUp
+// 0.136 (built-in ten); the bounds leave 15 %.
+TEST(CliRig, TheShippedMapsPairsMirrorOnBothHeads) {
+  const fs::path dir = scratch("mirror");
+  auto make = [&](const std::string& head, const std::string& library) {
+    const fs::path out = dir / (library + ".glb");
+    const test::CliResult r = test::runCli("rig --head " + head + " --library " + library + " --out " + quoted(out));
+    EXPECT_EQ(r.exitCode, 0) << r.merged;
+    return readRig(out.string());
+  };
+  expectPairsMirror(make("default", "builtin"), "built-in head, built-in ten");
+  MYO_REQUIRE_SHARED_DATA();
+  const std::string ict = quoted(test::sharedDataDir() / "ict");
+  expectPairsMirror(make(ict, "face"), "ICT, whole face", {{"mouthPressLeft", 0.088}});
+  expectPairsMirror(make(ict, "builtin"), "ICT, built-in ten",
+                    {{"mouthPressLeft", 0.082}, {"mouthLeft", 0.142}, {"mouthUpperUpLeft", 0.156}});
   fs::remove_all(dir);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -247,6 +248,105 @@ TEST_F(ActivationFitDefaultHead, FitRigFitsTheJawOfJawShapes) {
     RecordProperty(s.name + "_cosine", std::to_string(s.fit->metric.cosine));
     EXPECT_GT(s.fit->metric.cosine, 0.999) << s.name;
   }
+}
+
+// fit-rig fits a left/right pair as one problem (docs/fitting.md, "Mirror pairs"): one activation
+// vector a for the left shape, the right shape's equations using each muscle's mirror twin. With the
+// two zygomatici alone and no sparsity, a left smile at 0.7 and a right one at 0.3 give the stacked
+// least squares, whose normal equations are 2×2 (the twins' columns zl, zr: a·zl + c·zr ≈ 0.7 zl and,
+// by twin, a·zr + c·zl ≈ 0.3 zr) on the box [0, 1]²; the right entry is the left's by twin, exactly,
+// and each side's figures are against its own target.
+TEST_F(ActivationFitDefaultHead, FitRigFitsALeftRightPairAsOneMirroredProblem) {
+  const int kl = skin_->muscleIndex("zygomaticus_major_left"), kr = skin_->muscleIndex("zygomaticus_major_right");
+  const std::vector<MatX3> cols = activationColumns(*skin_, {kl, kr});
+  const VecX zl = flat(cols[0]), zr = flat(cols[1]);
+  const std::vector<RigTarget> rig = {{"mouthSmileLeft", 0.7 * cols[0]}, {"mouthSmileRight", 0.3 * cols[1]}};
+  FitSettings two;
+  two.muscles = {"zygomaticus_major_left", "zygomaticus_major_right"};
+  const RigFit fit = fitRig(*skin_, rig, two);
+  const double p = zl.squaredNorm(), q = zr.squaredNorm(), r = zl.dot(zr);
+  MatX H(2, 2);
+  H << p + q, 2 * r, 2 * r, p + q;
+  VecX c(2);
+  c << 0.7 * p + 0.3 * q, r;
+  const VecX want = bruteForceBoxQp(H, c, VecX::Zero(2), VecX::Ones(2));
+  const RigShapeFit& left = fit.shapes[0];
+  const RigShapeFit& right = fit.shapes[1];
+  ASSERT_EQ(left.name, "mouthSmileLeft");
+  ASSERT_EQ(right.name, "mouthSmileRight");
+  EXPECT_EQ(left.pairedWith, "mouthSmileRight");
+  EXPECT_EQ(right.pairedWith, "mouthSmileLeft");
+  EXPECT_NEAR(left.fit->activations(kl), want(0), 1e-9);
+  EXPECT_NEAR(left.fit->activations(kr), want(1), 1e-9);
+  RecordProperty("pair_activation", std::to_string(want(0)));
+  EXPECT_GT(want(0), 0.3);  // one activation between the two sides'
+  EXPECT_LT(want(0), 0.7);
+  // The right entry is the left's mirror: each activation under its twin's name, the same double.
+  const RetargetShape& l = *fit.map.find("mouthSmileLeft");
+  const RetargetShape& rr = *fit.map.find("mouthSmileRight");
+  ASSERT_EQ(l.activations.size(), rr.activations.size());
+  for (const auto& [muscle, a] : l.activations) {
+    const std::string twin = muscle == "zygomaticus_major_left" ? "zygomaticus_major_right" : "zygomaticus_major_left";
+    const auto it = std::find_if(rr.activations.begin(), rr.activations.end(), [&](const auto& e) { return e.first == twin; });
+    ASSERT_NE(it, rr.activations.end()) << twin;
+    EXPECT_EQ(it->second, a) << muscle;
+  }
+  // Each side against its own target: the left smile is made too small, the right too large.
+  const double lr = want(0) / 0.7, rRatio = want(0) / 0.3;
+  EXPECT_NEAR(left.fit->metric.magnitudeRatio, lr, 0.02);
+  EXPECT_NEAR(right.fit->metric.magnitudeRatio, rRatio, 0.05);
+  EXPECT_NEAR(l.fit->magnitudeRatio, left.fit->metric.magnitudeRatio, 1e-15);
+  EXPECT_NEAR(rr.fit->magnitudeRatio, right.fit->metric.magnitudeRatio, 1e-15);
+  // A zero right shape is a name the rig does not make (a rig written for all 52 names): the left
+  // is fitted alone, its own 0.7.
+  const RigFit zeroRight = fitRig(*skin_, {rig[0], {"mouthSmileRight", MatX3::Zero(rig[0].displacement.rows(), 3)}}, two);
+  EXPECT_TRUE(zeroRight.shapes[0].pairedWith.empty());
+  EXPECT_NEAR(zeroRight.shapes[0].fit->activations(kl), 0.7, 1e-9);
+  // A fitted muscle whose twin is not fitted: fit-rig fits each side alone, fitMirroredActivations refuses.
+  FitSettings one;
+  one.muscles = {"zygomaticus_major_left"};
+  const RigFit apart = fitRig(*skin_, rig, one);
+  EXPECT_TRUE(apart.shapes[0].pairedWith.empty());
+  EXPECT_NEAR(apart.shapes[0].fit->activations(kl), 0.7, 1e-9);  // the left alone: its own 0.7
+  try {
+    fitMirroredActivations(*skin_, dense(rig[0].displacement), dense(rig[1].displacement), mirroredMuscles(*skin_), one);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "fit: muscle 'zygomaticus_major_left' is fitted and its mirror twin 'zygomaticus_major_right' "
+                           "is not: a mirror pair is fitted with both sides' muscles");
+  }
+  std::vector<int> noTwin = mirroredMuscles(*skin_);
+  noTwin[static_cast<size_t>(kl)] = -1;
+  try {
+    fitMirroredActivations(*skin_, dense(rig[0].displacement), dense(rig[1].displacement), noTwin, two);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "fit: muscle 'zygomaticus_major_left' has no mirror twin ('zygomaticus_major_right' is no "
+                           "muscle of the library): a mirror pair is fitted with both sides' muscles");
+  }
+}
+
+// A jaw pair: jawLeft shifts the jaw 0.6 cm to the subject's left, jawRight 0.4 cm to the right. The
+// pair is one lateral value v (the right's is −v, exactly), between the two.
+TEST_F(ActivationFitDefaultHead, FitRigFitsTheJawPairWithOneMirroredShift) {
+  const Head& head = skin_->head();
+  const JawRig jaw = jawRig(head.mesh, head.landmarks);
+  JawPose left, right;
+  left.lateralCm = 0.6;
+  right.lateralCm = -0.4;
+  const std::vector<RigTarget> targets = {{"jawLeft", jawedRest(jaw, left, head.mesh.V) - head.mesh.V},
+                                          {"jawRight", jawedRest(jaw, right, head.mesh.V) - head.mesh.V}};
+  const RigFit fit = fitRig(*skin_, targets, FitSettings{});
+  auto lateral = [&](const std::string& name) {
+    const NamedValues& j = fit.map.find(name)->jaw;
+    return j.size() == 1 && j[0].first == "lateral" ? j[0].second : std::nan("");
+  };
+  const double v = lateral("jawLeft");
+  RecordProperty("lateral_cm", std::to_string(v));
+  EXPECT_GT(v, 0.45);
+  EXPECT_LT(v, 0.55);
+  EXPECT_EQ(lateral("jawRight"), -v);
+  EXPECT_EQ(fit.shapes[0].pairedWith, "jawRight");
 }
 
 TEST_F(ActivationFitDefaultHead, ATargetBeyondFullActivationGivesExactlyOne) {

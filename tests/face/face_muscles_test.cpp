@@ -23,6 +23,7 @@
 #include "myoshell/mesh/subdivision.h"
 #include "myoshell/muscles/muscle.h"
 #include "myoshell/muscles/muscle_def.h"
+#include "myoshell/muscles/muscle_mirror.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -35,11 +36,7 @@ int nearestVertex(const MatX3& V, const Vec3& p) {
   return static_cast<int>(best);
 }
 
-std::string mirrorName(std::string name) {
-  if (name.size() > 5 && name.substr(name.size() - 5) == "_left") return name.substr(0, name.size() - 5) + "_right";
-  if (name.size() > 6 && name.substr(name.size() - 6) == "_right") return name.substr(0, name.size() - 6) + "_left";
-  return name;
-}
+std::string mirrorName(const std::string& name) { return mirroredMuscleName(name); }  // the library's rule
 
 std::string mirrorLandmark(std::string lm) {
   if (lm.find("left") != std::string::npos) return std::regex_replace(lm, std::regex("left"), "right");

@@ -43,6 +43,30 @@ TEST(ArkitNames, BothSpellingsRoundTrip) {
   }
 }
 
+// Twenty left/right pairs, each the other's mirror (fit-rig fits a pair together): the sided shapes,
+// and mouthLeft/mouthRight and jawLeft/jawRight, which move the whole mouth or jaw to one side.
+TEST(ArkitNames, TwentyMirrorPairsEachTheOthersTwin) {
+  int pairs = 0;
+  for (const std::string& a : arkitNames()) {
+    const std::optional<std::string> twin = mirroredArkitName(a);
+    if (!twin) {
+      EXPECT_TRUE(arkitFacs(a).side.empty()) << a;
+      continue;
+    }
+    EXPECT_NE(*twin, a);
+    EXPECT_EQ(mirroredArkitName(*twin), a);
+    if (!arkitFacs(a).side.empty()) EXPECT_NE(arkitFacs(a).side, arkitFacs(*twin).side) << a;
+    pairs += a.ends_with("Left") ? 1 : 0;
+  }
+  EXPECT_EQ(pairs, 20);
+  EXPECT_EQ(mirroredArkitName("mouthLeft"), "mouthRight");
+  EXPECT_EQ(mirroredArkitName("jawRight"), "jawLeft");
+  EXPECT_EQ(mirroredArkitName("eyeBlink_L"), "eyeBlinkRight");  // ICT's spelling
+  EXPECT_FALSE(mirroredArkitName("jawOpen").has_value());
+  EXPECT_FALSE(mirroredArkitName("cheekPuff_L").has_value());  // an ICT half of a midline shape
+  EXPECT_THROW(mirroredArkitName("mouthSmileleft"), InputError);
+}
+
 TEST(ArkitNames, UnknownNamesListCloseMatchesOrTheValidNames) {
   EXPECT_EQ(errorOf("mouthSmileleft"), "unknown blendshape name 'mouthSmileleft' (did you mean mouthSmileLeft?)");
   EXPECT_EQ(errorOf("mouthSmile_l"), "unknown blendshape name 'mouthSmile_l' (did you mean mouthSmile_L, mouthSmile_R?)");

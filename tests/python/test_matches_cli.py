@@ -4,6 +4,7 @@ text, so equal means bit for bit), stepping against `myoshell run`, fit (a shape
 import json
 
 import numpy as np
+import pytest
 
 import myoshell
 from conftest import read_obj_vertices
@@ -83,10 +84,11 @@ def test_fit_equals_cli(face, cli, cache_dir, tmp_path):
         assert abs(exact[name] - used.get(name, 0.0)) < 1e-4, name
 
 
-def test_turned_head_and_jaw_equal_cli_run(face, cli, cache_dir, tmp_path):
+def test_turned_head_jaw_and_eyes_equal_cli_run(face, cli, cache_dir, tmp_path):
     scene = dict(SCENE, name="turned")
     scene["timeline"] = dict(SCENE["timeline"], head_pose=[{"t": 0.0, "value": [60, 20, 0]}],
-                             jaw={"open": [{"t": 0.0, "value": 15}], "forward": [{"t": 0.0, "value": 0.3}]})
+                             jaw={"open": [{"t": 0.0, "value": 15}], "forward": [{"t": 0.0, "value": 0.3}]},
+                             gaze={"left_pitch": [{"t": 0.0, "value": 20}], "right_yaw": [{"t": 0.0, "value": -10}]})
     path = tmp_path / "turned.json"
     path.write_text(json.dumps(scene))
     cli("run", path, "--out", tmp_path / "run", "--cache", cache_dir)
@@ -96,8 +98,14 @@ def test_turned_head_and_jaw_equal_cli_run(face, cli, cache_dir, tmp_path):
     sim.set_activation("zygomaticus_major_left", 0.6)
     sim.set_head_pose(60, 20, 0)
     sim.set_jaw(15, 0.3)
+    sim.set_gaze(left_pitch=20, right_yaw=-10)
     sim.step(24)
     assert np.array_equal(sim.positions(), frame)
+    # The eyes turned: without the gaze the lids stand elsewhere.
+    sim.set_gaze()
+    assert not np.array_equal(sim.positions(), frame)
+    with pytest.raises(myoshell.InputError, match="gaze: left eye pitch 50 degrees is outside"):
+        sim.set_gaze(left_pitch=50)
 
 
 def test_marker_fit_equals_cli(face, cli, cache_dir, tmp_path):

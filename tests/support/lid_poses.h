@@ -94,6 +94,13 @@ inline double mirrorMismatch(const MirrorMap& m, const MatX3& uL, const MatX3& u
   return worst;
 }
 
+// `face`'s rest placed at `gaze` (no muscle acting): positions n×3, cm.
+inline MatX3 gazedPlacement(const AnatomicalFace& face, const EyeGaze& gaze) {
+  MatX3 out;
+  face.placeSkin(MatX3::Zero(face.head().mesh.vertexCount(), 3), JawPose{}, VecX::Zero(face.muscleCount()), out, gaze);
+  return out;
+}
+
 // A suite's one whole-face model (every muscle of faceMuscleDefs(), gravity off) on the head
 // `makeHead` returns, built once for all its tests (bases through the shared cache; the suite runs in
 // one process: tests/CMakeLists.txt, ONE_PROCESS), and the placed shapes the tests measure. A suite

@@ -57,8 +57,9 @@ class AnatomicalFace : public FaceSystem {
   // The skin's positions (n×3, cm) for the residual u: SkinPlacement::place. Every user of a settled
   // or stepped shape places it through here or through the same SkinPlacement (the simulator, pose,
   // fits, rigs, Python).
-  ContactReport placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out) const {
-    return placement_->place(u, jaw, activations, out);
+  ContactReport placeSkin(const MatX3& u, const JawPose& jaw, const VecX& activations, MatX3& out,
+                          const EyeGaze& gaze = {}) const {
+    return placement_->place(u, jaw, activations, out, placement_->contact(), gaze);
   }
 
   FaceModelKind kind() const override { return FaceModelKind::Anatomical; }
@@ -100,6 +101,9 @@ class AnatomicalSimulator : public FaceStepper {
   // validateJawPose's ranges; InputError for a nonzero pose on a head without a jaw line.
   void setJaw(const JawPose& pose) override;
   JawPose jaw() const override { return jaw_; }
+  // validateEyeGaze's range. Accepted on a head without open eyes, where it moves nothing.
+  void setGaze(const EyeGaze& gaze) override;
+  EyeGaze gaze() const override { return loads_.gaze; }
   void setDragForce(int drag, const Vec3& force) override;
   // Moves the grip to any skin vertex (radius ≤ 0: the drag's own) for this simulator only
   // (AnatomicalStepper::grab: the grip's static responses join this simulator's basis, the shared
@@ -118,8 +122,8 @@ class AnatomicalSimulator : public FaceStepper {
   long long stepCount() const override { return steps_; }
 
   const MatX3& skinDisplacement() const override { return stepper_->displacement(); }
-  // The face's placeSkin of the stepped residual at this jaw and these activations (the jaw, the
-  // lids, the contact; rest + u exactly at a zero jaw where no contact projects).
+  // The face's placeSkin of the stepped residual at this jaw, these activations and this gaze (the
+  // jaw, the lids, the contact; rest + u exactly at a zero jaw where no contact projects).
   void skinPositions(MatX3& out) const override;
   void channelDisplacement(int channel, MatX3& out) const override;  // channel 0: the skin
   // rest + level·U_m; a muscle with a mandible origin (isMandibleMuscle) then moves with the jaw

@@ -46,6 +46,8 @@ struct SkinLoads {
   std::vector<Vec3> drags;          // one force per registered drag (dyn, spread over its vertices)
   // The jaw the shape will be placed with: the contact penalty places its candidates with it.
   JawPose jaw;
+  // The eyes' turn the shape will be placed with: the lids the penalty places follow it.
+  EyeGaze gaze;
   // Whether the contact penalty acts (when the skin has one: a head with eyeballs or teeth and
   // AnatomicalSettings::contact). false keeps the settle and the step exactly linear in the loads
   // (the fit's activation columns).

@@ -27,7 +27,9 @@
 // The lids follow the eye's turn (EyeGaze: pitch φ_g, yaw ψ_g): a lid vertex also turns by
 //   −κ·φ_g·|w_i|·Δ(x_i)/Δmax about the horizontal axis (κ = upperGazeFollow or lowerGazeFollow)
 //   κ_s·ψ_g·|w_i|·Δ(x_i)/Δmax about the vertical axis (κ_s = sideGazeFollow)
-// fading at the canthi as the nasal slide does; the eyeball itself is not part of the skin.
+// fading at the canthi as the nasal slide does; the eyeball itself is not part of the skin. The
+// closure then closes the fissure the gaze leaves: α_i takes Δ(x) + (κ_u − κ_l)·φ_g·Δ(x)/Δmax
+// (not below 0) for Δ(x), so at c = 1 the margins meet wherever the eye looks.
 //
 // As the jaw (jaw.h), the rest rides with the lid and the physics acts on the residual: a lid vertex
 // is placed at c + R(θ_i)(x_i − c), x_i its (jawed) position rest + u, so the residual turns with the
@@ -43,6 +45,7 @@
 
 #include "myoshell/anatomy/contact_report.h"
 #include "myoshell/core/types.h"
+#include "myoshell/head/eye_gaze.h"  // EyeGaze, kGazeMaxDeg
 #include "myoshell/head/landmarks.h"
 #include "myoshell/mesh/tri_mesh.h"
 
@@ -70,17 +73,6 @@ struct LidSettings {
   // The share of the eye's sideways turn the lids take, riding on the cornea's bulge: a choice (no
   // measurement found), ICT's artist shapes only reported against it.
   double sideGazeFollow = 0.25;
-};
-
-// The eyes' turn, degrees, index 0 the subject's right eye, 1 the left: pitch + up, yaw + towards
-// the subject's left (the face frame's +x). ARKit's eyeLook* at 1 and FACS AU61–64 at full
-// intensity turn an eye 25° (assets/facs/au_map.json).
-// An eye's turn stays within ±45° either way (its mechanical range; ±25° is the comfortable one).
-constexpr double kGazeMaxDeg = 45.0;
-struct EyeGaze {
-  std::array<double, 2> pitchDeg{0.0, 0.0};
-  std::array<double, 2> yawDeg{0.0, 0.0};
-  bool isZero() const { return pitchDeg[0] == 0.0 && pitchDeg[1] == 0.0 && yawDeg[0] == 0.0 && yawDeg[1] == 0.0; }
 };
 
 // One eye's lids and eyeball proxy (head space, cm).

@@ -1,7 +1,7 @@
 // Recorded facial performances (docs/performance_input.md): what a face tracker wrote, one row per
 // video frame, read into named curves over time. Three inputs:
 //   - OpenFace 2 CSV: FACS action-unit intensities (`AUxx_r`), the head's pose (`pose_Rx/Ry/Rz`,
-//     radians, camera-relative), per-frame `confidence` and `success`;
+//     radians, camera-relative), the gaze (`gaze_angle_x/y`), per-frame `confidence` and `success`;
 //   - Live Link Face CSV (an iPhone's ARKit): `Timecode,BlendShapeCount,EyeBlinkLeft,…`, ARKit's 52
 //     weights in PascalCase plus head and eye yaw/pitch/roll;
 //   - MediaPipe face-landmarker blendshapes: JSON Lines, `{"timestamp_ms": t, "blendshapes":
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/head/eye_gaze.h"
 
 namespace myo {
 
@@ -51,6 +52,13 @@ struct Performance {
   // (radians, camera-relative; a level camera is assumed) converted; Live Link: 180·HeadPitch/HeadYaw/HeadRoll
   // (the app writes degrees / 180). Signs and sources: docs/performance_input.md, "Formats".
   std::vector<Vec3> headPose;
+  // The eyes' turn in the head per frame (head/eye_gaze.h: degrees, pitch + up, yaw + towards the
+  // subject's left; not yet clamped to ±kGazeMaxDeg), empty when the file has no eye angles.
+  // OpenFace: gaze_angle_x/y (radians, the camera's, both eyes' mean) turned into the head by the
+  // pose when the file has one; Live Link: −180·LeftEyePitch, 180·LeftEyeYaw and the right eye's.
+  // Signs and sources: docs/performance_input.md, "Formats". When present the eyes follow these
+  // angles alone (mapPerformance leaves eyeLook* and AU61–64's turns out).
+  std::vector<EyeGaze> gaze;
   int droppedFrames = 0;                // frames bridged by interpolation or trimmed at the ends
   std::vector<std::string> warnings;    // one line each: unknown columns, dropped frames, …
 

@@ -6,9 +6,10 @@
 //     unreachable) goes through its FACS units and side (fit/arkit_names.h, ArkitFacs) and the
 //     FACS map — a sided name drives its side's muscles fully and midline muscles at half weight;
 // every input curve first through the One-Euro filter (anim/one_euro_filter.h). Contributions add
-// and the sum is clamped to [0, 1]. An input curve that maps to nothing the model has is warned
-// about once (e.g. AU45 before the model has lids); it is never an error, since a tracker writes
-// what it writes.
+// and the sum is clamped to [0, 1]. The eyes turn by the file's eye angles when it has them, else by
+// the curves that turn them (eyeLook*, AU61–64), never by both; within ±kGazeMaxDeg. An input curve
+// that maps to nothing the model has is warned about once (e.g. AU45 before the model has lids); it
+// is never an error, since a tracker writes what it writes.
 #pragma once
 
 #include <string>
@@ -31,6 +32,11 @@ struct MappedPerformance {
   // The jaw per frame, [open degrees, forward cm, lateral cm] within head/jaw.h's ranges; empty when
   // no input moves it (AU25–27, AU29, AU30 through the FACS map; ARKit's jaw shapes).
   std::vector<Vec3> jaw;
+  // The eyes' turn per frame (head/eye_gaze.h, degrees within ±kGazeMaxDeg); empty when nothing turns
+  // them. The file's eye angles when it has them (OpenFace gaze_angle_x/y, Live Link's eye pitch and
+  // yaw), filtered; else the curves that turn the eyes (ARKit's eyeLook* through the map's `gaze`,
+  // AU61–64 through the FACS map's), never both.
+  std::vector<EyeGaze> gaze;
   std::vector<std::string> unmapped;             // input curves that drive nothing, in input order
   std::vector<std::string> warnings;             // one line each
 };
@@ -50,7 +56,8 @@ MappedPerformance mapPerformance(const Performance& performance, const std::vect
 // own track for it, valued (performance + scene's own track), clamped to [0, 1] (linear between
 // keys: the timeline resamples the frames to the simulation step). The performance's head pose
 // becomes timeline.head_pose unless the scene has its own (which then wins); its jaw adds to the
-// scene's timeline.jaw tracks (clamped to the jaw's ranges).
+// scene's timeline.jaw tracks (clamped to the jaw's ranges), and each of its gaze angles that is not
+// 0 throughout to the scene's timeline.gaze track (clamped to ±kGazeMaxDeg).
 void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped);
 
 }  // namespace myo

@@ -2,6 +2,7 @@
 // default a scene gets when the file leaves it out; docs/scene_format.md documents each key.
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "myoshell/anim/one_euro_filter.h"
 #include "myoshell/anim/performance.h"
 #include "myoshell/anim/timeline.h"
+#include "myoshell/head/eye_gaze.h"
 #include "myoshell/muscles/muscle_def.h"
 #include "myoshell/thesis/face_model.h"
 
@@ -100,6 +102,21 @@ struct SceneDesc {
   // protrusion and lateral shift (cm, + towards the subject's left) over time; an empty track is 0.
   ScalarTrack jawOpen, jawForward, jawLateral;
   bool hasJaw() const { return !jawOpen.empty() || !jawForward.empty() || !jawLateral.empty(); }
+  // anatomical only (timeline.gaze.right_pitch / right_yaw / left_pitch / left_yaw; docs/eyelids.md):
+  // the eyes' turn over time, degrees within ±kGazeMaxDeg, index 0 the subject's right eye, 1 the
+  // left (EyeGaze's); an empty track is 0. The lids follow it.
+  std::array<ScalarTrack, 2> gazePitch, gazeYaw;
+  bool hasGaze() const {
+    return !gazePitch[0].empty() || !gazePitch[1].empty() || !gazeYaw[0].empty() || !gazeYaw[1].empty();
+  }
+  EyeGaze gazeAt(double t) const {
+    EyeGaze g;
+    for (size_t e = 0; e < 2; ++e) {
+      g.pitchDeg[e] = gazePitch[e].at(t);
+      g.yawDeg[e] = gazeYaw[e].at(t);
+    }
+    return g;
+  }
   // Where the names checked after parsing were written (key path → location): "muscles.use[i]"
   // and "timeline.activations.NAME" (sceneMuscles). Empty for a scene built in code.
   std::map<std::string, SourceLocation> locations;

@@ -5,8 +5,9 @@
 // Time: the player keeps its own timeline clock (s), starting at 0 (or at `restart(t0)`), advanced
 // by the model's dt per step. Before every step the timeline is applied at the clock's time: every
 // activation track, the gravity scale (when the model has gravity and the scene a gravity
-// track), the head pose (when the scene has one) and every drag force track. Frame k is at time k / fps; a scene has
-// floor(duration·fps + 1e-9) + 1 frames (frame 0 at t = 0, the last at or just before `duration`).
+// track), the head pose, the jaw and the eyes' turn (when the scene has them) and every drag force
+// track. Frame k is at time k / fps; a scene has floor(duration·fps + 1e-9) + 1 frames (frame 0 at
+// t = 0, the last at or just before `duration`).
 #pragma once
 
 #include <atomic>

@@ -96,6 +96,27 @@ struct ActivationFit {
 ActivationFit fitActivations(const AnatomicalSkin& skin, const FitTarget& target, const FitSettings& settings = {},
                              const SkinPlacement* placement = nullptr, const std::vector<MatX3>* everyColumn = nullptr);
 
+// A shape and its mirror image fitted together (fit-rig's left/right pairs, docs/fitting.md "Mirror
+// pairs"): one activation vector a for `shape`, and `mirrorShape`'s equations use each muscle's twin
+// (mirror[k]: the skin's index of muscle k's twin, k itself on the midline; mirroredMuscles()):
+//   ‖A a − e‖² + ‖A_twin a − e_mirror‖² + λ (‖e‖² + ‖e_mirror‖²) Σ_m a_m,   0 ≤ a_m ≤ 1,
+// A_twin's column for muscle m being the column of its twin. No vertex is mirrored: each side is
+// compared on the head as it is. `mirrorFit`'s activations are `fit`'s by twin (exactly), each side's
+// displacement, target, alignment and figures its own. Throws as fitActivations, and InputError when a
+// fitted muscle's twin is missing from the library or not fitted.
+struct MirroredFit {
+  ActivationFit fit;        // `shape`'s
+  ActivationFit mirrorFit;  // `mirrorShape`'s
+};
+MirroredFit fitMirroredActivations(const AnatomicalSkin& skin, const FitTarget& shape, const FitTarget& mirrorShape,
+                                   const std::vector<int>& mirror, const FitSettings& settings = {},
+                                   const SkinPlacement* placement = nullptr,
+                                   const std::vector<MatX3>* everyColumn = nullptr);
+
+// Each muscle's mirror twin (muscles/muscle_def.h, mirroredMuscleName) as an index into the skin's
+// muscles, −1 where the library has no such muscle.
+std::vector<int> mirroredMuscles(const AnatomicalSkin& skin);
+
 // The linear columns: u_m (n×3, cm) of each listed muscle at a = 1, gravity off (rest gravity).
 std::vector<MatX3> activationColumns(const AnatomicalSkin& skin, const std::vector<int>& muscles);
 

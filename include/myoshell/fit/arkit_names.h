@@ -22,6 +22,12 @@ std::optional<std::string> findArkitName(const std::string& spelling);
 // a, b?)" with the close matches, or "(use one of the 52 ARKit names: …)" when none is close.
 std::string canonicalArkitName(const std::string& spelling);
 
+// The ARKit name of a shape's mirror image, the same motion on the subject's other side, for any
+// spelling (canonicalArkitName's errors): mouthSmileLeft ↔ mouthSmileRight, and mouthLeft ↔
+// mouthRight, jawLeft ↔ jawRight, which move the whole mouth or jaw towards one side; nothing for a
+// shape of both sides or the midline (jawOpen, browInnerUp). fit-rig fits each pair together.
+std::optional<std::string> mirroredArkitName(const std::string& spelling);
+
 // What FACS says of an ARKit shape (the aus and side columns of the table): the action units whose
 // motion it shows (none for mouthClose, mouthLeft, mouthRight) and, for a sided shape, the
 // subject's side ("left", "right"; "" for a shape of both sides or the midline).

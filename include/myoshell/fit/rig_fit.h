@@ -11,6 +11,15 @@
 // name the rig lacks is in the map too: unreachable with its reason, or derived from its FACS action
 // units through the FACS map (source "derived"; fit/facs_route.h) — the same muscles a performance
 // drives for that name — for the skin's muscles among them.
+//
+// A left/right pair of ARKit names (mirroredArkitName: eyeBlinkLeft/Right, …, mouthLeft/mouthRight,
+// jawLeft/jawRight) that the rig has both of is fitted as one problem (fitMirroredActivations): one
+// activation vector for the left shape, the right shape's equations using each muscle's mirror twin,
+// a jaw shape's right pose the left's mirror image. The map's right entry is then exactly the
+// mirror of the left's (its activations by the twins' names, the lateral jaw shift negated), while
+// each side's figures are its own against its own target. Pairs are fitted so only when every
+// fitted muscle's twin is fitted too (the shipped libraries') and both targets move (a zero target
+// is a name the rig does not make); otherwise each shape alone.
 #pragma once
 
 #include <optional>
@@ -37,6 +46,7 @@ struct RigShapeFit {
   bool reachable = true;
   std::string reason;                  // when unreachable
   std::string correctiveOf;            // "jawOpen" for mouthClose
+  std::string pairedWith;              // the mirror twin it was fitted together with, if any
   MatX3 target;                        // n×3, cm: what was fitted (a corrective's: with its base)
   std::optional<ActivationFit> fit;    // reachable shapes
 };

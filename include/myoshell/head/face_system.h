@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "myoshell/core/types.h"
+#include "myoshell/head/eye_gaze.h"
 #include "myoshell/head/face_model_kind.h"
 #include "myoshell/head/head.h"
 #include "myoshell/head/jaw.h"
@@ -89,6 +90,12 @@ class FaceStepper {
   // on the residual); the thesis model has no jaw: a nonzero pose is an InputError naming the model.
   virtual void setJaw(const JawPose& pose) = 0;
   virtual JawPose jaw() const = 0;
+  // The eyes' turn (eye_gaze.h; docs/eyelids.md, "The lids follow the gaze"), from the next positions
+  // on: the anatomical model's lids follow it where the head has open eyes (nothing moves on a head
+  // without them); validateEyeGaze's range, else InputError. The thesis model has no eyes: a nonzero
+  // gaze is an InputError naming the model.
+  virtual void setGaze(const EyeGaze& gaze) = 0;
+  virtual EyeGaze gaze() const = 0;
   // Drag force (dyn, total, shared by the drag's vertices) of drag `drag`.
   virtual void setDragForce(int drag, const Vec3& force) = 0;
   // Moves drag `drag`'s grip to skin vertex `vertex` (radius ≤ 0: the drag's own). Allocates.

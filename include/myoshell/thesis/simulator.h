@@ -83,6 +83,9 @@ class Simulator : public FaceStepper {
   // The thesis model has no jaw: a nonzero pose is an InputError naming the model (zero is accepted).
   void setJaw(const JawPose& pose) override;
   JawPose jaw() const override { return {}; }
+  // No eyes to turn: a nonzero gaze is an InputError naming the model.
+  void setGaze(const EyeGaze& gaze) override;
+  EyeGaze gaze() const override { return {}; }
   // Back to the neutral face at rest (activations, gravity and drags kept).
   void reset() override;
 
