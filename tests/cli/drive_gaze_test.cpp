@@ -23,6 +23,7 @@
 #include "myoshell/io/performance_file.h"
 #include "myoshell/muscles/muscle_def.h"
 #include "support/cli_runner.h"
+#include "support/csv_columns.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -211,23 +212,7 @@ TEST(DriveGaze, TheDemoTakeDrivesTheLidsWithItsGaze) {
   EXPECT_GT(pitchLo, -kGazeMaxDeg);
 
   // The same take without its gaze columns.
-  {
-    std::ifstream in(demo);
-    std::ofstream out(dir.path / "no_gaze.csv");
-    std::string line;
-    std::vector<bool> keep;
-    while (std::getline(in, line)) {
-      std::vector<std::string> cells;
-      std::stringstream ss(line);
-      for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-      if (keep.empty())
-        for (const std::string& c : cells) keep.push_back(c.rfind("gaze_", 0) != 0);
-      std::string row;
-      for (size_t i = 0; i < cells.size(); ++i)
-        if (keep[i]) row += (row.empty() ? "" : ",") + cells[i];
-      out << row << "\n";
-    }
-  }
+  test::copyCsvWithoutColumns(demo, dir.path / "no_gaze.csv", [](const std::string& c) { return c.rfind("gaze_", 0) == 0; });
   fs::copy_file(demo, dir.path / "gaze.csv");
   const auto a = test::runCli("drive '" + (dir.path / "gaze.csv").string() + "' --format pc2 --out '" +
                               (dir.path / "a").string() + "'");

@@ -22,6 +22,7 @@
 #include "myoshell/io/retarget_map_file.h"
 #include "myoshell/io/rig_file.h"
 #include "support/cli_runner.h"
+#include "support/csv_columns.h"
 #include "support/test_data.h"
 
 namespace myo {
@@ -56,21 +57,8 @@ struct DriveCorrelations {
 // The demo performance without its jaw's action units (AU25 lips part, AU26 jaw drop), written
 // beside `dir`: what the muscles alone make of it.
 fs::path demoWithoutJaw(const fs::path& dir) {
-  std::ifstream in(test::sharedDataDir() / "openface" / "facsvatar_demo.csv");
-  std::ofstream out(dir / "demo_no_jaw.csv");
-  std::string line;
-  std::vector<bool> keep;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    if (keep.empty())
-      for (const std::string& c : cells) keep.push_back(c != "AU25_r" && c != "AU26_r");
-    std::string row;
-    for (size_t i = 0; i < cells.size(); ++i)
-      if (keep[i]) row += (row.empty() ? "" : ",") + cells[i];
-    out << row << "\n";
-  }
+  test::copyCsvWithoutColumns(test::sharedDataDir() / "openface" / "facsvatar_demo.csv", dir / "demo_no_jaw.csv",
+                              [](const std::string& c) { return c == "AU25_r" || c == "AU26_r"; });
   return dir / "demo_no_jaw.csv";
 }
 
