@@ -169,9 +169,10 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
   if (def.isRing()) {
     ringCentreLine(def, head, frame, onSkin, centre, normal);
     Vec3 c = Vec3::Zero();
-    for (const MuscleAnchor& a : def.ring.anchors) {
+    for (int k = 0; k < 2; ++k) {
+      const MuscleAnchor& a = def.ring.anchors[static_cast<size_t>(k)];
       const SurfacePoint p = anchorOnSkin(a, head, frame, onSkin, def.name, false);
-      c += 0.5 * (p.point - frame.scale * a.depth * p.normal);
+      c += (k == 0 ? 1.0 - def.ring.centre : def.ring.centre) * (p.point - frame.scale * a.depth * p.normal);
     }
     muscle.ringCentre = c;
   } else {

@@ -30,6 +30,7 @@ void MuscleDef::validate() const {
     if (ring.path.size() < 3) bad("a ring needs a path of at least 3 anchors");
     if (!(ring.shortening > 0.0 && ring.shortening < 1.0)) bad("ring shortening must lie in (0, 1)");
     if (!(ring.protrusion >= 0.0) || !std::isfinite(ring.protrusion)) bad("ring protrusion must be ≥ 0");
+    if (!(ring.centre >= 0.0 && ring.centre <= 1.0)) bad("ring centre must lie in [0, 1]");
   }
   std::vector<const MuscleAnchor*> anchors = {&origin, &insertion};
   if (isRing()) {
@@ -145,13 +146,15 @@ MuscleDef readMuscleDef(DocReader& r) {
     d.ring.closed = ring.boolean("closed", false);
     const YAML::Node anchors = ring.node("anchors");
     if (!anchors.IsSequence() || anchors.size() != 2)
-      ring.failAt(anchors, ring.keyPath("anchors"), "must be the two anchors whose midpoint is the ring's centre");
+      ring.failAt(anchors, ring.keyPath("anchors"), "must be the two anchors the ring's centre lies between");
     for (size_t k = 0; k < 2; ++k)
       d.ring.anchors[k] = readAnchor(DocReader(anchors[k], r.file(), ring.keyPath("anchors") + "[" + std::to_string(k) + "]"));
     d.ring.shortening = ring.number("shortening", d.ring.shortening);
     if (!(d.ring.shortening > 0.0 && d.ring.shortening < 1.0)) ring.fail("shortening", "must lie in (0, 1)");
     d.ring.protrusion = ring.number("protrusion", d.ring.protrusion);
     ring.requireAtLeast("protrusion", d.ring.protrusion, 0.0);
+    d.ring.centre = ring.number("centre", d.ring.centre);
+    if (!(d.ring.centre >= 0.0 && d.ring.centre <= 1.0)) ring.fail("centre", "must lie in [0, 1]");
     ring.finish();
     if (r.has("origin") || r.has("insertion"))
       r.fail(r.has("origin") ? "origin" : "insertion", "a ring muscle has a path and anchors, not an origin and an insertion");

@@ -77,6 +77,10 @@ struct MuscleDef {
     std::array<MuscleAnchor, 2> anchors;
     double shortening = 0.3;
     double protrusion = 0.0;
+    // Where the contraction's fixed point lies between the two anchors (0 the first, 1 the second;
+    // key `centre`): 0.5 for a band fixed at both ends (the lips' modioli), 0 for a loop fixed to
+    // bone at its first anchor only (the eye's orbicularis at the medial palpebral ligament).
+    double centre = 0.5;
   };
   Ring ring;
   bool isRing() const { return kind == MuscleKind::Ring; }
