@@ -195,8 +195,11 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
 // P the projection onto the face frame's x–y plane, ẑ its forward axis, π the ring's `protrusion`.
 // A band of uniform fibres under uniform tension contracts uniformly about its centre: its length
 // falls by σ. The forward term is the lip's incompressibility: tissue squeezed towards the mouth's
-// centre bulges out of the face (π = 0 for the eye, whose ring slides over the bone).
-void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& frame) {
+// centre bulges out of the face (π = 0 for the eye, whose ring slides over the bone). A ring
+// `along_skin` (the eye's orbital part on the rim and cheek) turns each node's P(p_v − c) into the
+// skin's tangent plane at the node's foot, keeping its length: it draws the skin along its bed
+// instead of into it.
+void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& frame, const std::vector<SurfacePoint>& foot) {
   const Muscle& mu = cm.muscle;
   const MuscleDef::Ring& ring = mu.def.ring;
   const int nm = mu.mesh.vertexCount();
@@ -204,7 +207,15 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
   cm.fullShape.resize(nm, 3);
   for (int v = 0; v < nm; ++v) {
     const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.ringCentre;
-    const Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
+    Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
+    if (ring.alongSkin) {
+      // Sliding over a curved bed (the orbital rim, the cheek), the fibres draw the skin along it:
+      // the same length of motion, turned into the skin's tangent plane under the node.
+      const Vec3 n = foot[static_cast<size_t>(v)].normal;
+      const double length = inPlane.norm();
+      inPlane -= inPlane.dot(n) * n;
+      if (inPlane.norm() > 0.0) inPlane *= length / inPlane.norm();
+    }
     cm.fullShape.row(v) = (-ring.shortening * inPlane + ring.protrusion * ring.shortening * inPlane.norm() * z).transpose();
   }
   // ω from the free band's Rayleigh quotient (the shape has no rigid part: it shrinks the band).
@@ -256,7 +267,7 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
       throw InputError("muscle '" + def.name + "': node " + std::to_string(v) + " lies on the skin (depth must be > 0)");
   }
 
-  if (mu.def.isRing()) ringShape(cm, shell, head.frame());
+  if (mu.def.isRing()) ringShape(cm, shell, head.frame(), foot);
   else linearShape(cm, shell, settings, foot, onSkin);
 
   // Springs from every skin vertex over the muscle to the muscle's surface point below it.

@@ -23,8 +23,8 @@ namespace {
 
 // The median cosine over the reachable shapes, and over the mouth and brow shapes (the names not
 // starting with jaw, eye or mouthClose), is at least 0.85 (measured 0.864 and 0.863 on 2026-11-26);
-// the six named shapes the model makes reach 0.8. The four it does not make (browInnerUp,
-// eyeSquintLeft, mouthShrugUpper, mouthRollLower: docs/muscles.md) are recorded.
+// the six named shapes the model makes reach 0.8, eyeSquint 0.75. The three it does not make yet
+// (browInnerUp, mouthShrugUpper, mouthRollLower: docs/muscles.md) are recorded.
 TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
   MYO_REQUIRE_SHARED_DATA();
   FitHeadOptions head;
@@ -56,6 +56,12 @@ TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
                                  "mouthFunnel"}) {
     ASSERT_TRUE(cosine.count(name)) << name;
     EXPECT_GE(cosine[name], 0.8) << name;
+  }
+  // The cheek raiser (AU6: the orbital arc fixed medially, sliding along the skin; docs/muscles.md):
+  // 0.771 on 2026-11-28, 0.538 as the whole loop in the face's plane. The issue asks 0.75.
+  for (const std::string name : {"eyeSquintLeft", "eyeSquintRight"}) {
+    ASSERT_TRUE(cosine.count(name)) << name;
+    EXPECT_GE(cosine[name], 0.75) << name;
   }
 }
 

@@ -81,6 +81,10 @@ struct MuscleDef {
     // key `centre`): 0.5 for a band fixed at both ends (the lips' modioli), 0 for a loop fixed to
     // bone at its first anchor only (the eye's orbicularis at the medial palpebral ligament).
     double centre = 0.5;
+    // Whether the contraction runs along the skin's tangent plane (key `along_skin`): a band sliding
+    // over a curved bed (the orbital part over the rim and the cheek) rather than in the face's
+    // plane (the lips, with their protrusion; the palpebral part, whose lids turn about the globe).
+    bool alongSkin = false;
   };
   Ring ring;
   bool isRing() const { return kind == MuscleKind::Ring; }
