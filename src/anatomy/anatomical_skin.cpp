@@ -433,16 +433,36 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
     VecX g, gt;
     MatX H = MatX::Zero(d, d);
     energy(out.q, &g, &H);
-    for (int it = 0; it < 50 && g.norm() > 1e-10 * scale; ++it) {
-      const VecX step = H.ldlt().solve(-g);
+    // Where the Gauss–Newton direction gives no decrease (a lid closing on skin the contact pushes:
+    // the force's missing derivative matters), the residual's Jacobian by central differences, d
+    // residuals more, whose Newton direction −J⁻¹g always descends on ‖g‖.
+    auto differencedJacobian = [&](const VecX& q) {
+      MatX J(d, d);
+      VecX gp, gm;
+      const double h = 1e-6 * std::max(q.cwiseAbs().maxCoeff(), 1e-6);
+      for (Eigen::Index j = 0; j < d; ++j) {
+        VecX qp = q, qm = q;
+        qp(j) += h;
+        qm(j) -= h;
+        energy(qp, &gp, nullptr);
+        energy(qm, &gm, nullptr);
+        J.col(j) = (gp - gm) / (2.0 * h);
+      }
+      return J;
+    };
+    auto lineSearch = [&](const VecX& step, VecX& qt) {
       double alpha = 1.0;
-      VecX qt = out.q;
-      bool decreased = false;
-      for (int ls = 0; ls < 30 && !decreased; ++ls, alpha *= 0.5) {
+      for (int ls = 0; ls < 30; ++ls, alpha *= 0.5) {
         qt = out.q + alpha * step;
         energy(qt, &gt, nullptr);
-        decreased = gt.norm() < (1.0 - 1e-4 * alpha) * g.norm();
+        if (gt.norm() < (1.0 - 1e-4 * alpha) * g.norm()) return true;
       }
+      return false;
+    };
+    for (int it = 0; it < 50 && g.norm() > 1e-10 * scale; ++it) {
+      VecX qt = out.q;
+      bool decreased = lineSearch(H.ldlt().solve(-g), qt);
+      if (!decreased) decreased = lineSearch(differencedJacobian(out.q).partialPivLu().solve(-g), qt);
       if (!decreased) break;  // no decrease left at round-off
       out.q = qt;
       H.setZero();
