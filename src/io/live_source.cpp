@@ -11,9 +11,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/fit/arkit_names.h"
 
 namespace myo {
 
@@ -227,6 +229,57 @@ LiveFrame LiveFaceInput::at(double now) const {
     out.gaze = g;
   }
   return out;
+}
+
+// ---- a recording as a stream ----
+
+std::vector<LiveFrame> liveFramesOfPerformance(const Performance& p, double rate, std::vector<double>& times,
+                                               const std::string& what) {
+  if (p.input == PerformanceInput::OpenFace)
+    throw InputError("OpenFace action units cannot be sent: VMC and Live Link Face carry ARKit blendshape weights, "
+                     "not FACS action units (play the file with `myoshell drive`)",
+                     what);
+  if (!(rate >= 0) || !std::isfinite(rate)) throw InputError("--rate must be a finite number ≥ 0");
+  const auto& names = arkitNames();
+  std::vector<int> index;  // per channel, its ARKit index
+  for (const PerformanceChannel& c : p.channels)
+    index.push_back(static_cast<int>(std::find(names.begin(), names.end(), c.name) - names.begin()));
+  auto frameAt = [&](size_t i) {
+    LiveFrame f;
+    for (size_t c = 0; c < p.channels.size(); ++c)
+      if (index[c] < kArkitWeightCount) f.weights[index[c]] = p.channels[c].values[i];
+    if (!p.headPose.empty()) f.headPose = p.headPose[i];
+    if (!p.gaze.empty()) f.gaze = p.gaze[i];
+    return f;
+  };
+  std::vector<LiveFrame> frames;
+  times.clear();
+  if (rate == 0.0) {
+    for (size_t i = 0; i < p.times.size(); ++i) {
+      frames.push_back(frameAt(i));
+      times.push_back(p.times[i]);
+    }
+    return frames;
+  }
+  const long count = static_cast<long>(std::floor(p.duration() * rate + 1e-9)) + 1;
+  size_t i = 0;
+  for (long k = 0; k < count; ++k) {
+    const double t = k / rate;
+    while (i + 2 < p.times.size() && p.times[i + 1] <= t) ++i;
+    const double s = std::clamp((t - p.times[i]) / (p.times[i + 1] - p.times[i]), 0.0, 1.0);
+    const LiveFrame a = frameAt(i), b = frameAt(i + 1);
+    LiveFrame f = a;
+    for (int w = 0; w < kArkitWeightCount; ++w) f.weights[w] = (1 - s) * a.weights[w] + s * b.weights[w];
+    if (a.headPose) f.headPose = (1 - s) * *a.headPose + s * *b.headPose;
+    if (a.gaze)
+      for (size_t e = 0; e < 2; ++e) {
+        f.gaze->pitchDeg[e] = (1 - s) * a.gaze->pitchDeg[e] + s * b.gaze->pitchDeg[e];
+        f.gaze->yawDeg[e] = (1 - s) * a.gaze->yawDeg[e] + s * b.gaze->yawDeg[e];
+      }
+    frames.push_back(f);
+    times.push_back(t);
+  }
+  return frames;
 }
 
 // ---- LiveSender ----

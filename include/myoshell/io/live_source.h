@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "myoshell/anim/performance.h"
 #include "myoshell/io/live_packets.h"
 
 namespace myo {
@@ -135,6 +136,14 @@ class LiveFaceInput {
   std::array<double, kArkitWeightCount> rest_{};
   bool restDone_ = false;
 };
+
+// A recorded performance of ARKit weights (Live Link CSV, MediaPipe) as the frames a tracker would
+// stream, at `rate` frames per second (linear between the recording's frames: weights, head angles,
+// eye angles), or at the recording's own frames when `rate` is 0. `times` gets each frame's time
+// (s from 0). InputError naming `what` for OpenFace input: these protocols carry ARKit weights,
+// not FACS action units.
+std::vector<LiveFrame> liveFramesOfPerformance(const Performance& performance, double rate, std::vector<double>& times,
+                                               const std::string& what);
 
 // The sending end (`myoshell send`): a UDP socket to HOST:PORT. InputError naming the host when it
 // does not resolve.
