@@ -282,10 +282,17 @@ std::string VmcDecoder::message(const std::uint8_t* data, std::size_t size, int 
   if (!msg.m) return fmt::format("unreadable OSC message at {} (liblo error {})", address, result);
   const std::string types = lo_message_get_types(msg.m) ? lo_message_get_types(msg.m) : "";
   lo_arg** argv = lo_message_get_argv(msg.m);
+  // liblo packs arguments at 4-byte offsets, not lo_arg's 8-byte alignment: read them by copy.
+  auto text = [&](int i) { return std::string(reinterpret_cast<const char*>(argv[i])); };
+  auto number = [&](int i) {
+    float f;
+    std::memcpy(&f, argv[i], sizeof f);
+    return static_cast<double>(f);
+  };
   if (address == "/VMC/Ext/Blend/Val") {
     if (types != "sf") return fmt::format("/VMC/Ext/Blend/Val with arguments '{}' (expected 'sf')", types);
-    const std::string name = &argv[0]->s;
-    const double value = argv[1]->f;
+    const std::string name = text(0);
+    const double value = number(1);
     if (!std::isfinite(value)) return fmt::format("blend value of {} is not a finite number", name);
     if (value < -kWeightSlack || value > 1 + kWeightSlack)
       return fmt::format("blend value of {} is {}, outside [0, 1]", name, value);
@@ -304,8 +311,8 @@ std::string VmcDecoder::message(const std::uint8_t* data, std::size_t size, int 
   } else if (address == "/VMC/Ext/Bone/Pos") {
     if (types.size() < 8 || types.compare(0, 8, "sfffffff") != 0)
       return fmt::format("/VMC/Ext/Bone/Pos with arguments '{}' (expected 'sfffffff')", types);
-    if (std::string(&argv[0]->s) != "Head") return "";  // another bone: not the face's
-    const double q[4] = {argv[4]->f, argv[5]->f, argv[6]->f, argv[7]->f};
+    if (text(0) != "Head") return "";  // another bone: not the face's
+    const double q[4] = {number(4), number(5), number(6), number(7)};
     const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     if (!std::isfinite(norm) || norm < 1e-6) return "the head's quaternion is not a finite, non-zero quaternion";
     headPose_ = headPoseFromUnityQuaternion(q[0], q[1], q[2], q[3]);
