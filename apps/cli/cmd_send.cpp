@@ -77,11 +77,13 @@ int runSend(const SendArgs& a) {
             : encodeLiveLinkPacket(frames[i], {static_cast<std::int32_t>(i), 0.0f, static_cast<std::int32_t>(std::lround(fps)), 1});
     sender.send(packet);
     ++sent;
-    if (a.lockstep && !sender.waitForAcknowledgement(a.acknowledgementTimeout))
+    // The first frame may wait for the receiver's face to build (an ICT head: tens of seconds).
+    const double timeout = i == 0 ? 120.0 : a.acknowledgementTimeout;
+    if (a.lockstep && !sender.waitForAcknowledgement(timeout))
       throw std::runtime_error(fmt::format(
           "no acknowledgement from {}:{} for frame {} within {} s (--lockstep needs a receiver that acknowledges "
-          "each frame it takes)",
-          host, port, i, a.acknowledgementTimeout));
+          "each frame it takes: myoshell live --lockstep)",
+          host, port, i, timeout));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (a.json) {
