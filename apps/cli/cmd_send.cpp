@@ -77,13 +77,20 @@ int runSend(const SendArgs& a) {
             : encodeLiveLinkPacket(frames[i], {static_cast<std::int32_t>(i), 0.0f, static_cast<std::int32_t>(std::lround(fps)), 1});
     sender.send(packet);
     ++sent;
-    // The first frame may wait for the receiver's face to build (an ICT head: tens of seconds).
-    const double timeout = i == 0 ? 120.0 : a.acknowledgementTimeout;
-    if (a.lockstep && !sender.waitForAcknowledgement(timeout))
-      throw std::runtime_error(fmt::format(
-          "no acknowledgement from {}:{} for frame {} within {} s (--lockstep needs a receiver that acknowledges "
-          "each frame it takes: myoshell live --lockstep)",
-          host, port, i, timeout));
+    if (a.lockstep) {
+      // The first frame may wait for the receiver's face to build (an ICT head: tens of seconds),
+      // and a packet sent before it listened is lost: sent again every half second meanwhile.
+      const double timeout = i == 0 ? 120.0 : a.acknowledgementTimeout;
+      const auto giveUp = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+      while (!interrupted.load() && !sender.waitForAcknowledgement(0.5)) {
+        if (std::chrono::steady_clock::now() > giveUp)
+          throw std::runtime_error(fmt::format(
+              "no acknowledgement from {}:{} for frame {} within {} s (--lockstep needs a receiver that "
+              "acknowledges each frame it takes: myoshell live --lockstep)",
+              host, port, i, timeout));
+        sender.send(packet);
+      }
+    }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (a.json) {
