@@ -3,6 +3,13 @@
 // a port in use is exit 2.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -80,6 +87,37 @@ TEST_F(LiveCli, PortInUseIsExit2) {
                        " on 127.0.0.1 is in use (another receiver is listening; choose another port)"),
             std::string::npos)
       << r.err;
+}
+
+// Ctrl-C keeps what was recorded: the frames received so far stay in live.csv, and live exits 130.
+TEST_F(LiveCli, CtrlCKeepsTheRecording) {
+  const int port = freePort(LiveProtocol::LiveLink);
+  const std::filesystem::path out = dir_ / "out", err = dir_ / "err";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 2);
+    ::dup2(fd, 1);
+    const std::string portText = std::to_string(port);
+    ::execl(test::cliPath().c_str(), "myoshell", "live", "--input", "livelink", "--port", portText.c_str(),
+            "--duration", "60", "--format", "obj", "--lockstep", "--out", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Lockstep: when send returns, live has taken (and recorded) all three frames.
+  const test::CliResult sent =
+      test::runCli("send '" + kTake + "' --to livelink 127.0.0.1:" + std::to_string(port) + " --lockstep");
+  EXPECT_EQ(sent.exitCode, 0) << sent.merged;
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  std::ifstream errIn(err);
+  const std::string printed((std::istreambuf_iterator<char>(errIn)), std::istreambuf_iterator<char>());
+  ASSERT_TRUE(WIFEXITED(status)) << printed;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << printed;
+  EXPECT_NE(printed.find("interrupted (SIGINT)"), std::string::npos) << printed;
+  const Performance kept = readPerformanceFile((out / "live.csv").string(), {PerformanceInput::LiveLink, {}, -1, 0.7, 60.0});
+  EXPECT_EQ(kept.times.size(), 3u);
 }
 
 }  // namespace
