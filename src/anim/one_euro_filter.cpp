@@ -25,22 +25,32 @@ void checkOneEuroSettings(const OneEuroSettings& s, const std::string& what) {
   if (!(std::isfinite(s.beta) && s.beta >= 0.0)) throw InputError(what + ": beta must be a number ≥ 0");
 }
 
+double OneEuroStream::filter(double t, double x) {
+  if (!settings_.enabled) return x;
+  if (!started_) {
+    started_ = true;
+    lastTime_ = t;
+    last_ = x;
+    return x;
+  }
+  const double dt = t - lastTime_;
+  MYO_CHECK(dt > 0.0, "oneEuroFilter: times must increase");
+  const double rawSpeed = (x - last_) / dt;
+  const double aD = smoothingFactor(settings_.derivativeCutoff, dt);
+  speed_ = aD * rawSpeed + (1.0 - aD) * speed_;
+  const double a = smoothingFactor(settings_.minCutoff + settings_.beta * std::abs(speed_), dt);
+  last_ = a * x + (1.0 - a) * last_;
+  lastTime_ = t;
+  return last_;
+}
+
 std::vector<double> oneEuroFilter(const std::vector<double>& times, const std::vector<double>& values,
                                   const OneEuroSettings& s) {
   MYO_CHECK(times.size() == values.size(), "oneEuroFilter: times and values differ in length");
   if (!s.enabled || values.size() < 2) return values;
   std::vector<double> out(values.size());
-  out[0] = values[0];
-  double speed = 0.0;
-  for (size_t i = 1; i < values.size(); ++i) {
-    const double dt = times[i] - times[i - 1];
-    MYO_CHECK(dt > 0.0, "oneEuroFilter: times must increase");
-    const double rawSpeed = (values[i] - out[i - 1]) / dt;
-    const double aD = smoothingFactor(s.derivativeCutoff, dt);
-    speed = aD * rawSpeed + (1.0 - aD) * speed;
-    const double a = smoothingFactor(s.minCutoff + s.beta * std::abs(speed), dt);
-    out[i] = a * values[i] + (1.0 - a) * out[i - 1];
-  }
+  OneEuroStream stream(s);
+  for (size_t i = 0; i < values.size(); ++i) out[i] = stream.filter(times[i], values[i]);
   return out;
 }
 

@@ -38,6 +38,25 @@ std::string resolveAgainstScene(const SceneDesc& scene, const std::string& p) {
 }
 }  // namespace
 
+ScenePerformanceMapping scenePerformanceMapping(const SceneDesc& scene) {
+  const PerformanceDesc& desc = scene.performance;
+  ScenePerformanceMapping out;
+  // The muscles the scene will have (its library, its selection, its own extra muscles).
+  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary, scene.modelKind);
+  const std::vector<MuscleDef> library =
+      builtin ? *builtin : readMuscleDefs(resolveAgainstScene(scene, scene.muscleLibrary));
+  for (const MuscleDef& d : sceneMuscles(scene, library)) out.muscles.push_back(d.name);
+  out.arkitMap = desc.map.empty() ? builtinRetargetMap() : readRetargetMapFile(resolveAgainstScene(scene, desc.map));
+  // A map given for another muscle library would drive muscles this face does not have.
+  if (!desc.map.empty() && !out.arkitMap.library.empty() &&
+      out.arkitMap.library != muscleLibraryLabel(scene.muscleLibrary))
+    throw InputError("the map is for the muscle library '" + out.arkitMap.library + "', and the scene's is '" +
+                         muscleLibraryLabel(scene.muscleLibrary) + "': give --library " + out.arkitMap.library +
+                         " (or the scene key muscles.library)",
+                     resolveAgainstScene(scene, desc.map));
+  return out;
+}
+
 void loadScenePerformance(SceneDesc& scene) {
   if (scene.performance.file.empty()) return;
   const PerformanceDesc& desc = scene.performance;
@@ -45,20 +64,9 @@ void loadScenePerformance(SceneDesc& scene) {
   Performance performance = readPerformanceFile(file, desc.read);
   performance = cropPerformance(performance, desc.start, desc.end, file);
 
-  // The muscles the scene will have (its library, its selection, its own extra muscles).
-  const std::vector<MuscleDef>* builtin = builtinMuscleLibrary(scene.muscleLibrary, scene.modelKind);
-  const std::vector<MuscleDef> library =
-      builtin ? *builtin : readMuscleDefs(resolveAgainstScene(scene, scene.muscleLibrary));
-  std::vector<std::string> names;
-  for (const MuscleDef& d : sceneMuscles(scene, library)) names.push_back(d.name);
-  const RetargetMap arkitMap = desc.map.empty() ? builtinRetargetMap() : readRetargetMapFile(resolveAgainstScene(scene, desc.map));
-  // A map given for another muscle library would drive muscles this face does not have.
-  if (!desc.map.empty() && !arkitMap.library.empty() && arkitMap.library != muscleLibraryLabel(scene.muscleLibrary))
-    throw InputError("the map is for the muscle library '" + arkitMap.library + "', and the scene's is '" +
-                         muscleLibraryLabel(scene.muscleLibrary) + "': give --library " + arkitMap.library +
-                         " (or the scene key muscles.library)",
-                     resolveAgainstScene(scene, desc.map));
-  const MappedPerformance mapped = mapPerformance(performance, names, builtinFacsMap(), arkitMap, desc.filter);
+  const ScenePerformanceMapping mapping = scenePerformanceMapping(scene);
+  const MappedPerformance mapped =
+      mapPerformance(performance, mapping.muscles, builtinFacsMap(), mapping.arkitMap, desc.filter);
   addPerformanceToScene(scene, mapped);
 
   PerformanceReport report;

@@ -26,6 +26,19 @@ struct OneEuroSettings {
 // and ≥ 0.
 void checkOneEuroSettings(const OneEuroSettings& settings, const std::string& what = "filter");
 
+// The same filter one sample at a time, for a live stream (io/live_source.h): filter(t, x) gives
+// x̂ at time t (s, increasing). oneEuroFilter runs it over a curve, so both are one formula.
+class OneEuroStream {
+ public:
+  explicit OneEuroStream(const OneEuroSettings& settings = {}) : settings_(settings) {}
+  double filter(double t, double x);
+
+ private:
+  OneEuroSettings settings_;
+  bool started_ = false;
+  double lastTime_ = 0.0, last_ = 0.0, speed_ = 0.0;
+};
+
 // The filtered curve of `values` sampled at `times` (s, strictly increasing, same length). Returns
 // `values` unchanged when the filter is off or has fewer than two samples. CheckError on mismatched
 // lengths or times that do not increase.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "myoshell/anim/scene_parser.h"
+#include "myoshell/fit/retarget_map.h"
 #include "myoshell/head/face_system.h"
 #include "myoshell/head/head.h"
 #include "myoshell/reduce/basis_cache.h"
@@ -30,6 +31,16 @@ std::string sceneMuscleLibrary(const std::string& library);
 // `performanceReport` and clears `performance.file`. Nothing when it names none. InputError as the
 // readers.
 void loadScenePerformance(SceneDesc& scene);
+
+// What a performance is mapped with (loadScenePerformance, and the live input, io/live_take.h: one
+// mapping path): the scene's muscle names (its library, its selection, its own extra muscles) and
+// the retargeting map for ARKit input (scene.performance.map, or the shipped one). InputError for a
+// map made for another muscle library.
+struct ScenePerformanceMapping {
+  std::vector<std::string> muscles;
+  RetargetMap arkitMap;
+};
+ScenePerformanceMapping scenePerformanceMapping(const SceneDesc& scene);
 
 // Everything a scene's face is built from, read and checked, nothing built.
 struct SceneInputs {

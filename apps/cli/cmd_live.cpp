@@ -1,0 +1,227 @@
+// `myoshell live --input vmc|livelink [--port P] [--listen ADDRESS] [--head …] --out DIR
+// [--format glb,pc2,obj] [--duration S] [--fps 60] [--calibrate S] [--timeout S] [--lockstep] [--json]`:
+// a tracker's stream (docs/live.md) drives the face in real time through the one frame loop
+// (ScenePlayer), mapped as `drive` maps a take (io/live_take.h). The frames received are written as
+// they arrive to DIR/live.csv (a Live Link Face CSV `drive` replays); the face's frames at --fps to
+// the exports. Ctrl-C keeps the recording and the frames written (exit 130).
+#include <fmt/core.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "command.h"
+#include "common_options.h"
+#include "interrupt.h"
+#include "myoshell/anim/scene_player.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/io/animation_exporter.h"
+#include "myoshell/io/head_files.h"
+#include "myoshell/io/live_source.h"
+#include "myoshell/io/live_take.h"
+#include "myoshell/io/output_paths.h"
+#include "myoshell/io/scene_face.h"
+#include "option_checks.h"
+#include "resources.h"
+
+namespace myo::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LiveArgs {
+  std::string input;
+  int port = -1;  // < 0: the protocol's default
+  std::string listen = "127.0.0.1";
+  HeadOptions head;
+  std::string library = "face";
+  std::string map;
+  std::string outDir;
+  std::vector<std::string> formats = {"glb"};
+  double duration = 10.0;
+  double fps = 60.0;
+  double calibrate = 0.0;
+  double timeout = 0.5;
+  std::string filter = "on";
+  OneEuroSettings oneEuro;
+  bool lockstep = false;
+  std::string cacheDir;
+  bool json = false;
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t k = static_cast<size_t>(std::ceil(p * static_cast<double>(v.size()))) - (p > 0 ? 1 : 0);
+  return v[std::min(k, v.size() - 1)];
+}
+
+int runLive(const LiveArgs& a) {
+  const LiveProtocol protocol = liveProtocolFromString(a.input);
+  if (a.filter != "on" && a.filter != "off") throw InputError("--filter: expected on or off (got '" + a.filter + "')");
+  checkOutputFolder(a.outDir, "--out");
+  const ExportFormats formats = parseExportFormats(a.formats);
+  OneEuroSettings filter = a.oneEuro;
+  filter.enabled = a.filter == "on";
+
+  SceneDesc scene;
+  scene.name = "live";
+  const HeadFiles files = resolveHeadArgument(a.head.head, a.head.landmarks, "", a.head.units);
+  scene.head.obj = files.obj;
+  scene.head.landmarks = files.landmarks;
+  scene.head.units = files.unit;
+  scene.muscleLibrary = sceneMuscleLibrary(a.library);
+  scene.performance.map = a.map.empty() ? "" : fs::absolute(a.map).string();
+  scene.duration = a.duration;
+  scene.fps = a.fps;
+  LiveFaceMapper mapper(scene, filter);
+
+  // Listening before the face builds: a port in use fails at once, and what arrives meanwhile waits.
+  const LiveClock clock = steadyLiveClock();
+  LiveSourceOptions sourceOptions;
+  sourceOptions.protocol = protocol;
+  sourceOptions.address = a.listen;
+  sourceOptions.port = a.port < 0 ? defaultLivePort(protocol) : a.port;
+  sourceOptions.clock = clock;
+  sourceOptions.acknowledge = a.lockstep;
+  LiveSource source(sourceOptions);
+  LiveFaceSettings faceSettings;
+  faceSettings.timeout = a.timeout;
+  faceSettings.calibrateSeconds = a.calibrate;
+  LiveFaceInput input(faceSettings);
+
+  const auto cache = openBasisCache(a.cacheDir);
+  const auto model = buildSceneFace(scene, cache.get());
+  const fs::path out(a.outDir);
+  const int frames = ScenePlayer::frameCount(scene.duration, scene.fps);
+  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames);
+  LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink);
+  ScenePlayer player(scene, model);
+  std::vector<int> muscleIndex;
+  for (const std::string& name : mapper.muscles()) {
+    int index = -1;
+    for (int m = 0; m < model->muscleCount(); ++m)
+      if (model->muscleName(m) == name) index = m;
+    muscleIndex.push_back(index);
+  }
+  const std::atomic<bool>& interrupted = installInterruptHandlers();
+  player.watch(&interrupted);
+  if (!a.json)
+    fmt::print("listening for {} on {}:{} for {} s\n", toString(protocol), a.listen, source.port(), a.duration);
+
+  std::vector<std::string> warnings;
+  std::vector<double> latencyMs;
+  std::optional<double> firstArrival;
+  int framesDone = 0;
+  const double start = clock();
+  for (int f = 0; f < frames; ++f) {
+    // Real time: frame f is drawn at f / fps after the start (no waiting when the steps run late).
+    const double deadline = start + f / scene.fps;
+    while (!interrupted.load() && clock() < deadline)
+      std::this_thread::sleep_for(std::chrono::duration<double>(std::min(deadline - clock(), 0.002)));
+    if (interrupted.load()) break;
+    std::optional<double> arrival;
+    if (const std::optional<LiveSample> sample = source.takeNewest()) {
+      input.receive(*sample);
+      if (!firstArrival) firstArrival = sample->arrival;
+      recorder.write(sample->arrival - *firstArrival, sample->frame);
+      arrival = sample->arrival;
+    }
+    const double now = clock();
+    const MappedPerformance mapped = mapper.map(now - start, input.at(now));
+    if (f == 0) warnings = mapped.warnings;
+    LiveFaceMapper::apply(mapped, muscleIndex, player.simulator());
+    if (!player.advanceTo(f)) break;
+    const FrameSnapshot& snap = player.snapshot(false);
+    // Arrival → positions ready for this frame (the wait for the frame's turn included).
+    if (arrival) latencyMs.push_back(1e3 * (clock() - *arrival));
+    exporter.addFrame(f, snap.positions);
+    framesDone = f + 1;
+  }
+  const double seconds = clock() - start;
+  const bool cut = framesDone < frames;
+  std::vector<std::string> written;
+  if (!cut)
+    for (const std::string& rel : exporter.finish()) written.push_back(rel);
+  source.stop();
+  const LiveCounters c = source.counters();
+  if (!source.unknownNames().empty())
+    warnings.push_back("VMC blend names that mean nothing here, ignored: " + fmt::format("{}", fmt::join(source.unknownNames(), ", ")));
+  for (const std::string& w : warnings) fmt::print(stderr, "myoshell: warning: {}\n", w);
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["input"] = toString(protocol);
+    j["port"] = source.port();
+    j["packets"] = c.packets;
+    j["dropped"] = c.dropped;
+    j["malformed"] = c.malformed;
+    j["superseded"] = c.superseded;
+    j["ignored"] = c.ignored;
+    j["received_frames"] = c.frames;
+    j["frames"] = framesDone;
+    j["duration"] = framesDone > 0 ? (framesDone - 1) / scene.fps : 0.0;
+    j["seconds"] = seconds;
+    j["latency_ms"] = {{"median", percentile(latencyMs, 0.5)}, {"p99", percentile(latencyMs, 0.99)},
+                       {"samples", latencyMs.size()}};
+    j["recording"] = recorder.path();
+    j["recorded_frames"] = recorder.rows();
+    j["outputs"] = written;
+    j["last_malformed"] = source.lastMalformed();
+    j["warnings"] = warnings;
+    j["interrupted"] = cut;
+    fmt::print("{}\n", j.dump(2));
+  } else {
+    fmt::print("{} packets ({} malformed, {} lost, {} superseded), {} frames in {:.1f} s; latency median {:.1f} ms, "
+               "p99 {:.1f} ms; recorded {} frames to {}\n",
+               c.packets, c.malformed, c.dropped, c.superseded, framesDone, seconds, percentile(latencyMs, 0.5),
+               percentile(latencyMs, 0.99), recorder.rows(), recorder.path());
+  }
+  if (cut) {
+    fmt::print(stderr, "myoshell: interrupted ({}) at frame {} of {}: kept the recording {} ({} frames); no GLB or PC2\n",
+               interruptName(), framesDone, frames, recorder.path(), recorder.rows());
+    return 128 + interruptSignal();
+  }
+  return kExitOk;
+}
+
+static CommandRegistrar reg("live", [](CLI::App& app) -> std::function<int()> {
+  auto a = std::make_shared<LiveArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "live", "Drive the face from a tracker's live stream (VMC or Live Link Face over UDP), record what arrives and "
+              "write the animation (docs/live.md)");
+  sub->add_option("--input", a->input, "the protocol: vmc or livelink")->required();
+  sub->add_option("--port", a->port, "UDP port to listen on (default 39539 for vmc, 11111 for livelink; 0 any free one)")
+      ->check(wholeIn(0, 65535));
+  sub->add_option("--listen", a->listen, "the address to listen on: 127.0.0.1 (default) or 0.0.0.0 for any interface");
+  sub->add_option("--out", a->outDir, "Output folder")->required();
+  addHeadOptions(*sub, a->head);
+  addLibraryOption(*sub, a->library);
+  sub->add_option("--map", a->map, "ARKit input: a retargeting map (fit-rig --out); default the shipped ICT map");
+  sub->add_option("--format", a->formats, "Animation exports, comma-separated: glb, pc2, obj")
+      ->delimiter(',')
+      ->capture_default_str();
+  sub->add_option("--duration", a->duration, "seconds to run")->check(numberAbove(0))->capture_default_str();
+  sub->add_option("--fps", a->fps, "output frames per second")->check(numberAbove(0))->capture_default_str();
+  sub->add_option("--calibrate", a->calibrate, "seconds of the performer's resting face to subtract (default 0: none)")
+      ->check(numberAtLeast(0));
+  sub->add_option("--timeout", a->timeout, "seconds of silence before the face eases to neutral")
+      ->check(numberAtLeast(0))
+      ->capture_default_str();
+  sub->add_option("--filter", a->filter, "the One-Euro filter on the input curves: on (default) or off");
+  sub->add_option("--min-cutoff", a->oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")->capture_default_str();
+  sub->add_option("--beta", a->oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
+  sub->add_flag("--lockstep", a->lockstep, "Acknowledge each frame taken to its sender (myoshell send --lockstep)");
+  addCacheOption(*sub, a->cacheDir);
+  addJsonFlag(*sub, a->json);
+  return [a] { return runLive(*a); };
+});
+
+}  // namespace
+}  // namespace myo::cli
