@@ -353,7 +353,7 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   const auto [E, sd] = principalAxes(P);
   if (sd(2) < 0.1 * sd(0))
     throw notAHead(fmt::format("the mesh is flat (its thinnest principal extent is {:.1f}% of its widest; "
-                               "a head's is over 40%)",
+                               "a head is about as deep as it is wide)",
                                100.0 * sd(2) / std::max(sd(0), 1e-300)));
 
   // Units: a head's bounding-box diagonal is 20–80 cm (a face mask ~26 cm, a bust ~60 cm).

@@ -94,7 +94,28 @@ TEST(AutoLandmarks, IctFacingYInMillimetresTurned) {
   expectIctBounds(ict, a);
 }
 
-TEST(AutoLandmarks, DeterministicAndKeepsEveryPieceAndTheVertexOrder) {
+// The same mesh gives the same landmarks and confidences, bit for bit (the built-in head with its
+// eyes closed at one subdivision level, turned and in mm: fast).
+TEST(AutoLandmarks, Deterministic) {
+  DefaultHeadOptions o;
+  o.openEyes = false;
+  o.subdivisionLevels = 1;
+  const TriMesh m = transformed(loadDefaultHead(o).mesh, Eigen::AngleAxisd(0.4, Vec3::UnitY()).toRotationMatrix(),
+                                10.0, Vec3(5.0, 0.0, 0.0));
+  const AutoLandmarks a = findLandmarks(m), b = findLandmarks(m);
+  EXPECT_EQ(a.landmarks.multipie68, b.landmarks.multipie68);
+  EXPECT_EQ(a.landmarks.named, b.landmarks.named);
+  EXPECT_EQ(a.confidence68, b.confidence68);
+  EXPECT_EQ(a.unit, LengthUnit::mm);
+  EXPECT_FALSE(a.eyesOpen);
+  EXPECT_TRUE(a.mouthOpen);
+  ASSERT_FALSE(a.warnings.empty());
+  EXPECT_EQ(a.warnings[0], "the eyes have no opening: no lids, so blinks do nothing; the eye corners come from the fit alone");
+  // Its MediaPipe ids 0–467 are the template's: the points come back where they were labelled.
+  EXPECT_EQ(a.landmarks.vertex("nose_tip"), 4);
+}
+
+TEST(AutoLandmarks, EyeballsAreLeftOutAndTheVertexOrderKept) {
   MYO_REQUIRE_SHARED_DATA();
   const Head ict = test::ictHead();
   // Two eyeballs (spheres) beside the skin: pieces of their own, left out of the landmarks.
@@ -112,10 +133,7 @@ TEST(AutoLandmarks, DeterministicAndKeepsEveryPieceAndTheVertexOrder) {
     for (int t = 0; t < ball.triangleCount(); ++t)
       m.F.row(f0 + e * ball.triangleCount() + t) = ball.F.row(t).array() + n0 + e * ball.vertexCount();
   }
-  const AutoLandmarks a = findLandmarks(m), b = findLandmarks(m);
-  EXPECT_EQ(a.landmarks.multipie68, b.landmarks.multipie68);
-  EXPECT_EQ(a.landmarks.named, b.landmarks.named);
-  EXPECT_EQ(a.confidence68, b.confidence68);
+  const AutoLandmarks a = findLandmarks(m);
   EXPECT_EQ(a.otherPieces, 2);
   EXPECT_EQ(a.skinVertices, n0);
   for (int v : a.landmarks.multipie68) EXPECT_LT(v, n0);  // never on an eyeball
@@ -124,6 +142,54 @@ TEST(AutoLandmarks, DeterministicAndKeepsEveryPieceAndTheVertexOrder) {
   for (double c : a.confidence68) {
     EXPECT_GE(c, 0.0);
     EXPECT_LE(c, 1.0);
+  }
+}
+
+std::string errorOf(const TriMesh& m) {
+  try {
+    findLandmarks(m);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(AutoLandmarks, ASphereIsNotAHead) {
+  TriMesh sphere = icosphere(9.0, 4);
+  sphere.sourcePath = "ball.obj";
+  const std::string what = errorOf(sphere);
+  EXPECT_NE(what.find("ball.obj: not a head: no face fits it"), std::string::npos) << what;
+}
+
+TEST(AutoLandmarks, AFlatPlaneIsNotAHead) {
+  TriMesh plane = gridMesh(20.0, 20.0, 30, 30);
+  plane.sourcePath = "plane.obj";
+  EXPECT_EQ(errorOf(plane), "plane.obj: not a head: the mesh is flat (its thinnest principal extent is 0.0% of its "
+                            "widest; a head is about as deep as it is wide)");
+}
+
+TEST(AutoLandmarks, TwoHeadsInOneFileAreRefused) {
+  TriMesh two = icosphere(9.0, 2);
+  const int n = two.vertexCount(), f = two.triangleCount();
+  two.V.conservativeResize(2 * n, 3);
+  two.F.conservativeResize(2 * f, 3);
+  two.V.bottomRows(n) = two.V.topRows(n).rowwise() + Eigen::RowVector3d(30.0, 0.0, 0.0);
+  two.F.bottomRows(f) = two.F.topRows(f).array() + n;
+  const std::string what = errorOf(two);
+  EXPECT_NE(what.find("not a head: the mesh has 2 pieces of similar size"), std::string::npos) << what;
+  EXPECT_NE(what.find("give one head per file"), std::string::npos) << what;
+}
+
+TEST(AutoLandmarks, AUnitThatContradictsTheSizeIsRefused) {
+  TriMesh sphere = icosphere(9.0, 2);
+  sphere.sourcePath = "ball.obj";
+  AutoLandmarkOptions o;
+  o.unit = LengthUnit::m;
+  try {
+    findLandmarks(sphere, o);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("probably --units cm"), std::string::npos) << e.what();
   }
 }
 
