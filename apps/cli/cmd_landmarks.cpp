@@ -100,7 +100,7 @@ int runLandmarks(const LandmarksArgs& a) {
   checkOutputFile(out, "--out", "landmark file");
   checkOutputFile(a.picture, "--picture", "PNG file");
   const TriMesh mesh = readObj(a.head);
-  const AutoLandmarks found = findLandmarks(mesh, options);
+  AutoLandmarks found = findLandmarks(mesh, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   writeFileAtomically(out, landmarkFileText(found, a.head), "cannot write landmark file");
   if (!a.picture.empty()) drawPicture(mesh, found, a.picture);
@@ -136,6 +136,9 @@ int runLandmarks(const LandmarksArgs& a) {
   std::vector<Row> rows;
   if (!a.compare.empty()) {
     const Landmarks given = readLandmarks(a.compare, mesh.vertexCount());
+    // 1-based ids and swapped sides are errors (exit 2); points far from the automatic ones warnings.
+    for (const std::string& w : checkGivenLandmarks(mesh, given, found)) found.warnings.push_back(w);
+    j["warnings"] = found.warnings;
     auto dist = [&](int u, int v) { return 10.0 * cm * (mesh.V.row(u) - mesh.V.row(v)).norm(); };
     if (given.multipie68.size() == 68)
       for (int k = 0; k < 68; ++k)
@@ -195,7 +198,7 @@ static CommandRegistrar reg("landmarks", [](CLI::App& app) -> std::function<int(
   sub->add_option("--units", args->units, "the mesh's unit: auto (from its size), m, cm or mm")->capture_default_str();
   sub->add_option("--out", args->out, "landmark file to write (default: HEAD's stem + .landmarks.json, here)");
   sub->add_option("--picture", args->picture, "write a PNG of the points on the head, front and side");
-  sub->add_option("--compare", args->compare, "a landmark file of the same mesh: report each point's distance (mm)");
+  sub->add_option("--compare", args->compare, "a landmark file of the same mesh: report each point's distance (mm); ids that look 1-based or sides swapped exit 2, points over 1.5 cm off warn");
   addJsonFlag(*sub, args->json);
   return [args] { return runLandmarks(*args); };
 });

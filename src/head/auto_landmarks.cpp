@@ -532,4 +532,63 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   return out;
 }
 
+int multipieMirror(int k) {
+  if (k < 0 || k >= 68) throw CheckError("multipieMirror: no Multi-PIE point " + std::to_string(k));
+  if (k <= 16) return 16 - k;
+  if (k <= 26) return 43 - k;                     // brows 17–21 ↔ 26–22
+  if (k <= 30) return k;                          // nose bridge
+  if (k <= 35) return 66 - k;                     // nose base 31–35
+  static const std::array<int, 12> eyes = {45, 44, 43, 42, 47, 46, 39, 38, 37, 36, 41, 40};
+  if (k <= 47) return eyes[static_cast<size_t>(k - 36)];
+  if (k <= 54) return 102 - k;                    // outer lips 48–54 (51 on the midline)
+  if (k <= 59) return 114 - k;                    // outer lips 55–59 (57 on the midline)
+  if (k <= 64) return 124 - k;                    // inner lips 60–64 (62 on the midline)
+  return 132 - k;                                 // inner lips 65–67 (66 on the midline)
+}
+
+std::vector<std::string> checkGivenLandmarks(const TriMesh& mesh, const Landmarks& given, const AutoLandmarks& found) {
+  std::vector<std::string> warnings;
+  if (given.multipie68.size() != 68 || found.landmarks.multipie68.size() != 68) return warnings;
+  const double mm = 10.0 * centimetresPer(found.unit);
+  auto dist = [&](int a, int b) { return mm * (mesh.V.row(a) - mesh.V.row(b)).norm(); };
+  auto median = [](std::vector<double> d) {
+    std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+    return d[d.size() / 2];
+  };
+  std::vector<double> asGiven, shifted, mirrored;
+  for (int k = 0; k < 68; ++k) {
+    const int auto_ = found.landmarks.multipie68[static_cast<size_t>(k)];
+    const int g = given.multipie68[static_cast<size_t>(k)];
+    asGiven.push_back(dist(g, auto_));
+    shifted.push_back(g >= 1 ? dist(g - 1, auto_) : 1e300);
+    mirrored.push_back(dist(given.multipie68[static_cast<size_t>(multipieMirror(k))], auto_));
+  }
+  const double m0 = median(asGiven), m1 = median(shifted), mm2 = median(mirrored);
+  if (m1 < 5.0 && 3.0 * m1 < m0)
+    throw InputError(fmt::format("the landmark ids look 1-based (an OBJ's numbering): as given the 68 points lie a "
+                                 "median {:.1f} mm from the automatic landmarks, with every id less 1 {:.1f} mm; "
+                                 "subtract 1 from every id (vertex ids are 0-based)",
+                                 m0, m1),
+                     given.sourcePath);
+  if (mm2 < 5.0 && 3.0 * mm2 < m0)
+    throw InputError(fmt::format("left and right look swapped: as given the 68 points lie a median {:.1f} mm from "
+                                 "the automatic landmarks, with each side's labels swapped {:.1f} mm; 'right' and "
+                                 "'left' are the subject's (Multi-PIE point 36, right_eye_outer, is on the subject's "
+                                 "right, image left)",
+                                 m0, mm2),
+                     given.sourcePath);
+  std::string far;
+  int count = 0;
+  for (int k = 17; k < 68; ++k)
+    if (asGiven[static_cast<size_t>(k)] > 15.0) {
+      far += fmt::format("{}{} ({:.1f} mm)", count ? ", " : "", k, asGiven[static_cast<size_t>(k)]);
+      ++count;
+    }
+  if (count)
+    warnings.push_back(fmt::format("{}: {} Multi-PIE point(s) lie more than 1.5 cm from the automatic landmarks: {} "
+                                   "(check them: myoshell landmarks --picture)",
+                                   given.sourcePath.empty() ? "landmarks" : given.sourcePath, count, far));
+  return warnings;
+}
+
 }  // namespace myo

@@ -7,6 +7,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/head/auto_landmarks.h"
 #include "myoshell/head/head_checks.h"
+#include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/primitives.h"
 #include "support/ict.h"
 
@@ -143,6 +144,57 @@ TEST(AutoLandmarks, EyeballsAreLeftOutAndTheVertexOrderKept) {
     EXPECT_GE(c, 0.0);
     EXPECT_LE(c, 1.0);
   }
+}
+
+// The checks of a given file against the automatic landmarks: ICT's own file passes without a
+// warning; shifted to 1-based ids, or with left and right swapped, it is refused naming the
+// mistake; with one point moved 2 cm it warns naming the point and the distance.
+TEST(AutoLandmarks, GivenFileChecksCatchTheCommonMistakes) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head ict = test::ictHead();
+  const AutoLandmarks a = findLandmarks(ict.mesh);
+  EXPECT_TRUE(checkGivenLandmarks(ict.mesh, ict.landmarks, a).empty());
+
+  Landmarks oneBased = ict.landmarks;
+  for (int& v : oneBased.multipie68) ++v;
+  oneBased.sourcePath = "lm.json";
+  try {
+    checkGivenLandmarks(ict.mesh, oneBased, a);
+    ADD_FAILURE() << "1-based ids passed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lm.json: the landmark ids look 1-based"), std::string::npos) << e.what();
+  }
+
+  Landmarks swapped = ict.landmarks;
+  for (int k = 0; k < 68; ++k) swapped.multipie68[k] = ict.landmarks.multipie68[multipieMirror(k)];
+  swapped.sourcePath = "lm.json";
+  try {
+    checkGivenLandmarks(ict.mesh, swapped, a);
+    ADD_FAILURE() << "swapped sides passed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lm.json: left and right look swapped"), std::string::npos) << e.what();
+  }
+
+  // Point 48 (the right mouth corner) moved to the vertex nearest 2 cm below it.
+  Landmarks moved = ict.landmarks;
+  moved.sourcePath = "lm.json";
+  const Vec3 p = Vec3(ict.mesh.V.row(moved.multipie68[48])) - 2.0 * ict.frame().axes.col(1);
+  moved.multipie68[48] = nearestVertex(ict.mesh.V, p);
+  const auto w = checkGivenLandmarks(ict.mesh, moved, a);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("lm.json: 1 Multi-PIE point(s) lie more than 1.5 cm from the automatic landmarks: 48 ("),
+            std::string::npos)
+      << w[0];
+}
+
+TEST(AutoLandmarks, MirrorPartners) {
+  for (int k = 0; k < 68; ++k) EXPECT_EQ(multipieMirror(multipieMirror(k)), k) << k;
+  EXPECT_EQ(multipieMirror(36), 45);
+  EXPECT_EQ(multipieMirror(40), 47);
+  EXPECT_EQ(multipieMirror(48), 54);
+  EXPECT_EQ(multipieMirror(8), 8);
+  EXPECT_EQ(multipieMirror(62), 62);
+  EXPECT_EQ(multipieMirror(21), 22);
 }
 
 std::string errorOf(const TriMesh& m) {

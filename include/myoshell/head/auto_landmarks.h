@@ -59,4 +59,21 @@ struct AutoLandmarks {
 // has no size a head has in any unit, or on which no face fits.
 AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& options = {});
 
+// Multi-PIE point k's mirror partner (the subject's right ↔ left; points on the midline map to
+// themselves): jaw k ↔ 16 − k, brows 17 ↔ 26, eyes 36 ↔ 45, lips 48 ↔ 54, …
+int multipieMirror(int k);
+
+// Checks a landmark file a user gave against the automatic landmarks of the same mesh (`found`,
+// from findLandmarks(mesh)), for the common mistakes (issue 42):
+// - ids that look 1-based (read off an OBJ's numbering): with every id less 1 the 68 points lie
+//   at least 3× closer (median) to the automatic ones than as given, and within 5 mm → InputError;
+// - left and right swapped: with each point's label taken from its mirror partner the points lie
+//   at least 3× closer (median) than as given, and within 5 mm → InputError;
+// - otherwise a warning naming each point more than 1.5 cm from the automatic one, with its
+//   distance. The jaw line (Multi-PIE 0–16) is left out of the warning: the automatic jaw points
+//   sit on the built-in head's rim, up to 3 cm from a frontal jaw line (docs/heads.md).
+// Needs the 68 points in `given` (returns no warnings without them). Lengths in the mesh's unit,
+// reported in mm through `found.unit`.
+std::vector<std::string> checkGivenLandmarks(const TriMesh& mesh, const Landmarks& given, const AutoLandmarks& found);
+
 }  // namespace myo
