@@ -124,6 +124,7 @@ int runLandmarks(const LandmarksArgs& a) {
   j["mouth"] = found.mouthOpen ? "open" : "closed";
   j["skin_vertices"] = found.skinVertices;
   j["other_pieces"] = found.otherPieces;
+  j["placement_rms_mm"] = found.placementRmsMm;
   j["fit_mean_distance_mm"] = 10.0 * found.fitMeanDistanceCm;
   j["seconds"] = seconds;
   j["warnings"] = found.warnings;

@@ -49,6 +49,7 @@ struct AutoLandmarks {
   int otherPieces = 0;               // other connected pieces (eyeballs, teeth), left out
   double fitMeanDistanceCm = 0.0;    // mean template-to-skin distance after the non-rigid fit
   double similarityScale = 1.0;      // template size relative to the built-in head
+  double placementRmsMm = 0.0;       // the best similarity placement's score, √(mean min(d, 1 cm)²), mm
   std::vector<std::string> warnings; // what the model cannot do with this head, uncertain points
 };
 
