@@ -64,7 +64,7 @@ TEST(CliDoc, EveryCommandsHelpIsInTheReferenceExactly) {
   const test::CliResult top = test::runCli("--help");
   expectDocumented(doc, "myoshell", top);
   const std::vector<std::string> listed = commands(top.out);
-  ASSERT_EQ(listed.size(), 18u) << top.out;  // info energy modes validate head pose fit fit-rig rig muscles drive run check demo paths bench figures render
+  ASSERT_EQ(listed.size(), 19u) << top.out;  // info energy modes validate head landmarks pose fit fit-rig rig muscles drive run check demo paths bench figures render
   for (const std::string& c : listed) {
     expectDocumented(doc, c, test::runCli(c + " --help"));
     EXPECT_NE(doc.find("\n## myoshell " + c + "\n"), std::string::npos) << "docs/cli.md: no section `## myoshell " << c << "`";
