@@ -138,7 +138,7 @@ Landmarks parseLandmarks(const std::string& jsonText, int vertexCount, const std
         lm.named[key] = vertexId(val["vertex"], what, vertexCount, name);
       else if (val.is_number())
         lm.named[key] = vertexId(val, what, vertexCount, name);
-      else if (key == "source" || key == "note" || key == "groups")
+      else if (key == "source" || key == "note" || key == "groups" || key == "confidence")
         continue;
       else
         throw InputError(what + ": expected a vertex id or {\"vertex\": id}, got " + val.dump(), name);

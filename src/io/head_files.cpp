@@ -40,7 +40,9 @@ HeadFiles resolveHeadArgument(const std::string& head, const std::string& landma
   if (!fs::exists(obj))
     throw InputError("no such head: give 'default', an OBJ file or a folder with head_skin.obj", obj.string());
   if (f.landmarks.empty())
-    throw InputError("an OBJ head needs --landmarks FILE (layout of docs/heads.md)", obj.string());
+    throw InputError("an OBJ head needs --landmarks FILE (layout of docs/heads.md); `myoshell landmarks " +
+                         obj.string() + "` finds them automatically",
+                     obj.string());
   f.obj = obj.string();
   return f;
 }

@@ -64,7 +64,7 @@ TEST(CliDoc, EveryCommandsHelpIsInTheReferenceExactly) {
   const test::CliResult top = test::runCli("--help");
   expectDocumented(doc, "myoshell", top);
   const std::vector<std::string> listed = commands(top.out);
-  ASSERT_EQ(listed.size(), 20u) << top.out;  // info energy modes validate head pose fit fit-rig rig muscles drive live send run check demo paths bench figures render
+  ASSERT_EQ(listed.size(), 21u) << top.out;  // info energy modes validate head landmarks pose fit fit-rig rig muscles drive live send run check demo paths bench figures render
   for (const std::string& c : listed) {
     expectDocumented(doc, c, test::runCli(c + " --help"));
     EXPECT_NE(doc.find("\n## myoshell " + c + "\n"), std::string::npos) << "docs/cli.md: no section `## myoshell " << c << "`";

@@ -3,7 +3,7 @@
 // File layout (that of ../shared/data/ict/landmarks_multipie68.json; docs/heads.md):
 //   { "multipie68": [68 vertex ids],                       optional
 //     "named": { "nose_tip": {"vertex": 4}, ... },         optional; "multipie_index" allowed
-//     "groups", "source", "note", ...: ignored }
+//     "groups", "source", "note", "confidence" (myoshell landmarks), ...: ignored }
 // or a plain map { "nose_tip": 4, "chin_menton": 152, ... }. Multi-PIE order: jaw 0–16 (from the
 // subject's right), right brow 17–21, left brow 22–26, nose bridge 27–30, nose base 31–35, right
 // eye 36–41, left eye 42–47, outer lips 48–59, inner lips 60–67; 'right'/'left' are the subject's.

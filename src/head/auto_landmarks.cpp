@@ -1,0 +1,604 @@
+#include "myoshell/head/auto_landmarks.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <numeric>
+
+#include "myoshell/core/errors.h"
+#include "myoshell/head/head_checks.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/geometry.h"
+#include "myoshell/mesh/subdivision.h"
+
+namespace myo {
+
+namespace {
+
+struct Similarity {
+  double s = 1.0;
+  Mat3 R = Mat3::Identity();
+  Vec3 t = Vec3::Zero();
+  Vec3 apply(const Vec3& p) const { return s * (R * p) + t; }
+};
+
+// Connected pieces of the triangles: label per vertex (-1: on no triangle).
+std::vector<int> pieceLabels(const TriMesh& mesh, int& count) {
+  const int n = mesh.vertexCount();
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  std::vector<char> used(n, 0);
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      used[mesh.F(t, k)] = 1;
+      const int a = find(mesh.F(t, k)), b = find(mesh.F(t, (k + 1) % 3));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<int> label(n, -1), rootLabel(n, -1);
+  count = 0;
+  for (int v = 0; v < n; ++v) {
+    if (!used[v]) continue;
+    const int r = find(v);
+    if (rootLabel[r] < 0) rootLabel[r] = count++;
+    label[v] = rootLabel[r];
+  }
+  return label;
+}
+
+// The 24 rotations that map coordinate axes onto signed coordinate axes.
+std::vector<Mat3> axisRotations() {
+  std::vector<Mat3> out;
+  const std::array<std::array<int, 3>, 6> perms = {{{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+  for (const auto& p : perms)
+    for (int signs = 0; signs < 8; ++signs) {
+      Mat3 S = Mat3::Zero();
+      for (int c = 0; c < 3; ++c) S(p[c], c) = (signs >> c & 1) ? -1.0 : 1.0;
+      if (S.determinant() > 0) out.push_back(S);
+    }
+  return out;
+}
+
+// Principal axes (columns, by decreasing variance, right-handed) and the standard deviations.
+std::pair<Mat3, Vec3> principalAxes(const MatX3& P) {
+  const Eigen::RowVector3d c = P.colwise().mean();
+  const MatX3 Q = P.rowwise() - c;
+  const Mat3 C = Q.transpose() * Q / std::max<double>(1.0, static_cast<double>(P.rows()));
+  Eigen::SelfAdjointEigenSolver<Mat3> es(C);
+  Mat3 E;
+  Vec3 sd;
+  for (int k = 0; k < 3; ++k) {
+    E.col(k) = es.eigenvectors().col(2 - k);
+    sd(k) = std::sqrt(std::max(0.0, es.eigenvalues()(2 - k)));
+  }
+  // Deterministic signs: each axis points to where the larger part of the points lies along it.
+  for (int k = 0; k < 3; ++k) {
+    double third = 0.0;
+    for (int i = 0; i < Q.rows(); ++i) third += std::pow(Q.row(i).dot(E.col(k)), 3);
+    if (third < 0) E.col(k) = -E.col(k);
+  }
+  if (E.determinant() < 0) E.col(2) = -E.col(2);
+  return {E, sd};
+}
+
+// The target: the skin piece in cm, with a closest-point locator and its boundary vertices.
+struct Target {
+  MatX3 V;  // all vertices, cm
+  MatX3i F; // the skin's triangles
+  MatX3 N;  // vertex normals of the skin
+  std::vector<char> boundary;
+  std::vector<int> skinIds;  // skin vertices
+  const SurfaceLocator* loc = nullptr;
+};
+
+struct Match {
+  Vec3 point, normal;
+  double distance;
+  bool onBoundary;
+  int nearestVertex;
+};
+
+Match match(const Target& tg, const Vec3& p) {
+  const SurfacePoint sp = tg.loc->closest(p);
+  Match m{sp.point, sp.normal, sp.distance, false, -1};
+  int best = 0;
+  bool allBoundary = true;
+  for (int k = 0; k < 3; ++k) {
+    if (sp.barycentric(k) > sp.barycentric(best)) best = k;
+    if (sp.barycentric(k) > 1e-6 && !tg.boundary[tg.F(sp.triangle, k)]) allBoundary = false;
+  }
+  m.onBoundary = allBoundary;
+  m.nearestVertex = tg.F(sp.triangle, best);
+  return m;
+}
+
+// Similarity ICP of template points X (with normals NX) onto the target, from `init`. Pairs whose
+// normals differ by more than 60° or that land on the target's boundary are left out, and of the
+// rest the farthest (1 − keep) fraction. Returns the score: the mean over all points of
+// min(d, cap)², with cap for the left-out pairs.
+double similarityIcp(const Target& tg, const MatX3& X, const MatX3& NX, Similarity& T, int iterations,
+                     double keep, double cap, double minScale, double maxScale) {
+  const int n = static_cast<int>(X.rows());
+  std::vector<Match> m(n);
+  std::vector<char> ok(n);
+  double score = 0.0;
+  for (int it = 0; it <= iterations; ++it) {
+    std::vector<double> d;
+    d.reserve(n);
+    score = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const Vec3 p = T.apply(X.row(i).transpose());
+      m[i] = match(tg, p);
+      const Vec3 nrm = T.R * NX.row(i).transpose();
+      ok[i] = !m[i].onBoundary && nrm.dot(m[i].normal) > 0.5;
+      score += ok[i] ? std::min(m[i].distance * m[i].distance, cap * cap) : cap * cap;
+      if (ok[i]) d.push_back(m[i].distance);
+    }
+    score /= std::max(1, n);
+    if (it == iterations || d.size() < 10) break;
+    std::vector<double> sorted = d;
+    const size_t k = std::min(sorted.size() - 1, static_cast<size_t>(keep * static_cast<double>(sorted.size())));
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
+    const double limit = sorted[k];
+    Eigen::Matrix3Xd src(3, n), dst(3, n);
+    int c = 0;
+    for (int i = 0; i < n; ++i)
+      if (ok[i] && m[i].distance <= limit) {
+        src.col(c) = X.row(i).transpose();
+        dst.col(c) = m[i].point;
+        ++c;
+      }
+    if (c < 10) break;
+    const Eigen::Matrix4d A = Eigen::umeyama(src.leftCols(c), dst.leftCols(c), true);
+    Similarity next;
+    next.s = A.block<3, 3>(0, 0).col(0).norm();
+    next.R = A.block<3, 3>(0, 0) / next.s;
+    next.t = A.block<3, 1>(0, 3);
+    if (next.s < minScale || next.s > maxScale) {
+      // Keep the face's size within a human range: refit the rotation at the clamped scale.
+      next.s = std::clamp(next.s, minScale, maxScale);
+      const Vec3 cs = src.leftCols(c).rowwise().mean(), cd = dst.leftCols(c).rowwise().mean();
+      next.t = cd - next.s * (next.R * cs);
+    }
+    const double change = (next.R - T.R).norm() + std::abs(next.s - T.s) + (next.t - T.t).norm() * 1e-2;
+    T = next;
+    if (change < 1e-7) {
+      iterations = it + 1;  // one more pass scores the final placement
+    }
+  }
+  return score;
+}
+
+struct Template {
+  Head head;
+  MatX3 V;
+  MatX3 N;
+  std::vector<std::pair<int, int>> edges;
+};
+
+Template makeTemplate(int levels) {
+  Template t;
+  DefaultHeadOptions o;
+  o.subdivisionLevels = levels;
+  t.head = loadDefaultHead(o);
+  t.V = t.head.mesh.V;
+  t.N = vertexNormals(t.V, t.head.mesh.F);
+  const MatX3i& F = t.head.mesh.F;
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      t.edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(t.edges.begin(), t.edges.end());
+  t.edges.erase(std::unique(t.edges.begin(), t.edges.end()), t.edges.end());
+  return t;
+}
+
+// Non-rigid ICP (Amberg et al. 2007, eq. 12): one affine map X_i (4×3) per template vertex,
+// minimising α²‖(M ⊗ G) X‖² + ‖W (D X − U)‖², M the edge–vertex incidence, G = diag(1,1,1,γ), D
+// the template's homogeneous vertices, U the closest target points, W 1 for a pair with compatible
+// normals off the target's boundary, else 0. For each stiffness α of a decreasing schedule it
+// solves until X changes by < 1e-4 (at most 3 solves). Returns the deformed template.
+MatX3 nonRigidIcp(const Target& tg, const Template& tp, const MatX3& start, const std::vector<double>& alphas,
+                  std::vector<double>& residual, std::vector<char>& valid) {
+  const int n = static_cast<int>(start.rows());
+  const int E = static_cast<int>(tp.edges.size());
+  const double gamma = 1.0;
+  // Stiffness term (M ⊗ G)ᵀ(M ⊗ G): constant.
+  std::vector<Triplet> st;
+  st.reserve(static_cast<size_t>(E) * 16);
+  for (const auto& [a, b] : tp.edges)
+    for (int k = 0; k < 4; ++k) {
+      const double g2 = k == 3 ? gamma * gamma : 1.0;
+      st.emplace_back(4 * a + k, 4 * a + k, g2);
+      st.emplace_back(4 * b + k, 4 * b + k, g2);
+      st.emplace_back(4 * a + k, 4 * b + k, -g2);
+      st.emplace_back(4 * b + k, 4 * a + k, -g2);
+    }
+  SparseMat S(4 * n, 4 * n);
+  S.setFromTriplets(st.begin(), st.end());
+  Eigen::Matrix<double, Eigen::Dynamic, 4> Vh(n, 4);
+  Vh.leftCols<3>() = start;
+  Vh.col(3).setOnes();
+  MatX X = MatX::Zero(4 * n, 3);
+  for (int i = 0; i < n; ++i) X.block<3, 3>(4 * i, 0).setIdentity();
+
+  Eigen::SimplicialLDLT<SparseMat> solver;
+  bool analysed = false;
+  MatX3 cur = start;
+  residual.assign(n, 0.0);
+  valid.assign(n, 0);
+  for (const double alpha : alphas) {
+    for (int inner = 0; inner < 3; ++inner) {
+      const MatX3 Nc = vertexNormals(cur, tp.head.mesh.F);
+      std::vector<Triplet> kt;
+      kt.reserve(static_cast<size_t>(n) * 16);
+      MatX B = MatX::Zero(4 * n, 3);
+      for (int i = 0; i < n; ++i) {
+        const Match m = match(tg, cur.row(i).transpose());
+        residual[i] = m.distance;
+        const bool ok = !m.onBoundary && Nc.row(i).dot(m.normal.transpose()) > 0.5;
+        valid[i] = ok;
+        // Zero weight keeps the entry, so the pattern (analysed once) never changes.
+        const Eigen::Vector4d v = ok ? Eigen::Vector4d(Vh.row(i).transpose()) : Eigen::Vector4d::Zero();
+        for (int r = 0; r < 4; ++r) {
+          for (int c = 0; c < 4; ++c) kt.emplace_back(4 * i + r, 4 * i + c, v(r) * v(c));
+          B.row(4 * i + r) += v(r) * m.point.transpose();
+        }
+      }
+      SparseMat K(4 * n, 4 * n);
+      K.setFromTriplets(kt.begin(), kt.end());
+      K += alpha * alpha * S;
+      if (!analysed) {
+        solver.analyzePattern(K);
+        analysed = true;
+      }
+      solver.factorize(K);
+      if (solver.info() != Eigen::Success) throw NumericalError("non-rigid ICP: factorisation failed");
+      const MatX Xn = solver.solve(B);
+      const double change = (Xn - X).norm() / std::sqrt(static_cast<double>(n));
+      X = Xn;
+      for (int i = 0; i < n; ++i) cur.row(i) = Vh.row(i) * X.block<4, 3>(4 * i, 0);
+      if (change < 1e-4) break;
+    }
+  }
+  for (int i = 0; i < n; ++i) residual[i] = match(tg, cur.row(i).transpose()).distance;
+  return cur;
+}
+
+// The boundary loop (if any) that is the opening between two corner points a and b: its centroid
+// lies within 0.35·|a − b| of their midpoint and its length is at most 4·|a − b|.
+const std::vector<int>* openingBetween(const std::vector<std::vector<int>>& loops, const MatX3& V,
+                                       const Vec3& a, const Vec3& b) {
+  const double w = (a - b).norm();
+  const Vec3 mid = 0.5 * (a + b);
+  const std::vector<int>* best = nullptr;
+  double bestD = 0.35 * w;
+  for (const auto& loop : loops) {
+    Vec3 c = Vec3::Zero();
+    double len = 0.0;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      c += V.row(loop[i]).transpose();
+      len += (V.row(loop[i]) - V.row(loop[(i + 1) % loop.size()])).norm();
+    }
+    c /= static_cast<double>(loop.size());
+    const double d = (c - mid).norm();
+    if (len <= 4.0 * w && d < bestD) {
+      bestD = d;
+      best = &loop;
+    }
+  }
+  return best;
+}
+
+// The loop vertex farthest along direction dir.
+int extremeAlong(const std::vector<int>& loop, const MatX3& V, const Vec3& dir) {
+  int best = loop.front();
+  for (int v : loop)
+    if (V.row(v).dot(dir.transpose()) > V.row(best).dot(dir.transpose())) best = v;
+  return best;
+}
+
+int nearestOf(const std::vector<int>& loop, const MatX3& V, const Vec3& p) {
+  int best = loop.front();
+  for (int v : loop)
+    if ((V.row(v).transpose() - p).squaredNorm() < (V.row(best).transpose() - p).squaredNorm()) best = v;
+  return best;
+}
+
+}  // namespace
+
+AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& options) {
+  const std::string& file = mesh.sourcePath;
+  auto notAHead = [&](const std::string& why) { return InputError("not a head: " + why, file); };
+  if (mesh.triangleCount() == 0) throw notAHead("the mesh has no triangles");
+  AutoLandmarks out;
+
+  // Pieces: the skin is the largest by area; eyeballs, teeth and the like are left out.
+  int pieces = 0;
+  const std::vector<int> label = pieceLabels(mesh, pieces);
+  std::vector<double> area(pieces, 0.0);
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    area[label[mesh.F(t, 0)]] += triangleArea(mesh.V.row(mesh.F(t, 0)), mesh.V.row(mesh.F(t, 1)),
+                                             mesh.V.row(mesh.F(t, 2)));
+  const int skin = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
+  for (int p = 0; p < pieces; ++p)
+    if (p != skin && area[p] > 0.5 * area[skin])
+      throw notAHead(fmt::format("the mesh has {} pieces of similar size (the two largest hold {:.0f}% and "
+                                 "{:.0f}% of its area): give one head per file",
+                                 pieces, 100.0 * area[skin] / (area[skin] + area[p]),
+                                 100.0 * area[p] / (area[skin] + area[p])));
+  out.otherPieces = pieces - 1;
+
+  Target tg;
+  std::vector<int> skinTris;
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    if (label[mesh.F(t, 0)] == skin) skinTris.push_back(t);
+  tg.F.resize(static_cast<long>(skinTris.size()), 3);
+  for (size_t i = 0; i < skinTris.size(); ++i) tg.F.row(static_cast<long>(i)) = mesh.F.row(skinTris[i]);
+  for (int v = 0; v < mesh.vertexCount(); ++v)
+    if (label[v] == skin) tg.skinIds.push_back(v);
+  out.skinVertices = static_cast<int>(tg.skinIds.size());
+  MatX3 P(static_cast<long>(tg.skinIds.size()), 3);
+  for (size_t i = 0; i < tg.skinIds.size(); ++i) P.row(static_cast<long>(i)) = mesh.V.row(tg.skinIds[i]);
+
+  // Flat: a head is about as deep as it is wide.
+  const auto [E, sd] = principalAxes(P);
+  if (sd(2) < 0.1 * sd(0))
+    throw notAHead(fmt::format("the mesh is flat (its thinnest principal extent is {:.1f}% of its widest; "
+                               "a head is about as deep as it is wide)",
+                               100.0 * sd(2) / std::max(sd(0), 1e-300)));
+
+  // Units: a head's bounding-box diagonal is 20–80 cm (a face mask ~26 cm, a bust ~60 cm).
+  const double diag = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+  LengthUnit unit = LengthUnit::cm;
+  double bestLog = 1e300;
+  for (const LengthUnit u : {LengthUnit::cm, LengthUnit::m, LengthUnit::mm}) {
+    const double l = std::abs(std::log(diag * centimetresPer(u) / 35.0));
+    if (l < bestLog) {
+      bestLog = l;
+      unit = u;
+    }
+  }
+  const double dcm = diag * centimetresPer(unit);
+  if (!(dcm >= 10.0 && dcm <= 150.0))
+    throw notAHead(fmt::format("its size fits no unit (bounding-box diagonal {:.4g}: a head's is 20-80 cm)", diag));
+  if (options.unit && *options.unit != unit)
+    throw InputError(fmt::format("head scale: the mesh read in {} has a bounding-box diagonal of {:.3g} cm, "
+                                 "a head's is 20-80 cm (in {} it would be {:.3g} cm): probably --units {}",
+                                 lengthUnitName(*options.unit), diag * centimetresPer(*options.unit),
+                                 lengthUnitName(unit), dcm, lengthUnitName(unit)),
+                     file);
+  out.unit = unit;
+  out.unitInferred = !options.unit.has_value();
+  const double cmPer = centimetresPer(unit);
+
+  tg.V = mesh.V * cmPer;
+  tg.N = vertexNormals(tg.V, tg.F);
+  tg.boundary.assign(mesh.vertexCount(), 0);
+  const auto loops = boundaryLoops(tg.F, mesh.vertexCount());
+  for (const auto& l : loops)
+    for (int v : l) tg.boundary[v] = 1;
+  const SurfaceLocator locator(tg.V, tg.F, tg.N);
+  tg.loc = &locator;
+  const MatX3 Pcm = P * cmPer;
+
+  // Template and its coarse sample: MediaPipe's 468 original vertices (ids 0–467 at every level).
+  const Template tp = makeTemplate(options.templateLevels);
+  const int coarseN = 468;
+  const MatX3 Xc = tp.V.topRows(coarseN), Nc = tp.N.topRows(coarseN);
+  const Vec3 noseT = tp.V.row(tp.head.landmarks.vertex("nose_tip")).transpose();
+
+  // Candidate orientations: the 24 axis-aligned ones (meshes come Y-up or Z-up, facing an axis)
+  // and the 24 that map the template's principal axes onto the mesh's.
+  const auto [Et, sdt] = principalAxes(tp.V);
+  (void)sdt;
+  std::vector<Mat3> candidates;
+  for (const Mat3& S : axisRotations()) candidates.push_back(S);
+  for (const Mat3& S : axisRotations()) candidates.push_back(E * S * Et.transpose());
+  // Every candidate: 6 steps on every third of the 468 points; the best four: 15 more on all 468;
+  // the best of those: to convergence on every template vertex.
+  const double cap = 1.0;  // cm
+  MatX3 Xs(coarseN / 3, 3), Ns(coarseN / 3, 3);
+  for (int i = 0; i < coarseN / 3; ++i) {
+    Xs.row(i) = Xc.row(3 * i);
+    Ns.row(i) = Nc.row(3 * i);
+  }
+  std::vector<std::pair<double, int>> ranked;
+  std::vector<Similarity> placed(candidates.size());
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    const Mat3& R = candidates[c];
+    // Nose tip on the mesh's most forward point along the candidate's facing direction.
+    Eigen::Index imax = 0;
+    (Pcm * R.col(2)).maxCoeff(&imax);
+    placed[c].R = R;
+    placed[c].t = Pcm.row(imax).transpose() - R * noseT;
+    ranked.emplace_back(similarityIcp(tg, Xs, Ns, placed[c], 6, 0.8, cap, 0.6, 1.6), static_cast<int>(c));
+  }
+  std::sort(ranked.begin(), ranked.end());
+  Similarity best;
+  double bestScore = 1e300;
+  for (size_t r = 0; r < std::min<size_t>(4, ranked.size()); ++r) {
+    Similarity T = placed[static_cast<size_t>(ranked[r].second)];
+    const double score = similarityIcp(tg, Xc, Nc, T, 15, 0.8, cap, 0.6, 1.6);
+    if (score < bestScore - 1e-12) {
+      bestScore = score;
+      best = T;
+    }
+  }
+  const double fineScore = similarityIcp(tg, tp.V, tp.N, best, 60, 0.9, cap, 0.6, 1.6);
+  out.similarityScale = best.s;
+  out.placementRmsMm = 10.0 * std::sqrt(fineScore);
+
+  MatX3 start(tp.V.rows(), 3);
+  for (int i = 0; i < tp.V.rows(); ++i) start.row(i) = best.apply(tp.V.row(i).transpose()).transpose();
+  // A face fits: with the nose in place, most template points lie within 1 cm of the skin.
+  // ICT 3.8 mm, the built-in head 2.1 mm, a sphere of radius 9 cm 6.3 mm: 8 mm leaves real heads
+  // room; the nose test below catches the smooth shapes that pass.
+  if (fineScore > 0.64)
+    throw notAHead(fmt::format("no face fits it (the built-in face, best placed, lies {:.1f} mm from the "
+                               "surface in root mean square; a head's is under 8 mm)",
+                               10.0 * std::sqrt(fineScore)));
+
+  std::vector<double> residual;
+  std::vector<char> valid;
+  const MatX3 bent = nonRigidIcp(tg, tp, start, options.stiffness, residual, valid);
+  double meanRes = 0.0;
+  for (double r : residual) meanRes += r;
+  out.fitMeanDistanceCm = meanRes / std::max<size_t>(1, residual.size());
+
+  // Labels move by closest point: each template landmark to the skin vertex nearest its bent position.
+  const Landmarks& tl = tp.head.landmarks;
+  auto transfer = [&](int tv) { return match(tg, bent.row(tv).transpose()).nearestVertex; };
+  std::vector<int> lm68(68);
+  for (int k = 0; k < 68; ++k) lm68[k] = transfer(tl.multipie68[static_cast<size_t>(k)]);
+  std::vector<double> snapCm(68, 0.0);
+  const MatX3& V = tg.V;
+  auto at = [&](int v) { return Vec3(V.row(v).transpose()); };
+
+  // Openings: eye corners and lid points onto the eye loops, inner lip points onto the mouth loop.
+  auto snapOpening = [&](int cornerA, int cornerB, const std::vector<int>& others) {
+    const std::vector<int>* loop = openingBetween(loops, V, at(lm68[cornerA]), at(lm68[cornerB]));
+    if (!loop) return false;
+    const Vec3 dir = (at(lm68[cornerA]) - at(lm68[cornerB])).normalized();
+    const int a = extremeAlong(*loop, V, dir), b = extremeAlong(*loop, V, -dir);
+    snapCm[cornerA] = (at(a) - at(lm68[cornerA])).norm();
+    snapCm[cornerB] = (at(b) - at(lm68[cornerB])).norm();
+    lm68[cornerA] = a;
+    lm68[cornerB] = b;
+    for (int k : others) {
+      const int v = nearestOf(*loop, V, at(lm68[k]));
+      snapCm[k] = (at(v) - at(lm68[k])).norm();
+      lm68[k] = v;
+    }
+    return true;
+  };
+  const std::vector<int> lmFit = lm68;
+  const bool rightEye = snapOpening(36, 39, {37, 38, 40, 41});
+  const bool leftEye = snapOpening(45, 42, {43, 44, 46, 47});
+  out.eyesOpen = rightEye && leftEye;
+  out.mouthOpen = snapOpening(60, 64, {61, 62, 63, 65, 66, 67});
+  if (!options.snapToOpenings) {
+    lm68 = lmFit;
+    std::fill(snapCm.begin(), snapCm.end(), 0.0);
+  }
+
+  // Confidence: the share of the template's vertices within 1.5 cm of the landmark that found a
+  // compatible skin point, times exp(−(d/2 mm)²) for the bent landmark's distance d to the skin and
+  // exp(−(s/5 mm)²) for the distance s it was snapped by.
+  auto confidence = [&](int tv, double snap) {
+    int near = 0, ok = 0;
+    for (int i = 0; i < bent.rows(); ++i)
+      if ((bent.row(i) - bent.row(tv)).squaredNorm() < 1.5 * 1.5) {
+        ++near;
+        ok += valid[i];
+      }
+    const double share = near ? static_cast<double>(ok) / near : 0.0;
+    return share * std::exp(-std::pow(residual[tv] / 0.2, 2)) * std::exp(-std::pow(snap / 0.5, 2));
+  };
+  out.confidence68.resize(68);
+  for (int k = 0; k < 68; ++k) out.confidence68[k] = confidence(tl.multipie68[static_cast<size_t>(k)], snapCm[k]);
+
+  // Named points: a template name on one of its Multi-PIE vertices takes that point's result.
+  out.landmarks.multipie68 = lm68;
+  for (const auto& [name, tv] : tl.named) {
+    const auto it = std::find(tl.multipie68.begin(), tl.multipie68.end(), tv);
+    if (it != tl.multipie68.end()) {
+      const auto k = static_cast<size_t>(it - tl.multipie68.begin());
+      out.landmarks.named[name] = lm68[k];
+      out.namedConfidence[name] = out.confidence68[k];
+    } else {
+      out.landmarks.named[name] = transfer(tv);
+      out.namedConfidence[name] = confidence(tv, 0.0);
+    }
+  }
+  out.landmarks.sourcePath = mesh.sourcePath.empty() ? "<automatic landmarks>" : mesh.sourcePath + " (automatic landmarks)";
+  out.frame = faceFrame(mesh.V, out.landmarks);
+  // A nose: the tip stands 0.44–0.45 eye widths in front of the outer eye corners on ICT and the
+  // built-in head; a smooth shape the face was bent onto has none.
+  const double nose = out.frame.toFrame(Vec3(mesh.V.row(out.landmarks.vertex("nose_tip")).transpose())).z();
+  if (nose < 0.25)
+    throw notAHead(fmt::format("no nose (the tip found stands {:.2f} eye widths in front of the outer eye corners; "
+                               "a face's nose 0.4-0.5)",
+                               nose));
+
+  if (!out.eyesOpen)
+    out.warnings.push_back(std::string(rightEye || leftEye ? "one eye has" : "the eyes have") +
+                           " no opening: no lids, so blinks do nothing; the eye corners come from the fit alone");
+  if (!out.mouthOpen)
+    out.warnings.push_back("the mouth has no opening: no lip contact, and the jaw stretches the skin; "
+                           "the inner lip points come from the fit alone");
+  for (int k = 0; k < 68; ++k)
+    if (out.confidence68[k] < 0.5)
+      out.warnings.push_back(fmt::format("Multi-PIE point {} (vertex {}) is uncertain (confidence {:.2f}): check it",
+                                         k, lm68[k], out.confidence68[k]));
+  return out;
+}
+
+int multipieMirror(int k) {
+  if (k < 0 || k >= 68) throw CheckError("multipieMirror: no Multi-PIE point " + std::to_string(k));
+  if (k <= 16) return 16 - k;
+  if (k <= 26) return 43 - k;                     // brows 17–21 ↔ 26–22
+  if (k <= 30) return k;                          // nose bridge
+  if (k <= 35) return 66 - k;                     // nose base 31–35
+  static const std::array<int, 12> eyes = {45, 44, 43, 42, 47, 46, 39, 38, 37, 36, 41, 40};
+  if (k <= 47) return eyes[static_cast<size_t>(k - 36)];
+  if (k <= 54) return 102 - k;                    // outer lips 48–54 (51 on the midline)
+  if (k <= 59) return 114 - k;                    // outer lips 55–59 (57 on the midline)
+  if (k <= 64) return 124 - k;                    // inner lips 60–64 (62 on the midline)
+  return 132 - k;                                 // inner lips 65–67 (66 on the midline)
+}
+
+std::vector<std::string> checkGivenLandmarks(const TriMesh& mesh, const Landmarks& given, const AutoLandmarks& found) {
+  std::vector<std::string> warnings;
+  if (given.multipie68.size() != 68 || found.landmarks.multipie68.size() != 68) return warnings;
+  const double mm = 10.0 * centimetresPer(found.unit);
+  auto dist = [&](int a, int b) { return mm * (mesh.V.row(a) - mesh.V.row(b)).norm(); };
+  // Means over the points off the jaw line (17–67): the automatic jaw points follow the built-in
+  // head's rim, 1–3 cm from a frontal jaw line, whichever file is right.
+  std::vector<double> asGiven(68, 0.0);
+  double m0 = 0.0, m1 = 0.0, mm2 = 0.0;
+  for (int k = 0; k < 68; ++k) {
+    const int auto_ = found.landmarks.multipie68[static_cast<size_t>(k)];
+    const int g = given.multipie68[static_cast<size_t>(k)];
+    asGiven[static_cast<size_t>(k)] = dist(g, auto_);
+    if (k < 17) continue;
+    m0 += asGiven[static_cast<size_t>(k)] / 51.0;
+    m1 += (g >= 1 ? dist(g - 1, auto_) : 1e6) / 51.0;
+    mm2 += dist(given.multipie68[static_cast<size_t>(multipieMirror(k))], auto_) / 51.0;
+  }
+  if (m1 < 5.0 && m1 < 0.6 * m0)
+    throw InputError(fmt::format("the landmark ids look 1-based (an OBJ's numbering): as given Multi-PIE points 17-67 "
+                                 "lie a mean {:.1f} mm from the automatic landmarks, with every id less 1 {:.1f} mm; "
+                                 "subtract 1 from every id (vertex ids are 0-based)",
+                                 m0, m1),
+                     given.sourcePath);
+  if (mm2 < 5.0 && mm2 < 0.6 * m0)
+    throw InputError(fmt::format("left and right look swapped: as given Multi-PIE points 17-67 lie a mean {:.1f} "
+                                 "mm from the automatic landmarks, with each side's labels swapped {:.1f} mm; 'right' and "
+                                 "'left' are the subject's (Multi-PIE point 36, right_eye_outer, is on the subject's "
+                                 "right, image left)",
+                                 m0, mm2),
+                     given.sourcePath);
+  std::string far;
+  int count = 0;
+  for (int k = 17; k < 68; ++k)
+    if (asGiven[static_cast<size_t>(k)] > 15.0) {
+      far += fmt::format("{}{} ({:.1f} mm)", count ? ", " : "", k, asGiven[static_cast<size_t>(k)]);
+      ++count;
+    }
+  if (count)
+    warnings.push_back(fmt::format("{}: {} Multi-PIE point(s) lie more than 1.5 cm from the automatic landmarks: {} "
+                                   "(check them: myoshell landmarks --picture)",
+                                   given.sourcePath.empty() ? "landmarks" : given.sourcePath, count, far));
+  return warnings;
+}
+
+}  // namespace myo
