@@ -535,7 +535,13 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   if (!out.mouthOpen)
     out.warnings.push_back("the mouth has no opening: no lip contact, and the jaw stretches the skin; "
                            "the inner lip points come from the fit alone");
-  for (int k = 0; k < 68; ++k)
+  // The template's jaw labels sit on the built-in head's rim, behind and below a frontal jaw line:
+  // bent onto ICT they land 15 mm (mean) from its given points (docs/heads.md). Said, and marked
+  // uncertain, until the template's jaw is relabelled.
+  for (int k = 0; k <= 16; ++k) out.confidence68[k] = std::min(out.confidence68[k], 0.3);
+  out.warnings.push_back("the jaw line (Multi-PIE points 0-16) is approximate (15 mm from the given points on ICT): "
+                         "check it before rig, drive or pose, which build the jaw from it");
+  for (int k = 17; k < 68; ++k)
     if (out.confidence68[k] < 0.5)
       out.warnings.push_back(fmt::format("Multi-PIE point {} (vertex {}) is uncertain (confidence {:.2f}): check it",
                                          k, lm68[k], out.confidence68[k]));
