@@ -41,9 +41,11 @@ double fraction(const MatX3& u, const MatX3& settled) {
 
 // Several muscles of the whole face at once, two of them rings (the lower lip's, the right
 // palpebral), the jaw open 10° (the lips on the teeth: contact acts), the head pitched 30° (a
-// gravity load): 3 s from rest end at the same shape to 1e-6 cm whichever the response.
+// gravity load): 1.2 s from rest end at the same shape to 1e-6 cm whichever the response (5× the
+// skin's mass damping, on which the fixed point does not depend, settles them in that time).
 TEST(FollowResponse, SettlesWhereDynamicDoes) {
-  const std::string text = R"({"model": "anatomical", "duration": 3, "fps": 30, "numerics": {"response": "RESPONSE"},
+  const std::string text = R"({"model": "anatomical", "duration": 1.2, "fps": 30, "numerics": {"response": "RESPONSE"},
+    "skin": {"damping_mass": 40},
     "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 1}],
       "orbicularis_oris_lower": [{"t": 0, "value": 0.6}], "orbicularis_oculi_palpebral_right": [{"t": 0, "value": 0.5}],
       "depressor_anguli_oris_right": [{"t": 0, "value": 0.7}], "frontalis_medial_left": [{"t": 0, "value": 0.4}]},
@@ -56,7 +58,7 @@ TEST(FollowResponse, SettlesWhereDynamicDoes) {
     ASSERT_EQ(anatomical(*p).stepper().response(), i ? SkinResponse::Follow : SkinResponse::Dynamic);
     ASSERT_TRUE(p->playTo(0.05));
     const MatX3 at50ms = p->simulator().skinDisplacement();
-    ASSERT_TRUE(p->playTo(3.0));
+    ASSERT_TRUE(p->playTo(1.2));
     u[i] = p->simulator().skinDisplacement();
     p->simulator().skinPositions(placed[i]);
     early[i] = fraction(at50ms, u[i]);
@@ -126,18 +128,20 @@ TEST(FollowResponse, KeepsAHeadTurnsSecondaryMotion) {
 }
 
 // A step of the zygomaticus 0 → 1 at t = 0 (contact on: the lips meet the teeth): with follow the
-// skin has passed half its settled shape after the first step; with dynamic it has not.
+// skin has passed half its settled shape (the static solve's, with contact) after the first step;
+// with dynamic it has not.
 TEST(FollowResponse, TheSkinIsAtItsShapeAfterTheFirstStep) {
-  const std::string text = R"({"model": "anatomical", "duration": 1.5, "fps": 30, "numerics": {"response": "RESPONSE"},
+  const std::string text = R"({"model": "anatomical", "duration": 0.1, "fps": 30, "numerics": {"response": "RESPONSE"},
     "timeline": {"activations": {"zygomaticus_major_left": [{"t": 0, "value": 1}]}}})";
   double first[2];
   int i = 0;
   for (const char* response : {"dynamic", "follow"}) {
     auto p = player(text, response);
     p->step();
-    const MatX3 u1 = p->simulator().skinDisplacement();
-    ASSERT_TRUE(p->playTo(1.5));
-    first[i++] = fraction(u1, p->simulator().skinDisplacement());
+    const auto& skin = dynamic_cast<const AnatomicalFace&>(p->model()).skin();
+    const SettledSkin settled = skin.settle(anatomical(*p).loads(), false);
+    ASSERT_TRUE(settled.converged);
+    first[i++] = fraction(p->simulator().skinDisplacement(), settled.u);
   }
   RecordProperty("fraction_after_one_step_dynamic_follow", sci(first[0]) + " / " + sci(first[1]));
   EXPECT_LT(first[0], 0.5);
