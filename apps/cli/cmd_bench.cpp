@@ -17,7 +17,8 @@
 // cache of their own), the cached start (built again from it) and the mean phases of a step
 // (StepTimings: muscles, springs / force assembly, skin channels) and `read_us`, what an output frame
 // pays besides its steps (one skinPositions after a step). Row `whole_face` does the same for
-// the anatomical model with the whole face's 39 muscles, 37 of them driven (scenes/bench/whole_face.json).
+// the anatomical model with the whole face's 39 muscles, 37 of them driven (scenes/bench/whole_face.json);
+// `whole_face_follow` the same scene with the follow response (whole_face_follow.json).
 //
 // Every row also reports, beside steps/s (docs/PERFORMANCE.md, "Ratios"):
 //   floor_ratio     its step time over the time to stream once, in this process, the basis data
@@ -107,6 +108,8 @@ std::vector<BenchRow> fullRows() {
                0.0, 1.0, false, 0, "bench"});
   r.push_back({"full", "whole_face", "the whole face's 39 muscles (6 rings), 37 at 0.5 (the levators rest) + gravity + drag, model: anatomical",
                "whole_face.json", {}, 0.0, 1.0, false, 0, "bench"});
+  r.push_back({"full", "whole_face_follow", "whole_face with numerics.response: follow (docs/live.md, \"Lag\")",
+               "whole_face_follow.json", {}, 0.0, 1.0, false, 0, "bench"});
   return r;
 }
 

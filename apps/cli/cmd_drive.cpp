@@ -1,6 +1,6 @@
 // `myoshell drive PERFORMANCE [--head default|DIR|OBJ --landmarks F --units U] [--library face]
 // [--map MAP] [--input openface|livelink|mediapipe] [--au-scale X] [--face N] [--min-confidence C]
-// [--input-fps F] [--filter on|off] [--min-cutoff HZ] [--beta B] [--start S] [--end S]
+// [--input-fps F] [--filter on|off] [--min-cutoff HZ] [--beta B] [--response dynamic|follow] [--start S] [--end S]
 // [--format glb,pc2,obj] [--video] [--head-motion] --out DIR [--cache DIR] [--json]`: plays a
 // recorded performance (OpenFace action units, Live Link Face or MediaPipe ARKit weights) on a head
 // and writes the animation as `run` does (DIR/NAME.glb, NAME the file's stem). It is a scene with a
@@ -81,6 +81,10 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--min-cutoff", a->scene.oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")
       ->capture_default_str();
   sub->add_option("--beta", a->scene.oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
+  sub->add_option("--response", a->scene.response,
+                  "dynamic (the skin trails the activations by its dynamics) or follow (their quasi-static "
+                  "shape at once, only gravity, drags and contact lag; docs/live.md)")
+      ->capture_default_str();
   sub->add_option("--start", a->scene.start, "play from this time, s after the first frame (default 0)")
       ->check(numberAtLeast(0));
   // Without --end the take plays to its last frame (PerformanceSceneDef::end < 0); a negative

@@ -107,6 +107,16 @@ steps: activations (0 at first), the gravity scale (1), the head pose (upright) 
       .def("step", &step, py::arg("n") = 1,
            "Advances n steps of dt (the GIL is released; Ctrl-C stops between blocks of steps). SimulationError "
            "when the skin blows up.")
+      .def_property("response",
+          [](const SimulatorHandle& s) { return s.sim.response() == SkinResponse::Follow ? "follow" : "dynamic"; },
+          [](SimulatorHandle& s, const std::string& r) {
+            if (r != "dynamic" && r != "follow")
+              throw InputError("response: expected dynamic or follow (got '" + r + "')");
+            s.sim.setResponse(r == "follow" ? SkinResponse::Follow : SkinResponse::Dynamic);
+          },
+          "The skin's response, 'dynamic' (the face's scene setting, by default) or 'follow': the "
+          "activations' quasi-static shape at once, only gravity, head turns, drags and contact lag "
+          "(docs/live.md, \"Lag\"). A switch keeps the current shape.")
       .def("reset", [](SimulatorHandle& s) { s.sim.reset(); }, "Back to the neutral face at rest (loads kept).")
       .def_property_readonly("step_count", [](const SimulatorHandle& s) { return s.sim.stepCount(); })
       .def_property_readonly("time", [](const SimulatorHandle& s) {

@@ -37,7 +37,15 @@ AnatomicalStepper::AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin)
   for (const AnatomicalSkin::Drag& d : skin_->drags_) grips_.push_back({d.vertices, MatX()});
   if (skin_->settings().warping) force_ = MatX3::Zero(skin_->basis()->fullVertexCount, 3);
   penalty_ = skin_->penalty_;
+  response_ = skin_->settings().response;
   fitToBasis();
+}
+
+void AnatomicalStepper::setResponse(SkinResponse response) {
+  if (response == response_) return;
+  response_ = response;
+  levelRate_.setZero();  // Follow: levels are targets; Dynamic: they start at rest where they are
+  fitToBasis();          // Follow: the centre from the levels; the integrator's q is kept
 }
 
 // The stepper's basis is the skin's until a grab extends it (anatomical_grab.cpp).
@@ -60,6 +68,20 @@ void AnatomicalStepper::fitToBasis() {
     loadCoords_ = VecX::Zero(loadModes_.cols());
     modalForce_ = VecX::Zero(d);
   }
+  if (response_ == SkinResponse::Follow) {
+    // c = Λ⁻¹Φᵀ Σ a_m F_m: per mode the static response of the activations' loads (λ_j > 0: the
+    // skin is held by the skull). After a grab the centre is re-expressed in the new basis; what
+    // the old one held beyond it is carried by r.
+    const Eigen::Index M = level_.size();
+    quasiStatic_ = (skin_->settings().warping ? skin_->modalLoadPatterns(B) : loadModes_).leftCols(M);
+    quasiStatic_.array().colwise() /= B.lambda.array();
+    centre_ = quasiStatic_ * level_;
+    centreNext_ = centre_;
+  } else {
+    quasiStatic_.resize(0, 0);
+    centre_.resize(0);
+    centreNext_.resize(0);
+  }
   if (penalty_) {
     contact_ = penalty_->workspace();
     contactStiffness_ = MatX::Zero(d, d);
@@ -73,6 +95,7 @@ void AnatomicalStepper::fitToBasis() {
 void AnatomicalStepper::reset() {
   level_.setZero();
   levelRate_.setZero();
+  if (centre_.size()) centre_.setZero();
   integrator_.reset();
   times_ = {};
 }
@@ -81,8 +104,14 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
   skin_->validateLoads(loads);
   Stopwatch clock;
   const double h = skin_->settings().dt;
+  const bool follow = response_ == SkinResponse::Follow;
+  if (follow) {
+    // Follow: the levels are the targets; the centre their quasi-static response (d×M).
+    level_ = loads.activations;
+    centreNext_.noalias() = quasiStatic_ * level_;
+  }
   // Muscles: critically damped follow of the target at ω (implicit Euler: stable for any ω).
-  for (Eigen::Index m = 0; m < level_.size(); ++m) {
+  for (Eigen::Index m = 0; !follow && m < level_.size(); ++m) {
     const double w = skin_->muscles()[static_cast<size_t>(m)].naturalFrequency;
     const double a = loads.activations(m);
     levelRate_(m) = (levelRate_(m) + h * w * w * (a - level_(m))) / (1.0 + 2.0 * h * w + h * h * w * w);
@@ -100,7 +129,13 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     loadCoords_.tail(loadCoords_.size() - M - 3).setZero();
     for (size_t k = 0; k < loads.drags.size(); ++k)
       loadCoords_.segment<3>(M + 3 + 3 * static_cast<Eigen::Index>(k)) = loads.drags[k];
-    modalForce_.noalias() = loadModes_ * loadCoords_;
+    // Follow: the activations' columns are balanced by the centre (Λc = their f̃): r gets the rest.
+    if (follow) {
+      const Eigen::Index rest = loadCoords_.size() - M;
+      modalForce_.noalias() = loadModes_.rightCols(rest) * loadCoords_.tail(rest);
+    } else {
+      modalForce_.noalias() = loadModes_ * loadCoords_;
+    }
     // The contact penalty, linearly implicit (docs/mouth_contact.md, "Penalty forces"): at q_n its
     // force f_c and stiffness K_c; the step's force f_c − K_c Δ with Δ = q⁺ − q_n, so that
     // q⁺ = a q + b q̇ + g (f̃ + f_c − K_c Δ) gives (I + diag(g) K_c) Δ = a q + b q̇ + g (f̃ + f_c) − q.
@@ -114,8 +149,13 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
         const VecX& q = integrator_.q();
         const VecX& g = integrator_.stepQFromForce();
         modalForce_ += contactForce_;
-        contactStep_ = integrator_.stepQFromQ().cwiseProduct(q) + integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) +
-                       g.cwiseProduct(modalForce_) - q;
+        // Follow: the same about the centre, q⁺ = c⁺ + a (q − c) + b ṙ + g (f̃ + f_c − K_c Δ).
+        if (follow)
+          contactStep_ = centreNext_ + integrator_.stepQFromQ().cwiseProduct(q - centre_) +
+                         integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) + g.cwiseProduct(modalForce_) - q;
+        else
+          contactStep_ = integrator_.stepQFromQ().cwiseProduct(q) +
+                         integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) + g.cwiseProduct(modalForce_) - q;
         // The dashpot βK_c on the step's motion Δ/h joins the stiffness (AnatomicalSettings::contactDamping).
         contactStiffness_ *= 1.0 + skin_->settings().contactDamping / h;
         contactSystem_.noalias() = g.asDiagonal() * contactStiffness_;
@@ -126,7 +166,12 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
       }
     }
     times_.force = clock.seconds() - times_.levels;
-    integrator_.stepModal(modalForce_);
+    if (follow) {
+      integrator_.stepModalAbout(modalForce_, centre_, centreNext_);
+      centre_.swap(centreNext_);
+    } else {
+      integrator_.stepModal(modalForce_);
+    }
     times_.modal = clock.seconds() - times_.levels - times_.force;
     return;
   }
@@ -143,7 +188,12 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
   // Warped: no contact penalty in the step (the projection at output still holds; the warped
   // settle has it). docs/mouth_contact.md, "Penalty forces".
   times_.force = clock.seconds() - times_.levels;
-  integrator_.step(force_);
+  if (follow) {
+    integrator_.stepAbout(force_, centre_, centreNext_);
+    centre_.swap(centreNext_);
+  } else {
+    integrator_.step(force_);
+  }
   times_.modal = clock.seconds() - times_.levels - times_.force;
 }
 

@@ -356,6 +356,12 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     if (stepper == "exact") s.stepper = ModalStepper::Exact;
     else if (stepper == "semi-implicit") s.stepper = ModalStepper::SemiImplicit;
     else r.fail("stepper", "must be \"exact\" or \"semi-implicit\" (got \"" + stepper + "\")");
+    // How the skin answers the activations (docs/live.md, "Lag"): the anatomical model's step only.
+    onlyFor(anatomical, scene, r, "response");
+    const std::string response = r.string("response", "dynamic");
+    if (response == "dynamic") an.response = SkinResponse::Dynamic;
+    else if (response == "follow") an.response = SkinResponse::Follow;
+    else r.fail("response", "must be \"dynamic\" or \"follow\" (got \"" + response + "\")");
     const std::string precision = r.string("precision", "float");
     if (precision == "float") s.precision = ModalPrecision::Float;
     else if (precision == "double") s.precision = ModalPrecision::Double;
@@ -547,7 +553,10 @@ std::string sceneToJson(const SceneDesc& scene) {
       drags.push_back(dj);
     }
     j["drags"] = drags;
-    j["numerics"] = {{"dt", an.dt}, {"skin_modes", an.skinModes}, {"warping", an.warping}};
+    j["numerics"] = {{"dt", an.dt},
+                     {"skin_modes", an.skinModes},
+                     {"warping", an.warping},
+                     {"response", an.response == SkinResponse::Follow ? "follow" : "dynamic"}};
   } else {
     j["skin"] = materialJson(s.skin);
     j["skin"]["damping_mass"] = s.skinDampingMass;

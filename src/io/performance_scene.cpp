@@ -15,6 +15,8 @@ namespace fs = std::filesystem;
 
 SceneDesc performanceScene(const PerformanceSceneDef& a) {
   if (a.filter != "on" && a.filter != "off") throw InputError("--filter: expected on or off (got '" + a.filter + "')");
+  if (a.response != "dynamic" && a.response != "follow")
+    throw InputError("--response: expected dynamic or follow (got '" + a.response + "')");
   if (!fs::is_regular_file(a.performance)) throw InputError("cannot open performance file", a.performance);
   SceneDesc scene;
   scene.name = fs::path(a.performance).stem().string();
@@ -24,6 +26,7 @@ SceneDesc performanceScene(const PerformanceSceneDef& a) {
   scene.head.landmarks = files.landmarks;
   scene.head.units = files.unit;
   scene.muscleLibrary = sceneMuscleLibrary(a.library);
+  scene.anatomical.response = a.response == "follow" ? SkinResponse::Follow : SkinResponse::Dynamic;
   PerformanceDesc& p = scene.performance;
   p.file = fs::absolute(a.performance).string();
   if (!a.input.empty()) p.read.input = performanceInputFromString(a.input);

@@ -484,6 +484,22 @@ void ModalWarpingIntegrator::updateDisplacement() const {
 }
 
 void ModalWarpingIntegrator::step(const MatX3& freeForce) {
+  projectForce(freeForce);
+  // 4: per-mode advance.
+  advance(ftilde_);
+  // 5: w = Ψq, u = R̃(w)Φq.
+  updateDisplacement();
+}
+
+void ModalWarpingIntegrator::stepAbout(const MatX3& freeForce, const VecX& before, const VecX& after) {
+  MYO_CHECK_EQ(after.size(), q_.size());
+  projectForce(freeForce);
+  ftilde_.array() -= lambdaEff_.array() * after.array();
+  advanceAbout(ftilde_, before, after);
+  updateDisplacement();
+}
+
+void ModalWarpingIntegrator::projectForce(const MatX3& freeForce) {
   checkForce(*basis_, freeForce);
   Kernel& k = *kernel_;
   // 1–3: f̃ = Φᵀ R(Ψq)ᵀ F with w = Ψq cached from the last displacement update (same q).
@@ -502,10 +518,6 @@ void ModalWarpingIntegrator::step(const MatX3& freeForce) {
     else
       Kernel::project(k.Bd, k.Yd, k.stride, settings_.warping, freeForce, k.accd, ftilde_);
   }
-  // 4: per-mode advance.
-  advance(ftilde_);
-  // 5: w = Ψq, u = R̃(w)Φq.
-  updateDisplacement();
 }
 
 void ModalWarpingIntegrator::stepModal(const VecX& modalForce) {
@@ -513,6 +525,24 @@ void ModalWarpingIntegrator::stepModal(const VecX& modalForce) {
   MYO_CHECK_EQ(modalForce.size(), q_.size());
   advance(modalForce);
   stale_ = true;
+}
+
+void ModalWarpingIntegrator::stepModalAbout(const VecX& modalForce, const VecX& before, const VecX& after) {
+  MYO_CHECK(!settings_.warping, "channel '" << settings_.channel << "': stepModalAbout needs warping off");
+  MYO_CHECK_EQ(modalForce.size(), q_.size());
+  advanceAbout(modalForce, before, after);
+  stale_ = true;
+}
+
+void ModalWarpingIntegrator::advanceAbout(const VecX& ft, const VecX& before, const VecX& after) {
+  MYO_CHECK_EQ(before.size(), q_.size());
+  MYO_CHECK_EQ(after.size(), q_.size());
+  const Eigen::Index d = q_.size();
+  for (Eigen::Index j = 0; j < d; ++j) {
+    const double r = q_[j] - before[j], v = v_[j], f = ft[j];
+    q_[j] = after[j] + (ca_[j] * r + cb_[j] * v + cg_[j] * f);
+    v_[j] = cc_[j] * r + ce_[j] * v + ck_[j] * f;
+  }
 }
 
 void ModalWarpingIntegrator::advance(const VecX& ft) {

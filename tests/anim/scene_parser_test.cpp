@@ -247,6 +247,20 @@ TEST(SceneParser, TheModelKeyAndKeysOfOneModelOnly) {
   EXPECT_EQ(thesisErrorOf("{\"timeline\": {\"head_pose\": [{\"t\": 0, \"value\": [90, 0, 0]}]}}"),
             "scene.json:1:28: key 'timeline.head_pose'" + anatomical);
   EXPECT_EQ(thesisErrorOf("{\"skin\": {\"attachment\": \"a.json\"}}"), "scene.json:1:25: key 'skin.attachment'" + anatomical);
+  EXPECT_EQ(thesisErrorOf("{\"numerics\": {\"response\": \"follow\"}}"),
+            "scene.json:1:27: key 'numerics.response'" + anatomical);
+}
+
+// numerics.response (docs/live.md, "Lag"): dynamic by default, follow when asked, printed by check
+// and read back; any other value an error at its place.
+TEST(SceneParser, TheResponseKey) {
+  EXPECT_EQ(parseScene("{}").anatomical.response, SkinResponse::Dynamic);
+  const SceneDesc f = parseScene("{\"numerics\": {\"response\": \"follow\"}}");
+  EXPECT_EQ(f.anatomical.response, SkinResponse::Follow);
+  EXPECT_EQ(parseScene(sceneToJson(f)).anatomical.response, SkinResponse::Follow);
+  EXPECT_NE(sceneToJson(parseScene("{}")).find("\"response\": \"dynamic\""), std::string::npos);
+  EXPECT_EQ(errorOf("{\"numerics\": {\"response\": \"instant\"}}"),
+            "scene.json:1:27: key 'numerics.response': must be \"dynamic\" or \"follow\" (got \"instant\")");
 }
 
 // A muscle written in the scene (muscles.extra) follows the scene's model: the keys only the

@@ -66,6 +66,24 @@ def test_steps_equal_cli_run(face, cli, cache_dir, tmp_path):
     assert np.array_equal(player.positions(), frame)
 
 
+def test_the_follow_response_equals_cli_run(face, cli, cache_dir, tmp_path):
+    """Simulator.response = "follow" steps as a scene with numerics.response: follow (docs/live.md)."""
+    scene = tmp_path / "follow.json"
+    scene.write_text(json.dumps(dict(SCENE, name="follow", numerics={"response": "follow"})))
+    cli("run", scene, "--out", tmp_path / "run", "--cache", cache_dir)
+    frame = read_obj_vertices(tmp_path / "run" / "obj" / "follow_0003.obj")
+
+    sim = myoshell.Simulator(face)
+    assert sim.response == "dynamic"
+    sim.response = "follow"
+    assert sim.response == "follow"
+    sim.set_activation("zygomaticus_major_left", 0.6)
+    sim.step(round(0.1 / face.dt))
+    assert np.array_equal(sim.positions(), frame)
+    with pytest.raises(myoshell.InputError, match="response: expected dynamic or follow \\(got 'instant'\\)"):
+        sim.response = "instant"
+
+
 def test_fit_equals_cli(face, cli, cache_dir, tmp_path):
     used = {"zygomaticus_major_right": 0.6, "corrugator_supercilii_left": 0.4}
     target = tmp_path / "target.obj"

@@ -132,6 +132,9 @@ class AnatomicalSimulator : public FaceStepper {
   const StepTimings& lastTimings() const override { return timings_; }
   std::vector<std::string> takeWarnings() override { return {}; }
 
+  // The skin's response (docs/live.md, "Lag"; the face's settings' at first): AnatomicalStepper::setResponse.
+  void setResponse(SkinResponse response) { stepper_->setResponse(response); }
+  SkinResponse response() const { return stepper_->response(); }
   const SkinLoads& loads() const { return loads_; }
   const AnatomicalStepper& stepper() const { return *stepper_; }
 

@@ -27,6 +27,11 @@ namespace myo {
 // (AnatomicalSkin::modalLoadPatterns, d × (M + 3 + 3·drags), made once) with those coordinates:
 // a step reads no basis row and builds no n×3 force; u = Φq is computed when displacement() is
 // read. Warped: the n×3 force is assembled and rotated per vertex (ModalWarpingIntegrator::step).
+//
+// Response (AnatomicalSettings::response; docs/live.md, "Lag"): Dynamic as above; Follow sets the
+// levels to the targets and splits q = c + r, c = Λ⁻¹Φᵀ Σ a_m F_m taken at once, r stepped exactly
+// under the force c does not balance (linear: gravity, drags, contact; warped: Φᵀ R(Ψq)ᵀ F − Λc).
+// Both settle at the same q; a Follow step reads no basis row more (c is one d×M product).
 class AnatomicalStepper {
  public:
   explicit AnatomicalStepper(std::shared_ptr<const AnatomicalSkin> skin);
@@ -38,7 +43,13 @@ class AnatomicalStepper {
   // A bound of every coordinate of displacement() (cm), without computing it
   // (ModalWarpingIntegrator::displacementBound).
   double displacementBound() const { return integrator_.displacementBound(); }
+  // The levels (Dynamic) or the targets (Follow: the levels are the targets).
   const VecX& muscleLevels() const { return level_; }
+  // The response (skin_settings.h; docs/live.md, "Lag"), the skin's settings' at first. A switch
+  // keeps the displacement: Follow takes the levels' quasi-static response as its centre (the rest
+  // of q and q̇ becomes the dynamic part), Dynamic keeps q and q̇ with the levels at rest.
+  void setResponse(SkinResponse response);
+  SkinResponse response() const { return response_; }
   bool isAtRest(double tol) const;
   // Back to rest (levels, q, q̇ and u zero), as a new stepper on the same skin; grips moved by
   // grab() stay where they are (with their vectors in the basis).
@@ -92,6 +103,12 @@ class AnatomicalStepper {
   ModalWarpingIntegrator integrator_;
   std::shared_ptr<const ContactPenalty> penalty_;  // the skin's, or one on this stepper's basis
   VecX level_, levelRate_;
+  SkinResponse response_ = SkinResponse::Dynamic;
+  // Follow: Λ⁻¹Φᵀ[F_1 … F_M] (d × M, the activations' quasi-static modal response, made on the
+  // basis when Follow is chosen), the centre c = quasiStatic_·level_ the last step ended on and the
+  // next step's.
+  MatX quasiStatic_;
+  VecX centre_, centreNext_;
   MatX3 force_;         // warped: the n×3 world force (empty with linear modes)
   MatX loadModes_;      // linear: the skin's modalLoadPatterns for the integrator's basis
   VecX loadCoords_;     // linear: [levels, g − g_rest, drag forces]

@@ -27,6 +27,16 @@ enum class StrengthRule {
   SkinFollows,     // the skin it is tied to: its coupling-weighted motion along the shape, cᵀu/s = 1
 };
 
+// How the skin answers the muscles' activations in time (docs/live.md, "Lag"; the scene's
+// numerics.response, drive --response).
+enum class SkinResponse {
+  Dynamic,  // each level follows its target (critically damped at the muscle's frequency), the skin
+            // its modal dynamics under the levels' loads: the skin trails a step by tens of ms
+  Follow,   // levels = targets, and the skin's linear quasi-static response to them taken at once;
+            // only the rest (gravity and head turns, drags, contact, the warp) steps dynamically.
+            // Settles where Dynamic does.
+};
+
 struct AnatomicalSettings {
   // Skin (dermis) as a membrane + bending shell from a Young's modulus and thickness (ν = 0.5):
   // k_A = E h/6, k_L = 0.385 E h ℓ̄ (ℓ̄ the mean edge length), k_B = E h³/(12(1 − ν²))
@@ -46,6 +56,7 @@ struct AnatomicalSettings {
   double dampingMass = 8.0;         // ξ, 1/s (Rayleigh)
   double dampingStiffness = 2e-4;   // ζ, s
   double dt = 1.0 / 240.0;          // s
+  SkinResponse response = SkinResponse::Dynamic;  // not in the basis key: the basis is the same
   // Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin"):
   // each muscle's coordinate along its shape is condensed out with the passive stiffness
   // κ_m = E_p A_m σ_m² L_m of its belly (A_m its cross-section, L_m its length, σ_m its shortening at

@@ -27,11 +27,12 @@ struct PerformanceSceneDef {
   OneEuroSettings oneEuro;          // --min-cutoff (Hz), --beta
   double start = 0.0;               // --start, s after the first frame
   double end = -1.0;                // --end, s after the first frame; < 0 = to the last
+  std::string response = "dynamic";  // --response: dynamic or follow (docs/live.md, "Lag")
 };
 
 // The scene (named after the performance file's stem), its performance read, cropped, mapped onto
 // the muscles and in the timeline (loadScenePerformance). InputError with drive's messages:
-// "--filter: expected on or off (got 'X')", "FILE: cannot open performance file", "--end E must lie
+// "--filter: expected on or off (got 'X')", "--response: expected dynamic or follow (got 'X')", "FILE: cannot open performance file", "--end E must lie
 // after --start S", the One-Euro settings' ("--min-cutoff/--beta: …"), and the readers'.
 SceneDesc performanceScene(const PerformanceSceneDef& def);
 

@@ -78,6 +78,15 @@ class ModalWarpingIntegrator {
   // can form it from precomputed ΦᵀF of fixed load patterns). Does not touch the basis: u = Φq is
   // computed when it is next read (freeDisplacement, addDisplacementTo).
   void stepModal(const VecX& modalForce);
+  // The follow response (docs/live.md, "Lag"): q = c + r, c a part the caller takes at once (the
+  // quasi-static response to the activations), moving from `before` to `after` over the step, and
+  // r = q − c stepped exactly under f̃, the force on r: r⁺ = a r + b ṙ + g f̃, q⁺ = after + r⁺,
+  // ṙ⁺ = c r + e ṙ + k f̃ (qdot() then holds ṙ). Linear: as stepModal. With before = after = 0 it
+  // is stepModal.
+  void stepModalAbout(const VecX& modalForce, const VecX& before, const VecX& after);
+  // Warped (or linear) with a free force: f̃ = Φᵀ R(Ψq)ᵀ F − Λ·after (the part of the force `after`
+  // already balances), then as stepModalAbout; u updated as step(F).
+  void stepAbout(const MatX3& freeForce, const VecX& before, const VecX& after);
 
   const VecX& q() const { return q_; }        // d, cm·g^1/2
   // The per-mode update's coefficients of q⁺ = a q + b q̇ + g f̃ (d each): what a caller with a force
@@ -135,6 +144,8 @@ class ModalWarpingIntegrator {
   void computeCoefficients();
   void updateDisplacement() const;
   void advance(const VecX& modalForce);  // the per-mode update of q and q̇ under f̃
+  void advanceAbout(const VecX& modalForce, const VecX& before, const VecX& after);
+  void projectForce(const MatX3& freeForce);  // ftilde_ = Φᵀ R(Ψq)ᵀ F
 
   std::shared_ptr<const ModalBasis> basis_;
   ModalWarpingSettings settings_;
