@@ -1,5 +1,5 @@
 // `myoshell live --input vmc|livelink [--port P] [--listen ADDRESS] [--head …] --out DIR
-// [--format glb,pc2,obj] [--duration S] [--fps 60] [--calibrate S] [--timeout S] [--lockstep] [--json]`:
+// [--format glb,pc2,obj] [--duration S] [--fps 60] [--calibrate S] [--timeout S] [--response follow|dynamic] [--lockstep] [--json]`:
 // a tracker's stream (docs/live.md) drives the face in real time through the one frame loop
 // (ScenePlayer), mapped as `drive` maps a take (io/live_take.h). The frames received are written as
 // they arrive to DIR/live.csv (a Live Link Face CSV `drive` replays); the face's frames at --fps to
@@ -50,6 +50,7 @@ struct LiveArgs {
   double calibrate = 0.0;
   double timeout = 0.5;
   std::string filter = "on";
+  std::string response = "follow";  // live: the activations' shape at once (docs/live.md, "Lag")
   OneEuroSettings oneEuro;
   bool lockstep = false;
   std::string cacheDir;
@@ -66,6 +67,8 @@ double percentile(std::vector<double> v, double p) {
 int runLive(const LiveArgs& a) {
   const LiveProtocol protocol = liveProtocolFromString(a.input);
   if (a.filter != "on" && a.filter != "off") throw InputError("--filter: expected on or off (got '" + a.filter + "')");
+  if (a.response != "dynamic" && a.response != "follow")
+    throw InputError("--response: expected dynamic or follow (got '" + a.response + "')");
   checkOutputFolder(a.outDir, "--out");
   const ExportFormats formats = parseExportFormats(a.formats);
   OneEuroSettings filter = a.oneEuro;
@@ -81,6 +84,7 @@ int runLive(const LiveArgs& a) {
   scene.performance.map = a.map.empty() ? "" : fs::absolute(a.map).string();
   scene.duration = a.duration;
   scene.fps = a.fps;
+  scene.anatomical.response = a.response == "follow" ? SkinResponse::Follow : SkinResponse::Dynamic;
   LiveFaceMapper mapper(scene, filter);
 
   // Listening before the face builds: a port in use fails at once, and what arrives meanwhile waits.
@@ -217,6 +221,10 @@ static CommandRegistrar reg("live", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--filter", a->filter, "the One-Euro filter on the input curves: on (default) or off");
   sub->add_option("--min-cutoff", a->oneEuro.minCutoff, "One-Euro filter: cutoff at rest, Hz")->capture_default_str();
   sub->add_option("--beta", a->oneEuro.beta, "One-Euro filter: speed coefficient")->capture_default_str();
+  sub->add_option("--response", a->response,
+                  "follow (the activations' quasi-static shape at once, only gravity, drags and contact lag; "
+                  "the default live) or dynamic (the skin trails the activations by its dynamics; docs/live.md)")
+      ->capture_default_str();
   sub->add_flag("--lockstep", a->lockstep, "Acknowledge each frame taken to its sender (myoshell send --lockstep)");
   addCacheOption(*sub, a->cacheDir);
   addJsonFlag(*sub, a->json);
