@@ -16,6 +16,7 @@
 #include "myoshell/gl/gl_face_painter.h"
 #include "resources.h"
 #include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anatomy/eyelids.h"
 #include "myoshell/anim/head_motion.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/atomic_file.h"
@@ -59,6 +60,12 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
   Stopwatch buildClock;
   const auto model = buildSceneFace(scene, cache.get());
   const double buildSeconds = buildClock.seconds();
+  // The gaze turns the eyes through the lids (docs/eyelids.md): a head without eye openings has
+  // none, so the track would move nothing without a word.
+  if (scene.hasGaze() && !hasOpenEyes(model->head().mesh, model->head().landmarks))
+    fmt::print(stderr,
+               "myoshell: warning: the scene turns the eyes (its gaze), but this head has no eye openings between "
+               "its eye corners: no lids, so nothing follows the gaze\n");
   // Folders only once the scene has built: a bad scene leaves nothing behind.
   AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps,
                              ScenePlayer::frameCount(scene.duration, scene.fps));

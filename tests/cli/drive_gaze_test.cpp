@@ -176,6 +176,31 @@ TEST(DriveGaze, LiveLinkEyeAnglesTurnTheLeftEyeUp) {
   EXPECT_LT((last.row(upperMid(0)) - V.row(upperMid(0))).norm(), 1e-4);
 }
 
+// On a head without eye openings (the thesis model's built-in head, its eyes closed) the gaze has
+// no lids to turn: drive says so, and plays the rest of the take.
+TEST(DriveGaze, AHeadWithoutEyeOpeningsIsToldTheGazeMovesNothing) {
+  TempDir dir("closed_eyes");
+  const auto head = test::runCli("head --closed-eyes --levels 0 --write-obj '" + (dir.path / "h.obj").string() +
+                                 "' --write-landmarks '" + (dir.path / "h.json").string() + "'");
+  ASSERT_EQ(head.exitCode, 0) << head.merged;
+  {
+    std::ofstream csv(dir.path / "take.csv");
+    csv << "Timecode,BlendShapeCount,JawOpen,LeftEyeYaw,LeftEyePitch,LeftEyeRoll,RightEyeYaw,RightEyePitch,RightEyeRoll\n";
+    for (int f = 0; f <= 3; ++f) csv << "00:00:00:0" << f << ",7,0.2,0,-0.1,0,0,-0.1,0\n";
+  }
+  const std::string warning = "warning: the scene turns the eyes (its gaze), but this head has no eye openings";
+  const auto r = test::runCli("drive '" + (dir.path / "take.csv").string() + "' --head '" + (dir.path / "h.obj").string() +
+                              "' --landmarks '" + (dir.path / "h.json").string() + "' --input-fps 30 --format pc2 --out '" +
+                              (dir.path / "out").string() + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.merged;
+  EXPECT_NE(r.err.find(warning), std::string::npos) << r.err;
+  // The built-in head (eyes open) plays the same take without it.
+  const auto open = test::runCli("drive '" + (dir.path / "take.csv").string() + "' --input-fps 30 --format pc2 --out '" +
+                                 (dir.path / "out_open").string() + "'");
+  EXPECT_EQ(open.exitCode, 0) << open.merged;
+  EXPECT_EQ(open.err.find(warning), std::string::npos) << open.err;
+}
+
 // A non-finite gaze is the reader's InputError naming the file, the line and the column.
 TEST(DriveGaze, ANonFiniteGazeIsRefusedWithItsLineAndColumn) {
   TempDir dir("nan");
