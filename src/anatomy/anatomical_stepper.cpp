@@ -149,13 +149,10 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
         const VecX& q = integrator_.q();
         const VecX& g = integrator_.stepQFromForce();
         modalForce_ += contactForce_;
+        contactStep_ = integrator_.stepQFromQ().cwiseProduct(q) +
+                       integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) + g.cwiseProduct(modalForce_) - q;
         // Follow: the same about the centre, q⁺ = c⁺ + a (q − c) + b ṙ + g (f̃ + f_c − K_c Δ).
-        if (follow)
-          contactStep_ = centreNext_ + integrator_.stepQFromQ().cwiseProduct(q - centre_) +
-                         integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) + g.cwiseProduct(modalForce_) - q;
-        else
-          contactStep_ = integrator_.stepQFromQ().cwiseProduct(q) +
-                         integrator_.stepQFromQdot().cwiseProduct(integrator_.qdot()) + g.cwiseProduct(modalForce_) - q;
+        if (follow) contactStep_ += centreNext_ - integrator_.stepQFromQ().cwiseProduct(centre_);
         // The dashpot βK_c on the step's motion Δ/h joins the stiffness (AnatomicalSettings::contactDamping).
         contactStiffness_ *= 1.0 + skin_->settings().contactDamping / h;
         contactSystem_.noalias() = g.asDiagonal() * contactStiffness_;
