@@ -85,6 +85,10 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
                   "dynamic (the skin trails the activations by its dynamics) or follow (their quasi-static "
                   "shape at once, only gravity, drags and contact lag; docs/live.md)")
       ->capture_default_str();
+  sub->add_option("--interpolation", a->scene.interpolation,
+                  "between the performance's frames: linear (default) or step (each frame held until the next, "
+                  "as `live` played it: its replay.json; docs/live.md)")
+      ->capture_default_str();
   sub->add_option("--start", a->scene.start, "play from this time, s after the first frame (default 0)")
       ->check(numberAtLeast(0));
   // Without --end the take plays to its last frame (PerformanceSceneDef::end < 0); a negative

@@ -258,11 +258,12 @@ MappedPerformance mapPerformance(const Performance& p, const std::vector<std::st
 
 namespace {
 
-// A performance curve (a value per frame) plus a scene's own track, as one linear track clamped to
+// A performance curve (a value per frame) plus a scene's own track, as one track clamped to
 // [lo, hi]: a key at every frame and at every key of the own track (so a step or a peak of it
-// survives); between frames the curve is linear, after the last frame held.
+// survives); between frames the curve is linear, or held (`Step`: each frame's value until the
+// next frame's, as a live take played it); after the last frame held.
 ScalarTrack playedTrack(const std::vector<double>& times, const std::vector<double>& curve, const ScalarTrack& own,
-                        double lo, double hi, const std::string& what) {
+                        double lo, double hi, Interpolation between, const std::string& what) {
   std::vector<double> keyTimes = times;
   for (const auto& key : own.keys()) keyTimes.push_back(key.time);
   std::sort(keyTimes.begin(), keyTimes.end());
@@ -274,18 +275,22 @@ ScalarTrack playedTrack(const std::vector<double>& times, const std::vector<doub
   for (double t : keyTimes) {
     while (f + 1 < frames && times[f + 1] <= t) ++f;
     double value = curve[f];
-    if (f + 1 < frames && t > times[f]) {
+    if (between == Interpolation::Linear && f + 1 < frames && t > times[f]) {
       const double s = (t - times[f]) / (times[f + 1] - times[f]);
       value = (1.0 - s) * curve[f] + s * curve[f + 1];
     }
-    keys.push_back({t, std::clamp(value + own.at(t), lo, hi), Interpolation::Linear});  // an empty track is 0
+    // With the scene's own keys between frames the track stays linear, as those keys are.
+    const Interpolation to = between == Interpolation::Step && own.empty() ? Interpolation::Step : Interpolation::Linear;
+    keys.push_back({t, std::clamp(value + own.at(t), lo, hi), to});  // an empty track is 0
   }
   return ScalarTrack(std::move(keys), what);
 }
 
 }  // namespace
 
-void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
+void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped, Interpolation between) {
+  MYO_CHECK(between == Interpolation::Linear || between == Interpolation::Step,
+            "addPerformanceToScene: a performance plays linear or step");
   MYO_CHECK(mapped.times.size() >= 2, "addPerformanceToScene: a performance has at least two frames");
   scene.duration = mapped.times.back();
   scene.fps = mapped.fps;
@@ -294,7 +299,7 @@ void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
     const std::vector<double>& curve = mapped.activations[m];
     if (std::all_of(curve.begin(), curve.end(), [](double a) { return a == 0.0; })) continue;
     ScalarTrack& track = scene.activations[mapped.muscles[m]];  // the scene's own, or a new empty one
-    track = playedTrack(mapped.times, curve, track, 0.0, 1.0, "performance of " + mapped.muscles[m]);
+    track = playedTrack(mapped.times, curve, track, 0.0, 1.0, between, "performance of " + mapped.muscles[m]);
   }
   // The jaw: the performance's plus the scene's own jaw keys, within the jaw's ranges.
   if (!mapped.jaw.empty()) {
@@ -304,7 +309,7 @@ void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
     for (int dof = 0; dof < 3; ++dof) {
       std::vector<double> curve(frames);
       for (size_t f = 0; f < frames; ++f) curve[f] = mapped.jaw[f][dof];
-      *tracks[dof] = playedTrack(mapped.times, curve, *tracks[dof], lo[dof], hi[dof], names[dof]);
+      *tracks[dof] = playedTrack(mapped.times, curve, *tracks[dof], lo[dof], hi[dof], between, names[dof]);
     }
   }
   // The eyes: the performance's turn plus the scene's own keys, within the eye's range; an angle the
@@ -317,12 +322,12 @@ void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped) {
       for (size_t f = 0; f < frames; ++f) curve[f] = gazeAngle(mapped.gaze[f], k);
       if (std::all_of(curve.begin(), curve.end(), [](double a) { return a == 0.0; })) continue;
       ScalarTrack& track = (k % 2 == 0 ? scene.gazePitch : scene.gazeYaw)[static_cast<size_t>(k / 2)];
-      track = playedTrack(mapped.times, curve, track, -kGazeMaxDeg, kGazeMaxDeg, names[k]);
+      track = playedTrack(mapped.times, curve, track, -kGazeMaxDeg, kGazeMaxDeg, between, names[k]);
     }
   }
   if (!mapped.headPose.empty() && scene.headPose.empty()) {
     std::vector<Keyframe<Vec3>> keys(frames);
-    for (size_t f = 0; f < frames; ++f) keys[f] = {mapped.times[f], mapped.headPose[f], Interpolation::Linear};
+    for (size_t f = 0; f < frames; ++f) keys[f] = {mapped.times[f], mapped.headPose[f], between};
     scene.headPose = HeadPoseTrack(std::move(keys), "performance head pose");
   }
 }

@@ -138,6 +138,12 @@ void readPerformanceDesc(DocReader r, PerformanceDesc& p) {
     p.end = r.number("end", p.end);
     r.requireAbove("end", p.end, p.start);
   }
+  if (r.has("interpolation")) {
+    const std::string between = r.string("interpolation", "linear");
+    if (between == "linear") p.interpolation = Interpolation::Linear;
+    else if (between == "step") p.interpolation = Interpolation::Step;
+    else r.fail("interpolation", "must be \"linear\" or \"step\" (got \"" + between + "\")");
+  }
   if (r.has("filter")) {
     DocReader f = r.child("filter");
     p.filter.enabled = f.boolean("enabled", p.filter.enabled);
@@ -593,6 +599,7 @@ std::string sceneToJson(const SceneDesc& scene) {
     if (p.read.inputFps) perf["input_fps"] = *p.read.inputFps;
     if (!p.map.empty()) perf["map"] = p.map;
     if (p.end >= 0.0) perf["end"] = p.end;
+    if (p.interpolation != Interpolation::Linear) perf["interpolation"] = toString(p.interpolation);
     if (p.read.face < 0) perf.erase("face");
     j["performance"] = perf;
   } else {

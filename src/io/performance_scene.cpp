@@ -17,6 +17,8 @@ SceneDesc performanceScene(const PerformanceSceneDef& a) {
   if (a.filter != "on" && a.filter != "off") throw InputError("--filter: expected on or off (got '" + a.filter + "')");
   if (a.response != "dynamic" && a.response != "follow")
     throw InputError("--response: expected dynamic or follow (got '" + a.response + "')");
+  if (a.interpolation != "linear" && a.interpolation != "step")
+    throw InputError("--interpolation: expected linear or step (got '" + a.interpolation + "')");
   if (!fs::is_regular_file(a.performance)) throw InputError("cannot open performance file", a.performance);
   SceneDesc scene;
   scene.name = fs::path(a.performance).stem().string();
@@ -42,6 +44,7 @@ SceneDesc performanceScene(const PerformanceSceneDef& a) {
     throw InputError(fmt::format("--end {} must lie after --start {}", a.end, a.start));
   p.start = a.start;
   p.end = a.end;
+  p.interpolation = a.interpolation == "step" ? Interpolation::Step : Interpolation::Linear;
   loadScenePerformance(scene);
   return scene;
 }

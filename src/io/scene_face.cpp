@@ -67,7 +67,7 @@ void loadScenePerformance(SceneDesc& scene) {
   const ScenePerformanceMapping mapping = scenePerformanceMapping(scene);
   const MappedPerformance mapped =
       mapPerformance(performance, mapping.muscles, builtinFacsMap(), mapping.arkitMap, desc.filter);
-  addPerformanceToScene(scene, mapped);
+  addPerformanceToScene(scene, mapped, desc.interpolation);
 
   PerformanceReport report;
   report.file = file;

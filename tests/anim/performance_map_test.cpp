@@ -207,3 +207,38 @@ TEST(PerformanceMap, TheSceneGetsTracksAndItsOwnKeysAdd) {
 
 }  // namespace
 }  // namespace myo
+
+namespace myo {
+namespace {
+
+// A live take's replay (performance.interpolation step): every played curve holds each frame's
+// value until the next frame, where linear goes straight between them.
+TEST(PerformanceMap, StepInterpolationHoldsEachFrameUntilTheNext) {
+  MappedPerformance m;
+  m.times = {0.0, 0.1, 0.2};
+  m.fps = 10.0;
+  m.muscles = {"zygomaticus_major_left"};
+  m.activations = {{0.2, 0.6, 0.4}};
+  m.jaw = {Vec3(2.0, 0.0, 0.0), Vec3(10.0, 0.0, 0.0), Vec3(4.0, 0.0, 0.0)};
+  m.headPose = {Vec3(0.0, 0.0, 0.0), Vec3(0.0, 20.0, 0.0), Vec3(0.0, 10.0, 0.0)};
+  SceneDesc step, linear;
+  addPerformanceToScene(step, m, Interpolation::Step);
+  addPerformanceToScene(linear, m, Interpolation::Linear);
+  const ScalarTrack& a = step.activations.at("zygomaticus_major_left");
+  EXPECT_DOUBLE_EQ(a.at(0.0), 0.2);
+  EXPECT_DOUBLE_EQ(a.at(0.0999), 0.2);
+  EXPECT_DOUBLE_EQ(a.at(0.1), 0.6);
+  EXPECT_DOUBLE_EQ(a.at(0.15), 0.6);
+  EXPECT_DOUBLE_EQ(a.at(0.3), 0.4);  // after the last frame, held
+  EXPECT_NEAR(linear.activations.at("zygomaticus_major_left").at(0.05), 0.4, 1e-12);
+  EXPECT_DOUBLE_EQ(step.jawOpen.at(0.19), 10.0);
+  EXPECT_NEAR(linear.jawOpen.at(0.15), 7.0, 1e-12);
+  // The head: the rotation of frame 1 held until frame 2 (20° about the face's up axis).
+  EXPECT_TRUE(step.headPose.at(0.15).isApprox(step.headPose.at(0.1), 1e-12));
+  EXPECT_FALSE(linear.headPose.at(0.15).isApprox(linear.headPose.at(0.1), 1e-6));
+  EXPECT_EQ(step.duration, 0.2);
+  EXPECT_EQ(step.fps, 10.0);
+}
+
+}  // namespace
+}  // namespace myo

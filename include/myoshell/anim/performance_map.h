@@ -53,11 +53,13 @@ MappedPerformance mapPerformance(const Performance& performance, const std::vect
 
 // Plays a mapped performance in `scene`: duration and fps become the performance's, each muscle
 // the performance drives gets a track with a key at every frame and at every key of the scene's
-// own track for it, valued (performance + scene's own track), clamped to [0, 1] (linear between
-// keys: the timeline resamples the frames to the simulation step). The performance's head pose
+// own track for it, valued (performance + scene's own track), clamped to [0, 1] (`between` frames:
+// Linear, the timeline resampling the frames to the simulation step, or Step, each frame held until
+// the next, as `myoshell live` played its take: docs/live.md, "Replaying a take"). The performance's head pose
 // becomes timeline.head_pose unless the scene has its own (which then wins); its jaw adds to the
 // scene's timeline.jaw tracks (clamped to the jaw's ranges), and each of its gaze angles that is not
 // 0 throughout to the scene's timeline.gaze track (clamped to ±kGazeMaxDeg).
-void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped);
+void addPerformanceToScene(SceneDesc& scene, const MappedPerformance& mapped,
+                           Interpolation between = Interpolation::Linear);
 
 }  // namespace myo

@@ -49,6 +49,8 @@ struct PerformanceDesc {
   OneEuroSettings filter;           // on the input curves
   double start = 0.0;               // s: the window of the performance played, from its first frame
   double end = -1.0;                // s; < 0 = to its last frame
+  // Between frames: Linear, or Step (each frame held until the next: a live take's replay).
+  Interpolation interpolation = Interpolation::Linear;
 };
 
 // What reading a scene's performance found (drive --json, run's warnings).

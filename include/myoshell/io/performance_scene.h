@@ -28,11 +28,13 @@ struct PerformanceSceneDef {
   double start = 0.0;               // --start, s after the first frame
   double end = -1.0;                // --end, s after the first frame; < 0 = to the last
   std::string response = "dynamic";  // --response: dynamic or follow (docs/live.md, "Lag")
+  std::string interpolation = "linear";  // --interpolation between frames: linear or step
 };
 
 // The scene (named after the performance file's stem), its performance read, cropped, mapped onto
 // the muscles and in the timeline (loadScenePerformance). InputError with drive's messages:
-// "--filter: expected on or off (got 'X')", "--response: expected dynamic or follow (got 'X')", "FILE: cannot open performance file", "--end E must lie
+// "--filter: expected on or off (got 'X')", "--response: expected dynamic or follow (got 'X')",
+// "--interpolation: expected linear or step (got 'X')", "FILE: cannot open performance file", "--end E must lie
 // after --start S", the One-Euro settings' ("--min-cutoff/--beta: …"), and the readers'.
 SceneDesc performanceScene(const PerformanceSceneDef& def);
 
