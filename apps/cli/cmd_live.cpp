@@ -2,8 +2,9 @@
 // [--format glb,pc2,obj] [--duration S] [--fps 60] [--calibrate S] [--timeout S] [--response follow|dynamic] [--lockstep] [--json]`:
 // a tracker's stream (docs/live.md) drives the face in real time through the one frame loop
 // (ScenePlayer), mapped as `drive` maps a take (io/live_take.h). The frames received are written as
-// they arrive to DIR/live.csv (a Live Link Face CSV `drive` replays); the face's frames at --fps to
-// the exports. Ctrl-C keeps the recording and the frames written (exit 130).
+// the face plays them to DIR/live.csv (a Live Link Face CSV) and DIR/replay.json (the scene `run`
+// plays to the same frames); the face's frames at --fps to the exports. Ctrl-C keeps the recording
+// and the frames made (exit 130).
 #include <fmt/core.h>
 #include <fmt/format.h>
 
@@ -20,7 +21,9 @@
 #include "command.h"
 #include "common_options.h"
 #include "interrupt.h"
+#include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_player.h"
+#include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_exporter.h"
 #include "myoshell/io/head_files.h"
@@ -77,8 +80,9 @@ int runLive(const LiveArgs& a) {
   SceneDesc scene;
   scene.name = "live";
   const HeadFiles files = resolveHeadArgument(a.head.head, a.head.landmarks, "", a.head.units);
-  scene.head.obj = files.obj;
-  scene.head.landmarks = files.landmarks;
+  // Absolute: replay.json, in the output folder, names them too.
+  scene.head.obj = files.obj.empty() ? "" : fs::absolute(files.obj).string();
+  scene.head.landmarks = files.landmarks.empty() ? "" : fs::absolute(files.landmarks).string();
   scene.head.units = files.unit;
   scene.muscleLibrary = sceneMuscleLibrary(a.library);
   scene.performance.map = a.map.empty() ? "" : fs::absolute(a.map).string();
@@ -106,8 +110,11 @@ int runLive(const LiveArgs& a) {
   const fs::path out(a.outDir);
   const int frames = ScenePlayer::frameCount(scene.duration, scene.fps);
   AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames);
-  LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink);
+  LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink, scene.fps);
+  const SceneDesc replay = liveReplayScene(scene, "live.csv", scene.fps, filter);
+  writeFileAtomically((out / "replay.json").string(), sceneToJson(replay), "cannot write the replay scene");
   ScenePlayer player(scene, model);
+  FaceStepper& face = player.simulator();
   std::vector<int> muscleIndex;
   for (const std::string& name : mapper.muscles()) {
     int index = -1;
@@ -117,43 +124,56 @@ int runLive(const LiveArgs& a) {
   }
   const std::atomic<bool>& interrupted = installInterruptHandlers();
   player.watch(&interrupted);
-  if (!a.json)
-    fmt::print("listening for {} on {}:{} for {} s\n", toString(protocol), a.listen, source.port(), a.duration);
+  // Said once the face is built, when the take starts (to stderr under --json: a script waits for it).
+  fmt::print(a.json ? stderr : stdout, "listening for {} on {}:{} for {} s\n", toString(protocol), a.listen,
+             source.port(), a.duration);
+  std::fflush(a.json ? stderr : stdout);
 
   std::vector<std::string> warnings;
   std::vector<double> latencyMs;
-  std::optional<double> firstArrival;
+  MatX3 positions;
   int framesDone = 0;
+  LiveFrame played;  // the last frame the face played, as the recording holds it
+  const double dt = model->dt();
   const double start = clock();
-  for (int f = 0; f < frames; ++f) {
-    // Real time: frame f is drawn at f / fps after the start (no waiting when the steps run late).
-    const double deadline = start + f / scene.fps;
-    while (!interrupted.load() && clock() < deadline)
-      std::this_thread::sleep_for(std::chrono::duration<double>(std::min(deadline - clock(), 0.002)));
+  // Frame 0 is the rest shape. Frame f ≥ 1 (the steps from (f−1)/fps to f/fps) plays the newest
+  // frame taken: stepped as soon as one arrives once frame f−1's time has come, or at frame f's own
+  // time when none does (a silent stream eases to neutral), so a packet waits for no fixed tick.
+  // What it played is recorded at (f−1)/fps − dt/2, between the steps of frames f−1 and f (the
+  // first at 0): replayed with each frame held (replay.json), the steps see exactly these values.
+  face.skinPositions(positions);
+  exporter.addFrame(0, positions);
+  framesDone = 1;
+  for (int f = 1; f < frames; ++f) {
+    const double earliest = start + (f - 1) / scene.fps, deadline = start + f / scene.fps;
+    while (!interrupted.load() && clock() < earliest)
+      std::this_thread::sleep_for(std::chrono::duration<double>(std::min(earliest - clock(), 0.002)));
+    while (!interrupted.load() && clock() < deadline && !source.waitForFrame(std::min(deadline - clock(), 0.01))) {
+    }
     if (interrupted.load()) break;
     std::optional<double> arrival;
     if (const std::optional<LiveSample> sample = source.takeNewest()) {
       input.receive(*sample);
-      if (!firstArrival) firstArrival = sample->arrival;
-      recorder.write(sample->arrival - *firstArrival, sample->frame);
       arrival = sample->arrival;
     }
-    const double now = clock();
-    const MappedPerformance mapped = mapper.map(now - start, input.at(now));
-    if (f == 0) warnings = mapped.warnings;
-    LiveFaceMapper::apply(mapped, muscleIndex, player.simulator());
+    const double t = f == 1 ? 0.0 : (f - 1) / scene.fps - 0.5 * dt;
+    played = recorder.write(t, input.at(clock()));
+    const MappedPerformance mapped = mapper.map(t, played);
+    if (f == 1) warnings = mapped.warnings;
+    LiveFaceMapper::apply(mapped, muscleIndex, face);
     if (!player.advanceTo(f)) break;
-    const FrameSnapshot& snap = player.snapshot(false);
+    face.skinPositions(positions);
     // Arrival → positions ready for this frame (the wait for the frame's turn included).
     if (arrival) latencyMs.push_back(1e3 * (clock() - *arrival));
-    exporter.addFrame(f, snap.positions);
+    exporter.addFrame(f, positions);
     framesDone = f + 1;
   }
+  // The closing row: the take's length is the frames made, the last held to the end.
+  if (framesDone >= 2) recorder.write((framesDone - 1) / scene.fps, played);
   const double seconds = clock() - start;
   const bool cut = framesDone < frames;
-  std::vector<std::string> written;
-  if (!cut)
-    for (const std::string& rel : exporter.finish()) written.push_back(rel);
+  // Cut short (Ctrl-C), the exports hold the frames made.
+  const std::vector<std::string> written = exporter.finish();
   source.stop();
   const LiveCounters c = source.counters();
   if (!source.unknownNames().empty())
@@ -175,6 +195,7 @@ int runLive(const LiveArgs& a) {
     j["latency_ms"] = {{"median", percentile(latencyMs, 0.5)}, {"p99", percentile(latencyMs, 0.99)},
                        {"samples", latencyMs.size()}};
     j["recording"] = recorder.path();
+    j["replay"] = (out / "replay.json").string();
     j["recorded_frames"] = recorder.rows();
     j["outputs"] = written;
     j["last_malformed"] = source.lastMalformed();
@@ -188,8 +209,8 @@ int runLive(const LiveArgs& a) {
                percentile(latencyMs, 0.99), recorder.rows(), recorder.path());
   }
   if (cut) {
-    fmt::print(stderr, "myoshell: interrupted ({}) at frame {} of {}: kept the recording {} ({} frames); no GLB or PC2\n",
-               interruptName(), framesDone, frames, recorder.path(), recorder.rows());
+    fmt::print(stderr, "myoshell: interrupted ({}) at frame {} of {}: kept the recording {} ({} rows) and the {} frames made\n",
+               interruptName(), framesDone, frames, recorder.path(), recorder.rows(), framesDone);
     return 128 + interruptSignal();
   }
   return kExitOk;

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 
 #include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/core/check.h"
 #include "myoshell/core/io_error.h"
 #include "myoshell/fit/arkit_names.h"
 #include "myoshell/fit/facs_map.h"
@@ -62,7 +64,9 @@ void LiveFaceMapper::apply(const MappedPerformance& mapped, const std::vector<in
 
 // ---- the recording ----
 
-LiveTakeRecorder::LiveTakeRecorder(const std::string& path, bool eyes) : path_(path), out_(path), eyes_(eyes) {
+LiveTakeRecorder::LiveTakeRecorder(const std::string& path, bool eyes, double fps)
+    : path_(path), out_(path), eyes_(eyes), fps_(fps) {
+  MYO_CHECK(fps > 0.0 && std::isfinite(fps), "LiveTakeRecorder: the timecode's rate is positive");
   if (!out_) throw IoError("cannot write the live take", path);
   out_ << "Timecode,BlendShapeCount";
   const auto& names = liveLinkValueNames();
@@ -71,41 +75,68 @@ LiveTakeRecorder::LiveTakeRecorder(const std::string& path, bool eyes) : path_(p
   out_ << '\n' << std::flush;
 }
 
-void LiveTakeRecorder::write(double t, const LiveFrame& f) {
-  // HH:MM:SS:FF.ffffff at 60 frames per second (the reader infers the rate from the largest FF).
-  const double frames = t * 60.0;
-  const long whole = static_cast<long>(std::floor(frames));
-  const long seconds = whole / 60;
-  // Never printed as 60.000000, which would read as a 61st frame.
-  const double ff = std::min(frames - 60.0 * seconds, 59.999999);
-  out_ << fmt::format("{:02d}:{:02d}:{:02d}:{:09.6f},{}", seconds / 3600, seconds / 60 % 60, seconds % 60, ff,
-                      kLiveLinkValueCount);
+LiveFrame LiveTakeRecorder::write(double t, const LiveFrame& f) {
+  // HH:MM:SS:FF.ffffff, FF.ffffff the frame within the second at fps_ frames per second (the reader
+  // takes the rate from replay.json's input_fps, or infers it from the largest FF).
+  const double seconds = std::floor(t);
+  // Never printed as fps_.000000, which would read as one frame too many.
+  const double ff = std::min((t - seconds) * fps_, fps_ - 1e-6);
+  const long s = static_cast<long>(seconds);
+  out_ << fmt::format("{:02d}:{:02d}:{:02d}:{:09.6f},{}", s / 3600, s / 60 % 60, s % 60, ff, kLiveLinkValueCount);
   const auto& names = liveLinkValueNames();
+  const auto& arkit = arkitNames();
   const Vec3 head = f.headPose.value_or(Vec3::Zero());
   const EyeGaze gaze = f.gaze.value_or(EyeGaze{});
+  // What the file holds, read back as the Live Link reader reads it (anim/performance_livelink.cpp):
+  // weights clamped to [0, 1], angles 180 · (degrees / 180).
+  LiveFrame held;
+  held.headPose = Vec3::Zero();
+  if (eyes_) held.gaze = EyeGaze{};
   const int columns = eyes_ ? kLiveLinkValueCount : kArkitWeightCount + 3;
   for (int i = 0; i < columns; ++i) {
+    const std::string& n = names[i];
     double v = 0.0;
+    size_t weight = kArkitWeightCount;
     if (i < kArkitWeightCount) {
-      std::string camel = names[i];
+      std::string camel = n;
       camel[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(camel[0])));
-      const auto& arkit = arkitNames();
-      v = f.weights[std::find(arkit.begin(), arkit.end(), camel) - arkit.begin()];
-    } else {
-      const std::string& n = names[i];
-      if (n == "HeadYaw") v = head.y() / 180.0;
-      else if (n == "HeadPitch") v = head.x() / 180.0;
-      else if (n == "HeadRoll") v = head.z() / 180.0;
-      else if (n == "LeftEyeYaw") v = gaze.yawDeg[1] / 180.0;
-      else if (n == "LeftEyePitch") v = -gaze.pitchDeg[1] / 180.0;
-      else if (n == "RightEyeYaw") v = gaze.yawDeg[0] / 180.0;
-      else if (n == "RightEyePitch") v = -gaze.pitchDeg[0] / 180.0;
-    }
-    out_ << ',' << fmt::format("{:.9g}", v);
+      weight = static_cast<size_t>(std::find(arkit.begin(), arkit.end(), camel) - arkit.begin());
+      v = f.weights[weight];
+    } else if (n == "HeadYaw") v = head.y() / 180.0;
+    else if (n == "HeadPitch") v = head.x() / 180.0;
+    else if (n == "HeadRoll") v = head.z() / 180.0;
+    else if (n == "LeftEyeYaw") v = gaze.yawDeg[1] / 180.0;
+    else if (n == "LeftEyePitch") v = -gaze.pitchDeg[1] / 180.0;
+    else if (n == "RightEyeYaw") v = gaze.yawDeg[0] / 180.0;
+    else if (n == "RightEyePitch") v = -gaze.pitchDeg[0] / 180.0;
+    const std::string text = fmt::format("{:.9g}", v);
+    out_ << ',' << text;
+    const double read = std::strtod(text.c_str(), nullptr);
+    if (weight < kArkitWeightCount) held.weights[weight] = std::clamp(read, 0.0, 1.0);
+    else if (n == "HeadYaw") (*held.headPose)[1] = 180.0 * read;
+    else if (n == "HeadPitch") (*held.headPose)[0] = 180.0 * read;
+    else if (n == "HeadRoll") (*held.headPose)[2] = 180.0 * read;
+    else if (n == "LeftEyeYaw") held.gaze->yawDeg[1] = 180.0 * read;
+    else if (n == "LeftEyePitch") held.gaze->pitchDeg[1] = -180.0 * read;
+    else if (n == "RightEyeYaw") held.gaze->yawDeg[0] = 180.0 * read;
+    else if (n == "RightEyePitch") held.gaze->pitchDeg[0] = -180.0 * read;
   }
   out_ << '\n' << std::flush;
   if (!out_) throw IoError("cannot write the live take", path_);
   ++rows_;
+  return held;
+}
+
+SceneDesc liveReplayScene(const SceneDesc& live, const std::string& recording, double fps, const OneEuroSettings& filter) {
+  SceneDesc scene = live;
+  scene.name = live.name + "_replay";
+  PerformanceDesc& p = scene.performance;
+  p.file = recording;
+  p.read.input = PerformanceInput::LiveLink;
+  p.read.inputFps = fps;
+  p.filter = filter;
+  p.interpolation = Interpolation::Step;
+  return scene;
 }
 
 }  // namespace myo

@@ -44,15 +44,18 @@ class LiveFaceMapper {
   double lastTime_ = -1e300;
 };
 
-// The received stream, written as it arrives: a Live Link Face CSV (Timecode at 60 frames per
-// second with a six-digit sub-frame, BlendShapeCount 61, the 52 weights in Live Link's order, the
-// head's and, when `eyes`, the eyes' angles as degrees / 180). Each row is flushed, so a take cut
-// short (Ctrl-C, a crash) keeps every frame received. IoError when the file cannot be written.
+// A live take's frames as the face played them, written as they are played: a Live Link Face CSV
+// (Timecode at `fps` frames per second with a six-digit sub-frame, BlendShapeCount 61, the 52
+// weights in Live Link's order, the head's and, when `eyes`, the eyes' angles as degrees / 180).
+// Each row is flushed, so a take cut short (Ctrl-C, a crash) keeps every frame played. IoError
+// when the file cannot be written.
 class LiveTakeRecorder {
  public:
-  LiveTakeRecorder(const std::string& path, bool eyes);
-  // A frame received at t s after the take's start (strictly increasing).
-  void write(double t, const LiveFrame& frame);
+  LiveTakeRecorder(const std::string& path, bool eyes, double fps);
+  // Writes the frame at t s after the take's start (increasing) and returns it as the file holds
+  // it, read back as `drive` reads it (nine significant digits, weights clamped, a head pose of 0
+  // when the frame had none, the eyes' when `eyes`): what the face plays, so a replay is exact.
+  LiveFrame write(double t, const LiveFrame& frame);
   int rows() const { return rows_; }
   const std::string& path() const { return path_; }
 
@@ -60,7 +63,14 @@ class LiveTakeRecorder {
   std::string path_;
   std::ofstream out_;
   bool eyes_;
+  double fps_;
   int rows_ = 0;
 };
+
+// The scene that replays a live take (DIR/replay.json, `myoshell run` plays it): the live scene
+// (head, muscles, map, response) with the recording `recording` (relative to the scene's folder)
+// as its performance: Live Link at `fps` (the recorder's timecode rate), the live `filter`, each
+// frame held until the next (Interpolation::Step), as the live loop played it.
+SceneDesc liveReplayScene(const SceneDesc& live, const std::string& recording, double fps, const OneEuroSettings& filter);
 
 }  // namespace myo
