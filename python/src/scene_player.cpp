@@ -19,11 +19,6 @@ namespace fs = std::filesystem;
 // Face time played between checks for Ctrl-C (the GIL is taken back for each check).
 constexpr int kStepsPerSignalCheck = 256;
 
-struct PlayerHandle {
-  std::shared_ptr<BasisCache> cache;
-  std::unique_ptr<ScenePlayer> player;
-};
-
 std::shared_ptr<PlayerHandle> openScene(const fs::path& path, const py::object& cacheDir) {
   auto handle = std::make_shared<PlayerHandle>();
   if (!cacheDir.is_none()) handle->cache = std::make_shared<FileBasisCache>(cacheDir.cast<fs::path>());
