@@ -370,8 +370,10 @@ UDP (a stand-in for a phone or VSeeFace in tests and demos).)doc")
       .def(py::init([](const std::string& output, const std::string& host, const py::object& port) {
              auto h = std::make_unique<SenderHandle>();
              h->protocol = liveProtocolFromString(output);
-             h->port = port.is_none() ? defaultLivePort(h->protocol) : static_cast<int>(finiteNumber(port, "port"));
-             if (h->port < 1 || h->port > 65535) throw InputError(fmt::format("port: expected 1–65535, got {}", h->port));
+             const double p = port.is_none() ? defaultLivePort(h->protocol) : finiteNumber(port, "port");
+             if (p != std::floor(p) || p < 1 || p > 65535)
+               throw InputError(fmt::format("port: expected a whole number in 1–65535, got {}", p));
+             h->port = static_cast<int>(p);
              h->sender = std::make_unique<LiveSender>(host, h->port);
              return h;
            }),

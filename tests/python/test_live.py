@@ -91,6 +91,8 @@ def test_a_port_in_use_is_refused_with_the_librarys_message():
         assert again.port == port
     with pytest.raises(myoshell.InputError, match="unknown live input 'osc' \\(use vmc or livelink\\)"):
         myoshell.LiveSource("osc", port=0)
+    with pytest.raises(myoshell.InputError, match="port: expected a whole number in 1–65535, got 70000"):
+        myoshell.LiveSender("vmc", port=70000)
     with pytest.raises(myoshell.InputError, match="'chin' is not one of ARKit's 52"):
         myoshell.LiveSample({"chin": 0.5})
 
