@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "myoshell/anatomy/anatomical_face.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/core/types.h"
 #include "myoshell/head/head.h"
 #include "myoshell/reduce/basis_cache.h"
@@ -30,6 +31,23 @@ struct FaceHandle {
   std::shared_ptr<const HeadHandle> head;
   std::shared_ptr<const AnatomicalFace> face;
   std::shared_ptr<BasisCache> cache;  // kept for the face's lifetime (null: none)
+  // What it was built from, as a scene names it (io/scene_face.h's sceneMuscleLibrary: "face",
+  // "builtin" or an absolute file; the names used, empty = all): the live input maps onto it.
+  std::string library;
+  std::vector<std::string> muscles;
+};
+
+// A Simulator: a face's AnatomicalSimulator (a FaceStepper).
+struct SimulatorHandle {
+  std::shared_ptr<FaceHandle> face;
+  AnatomicalSimulator sim;
+  explicit SimulatorHandle(std::shared_ptr<FaceHandle> f) : face(std::move(f)), sim(face->face) {}
+};
+
+// A ScenePlayer: a scene played by the one frame loop (its simulator() is the FaceStepper).
+struct PlayerHandle {
+  std::shared_ptr<BasisCache> cache;
+  std::unique_ptr<ScenePlayer> player;
 };
 
 // NumPy copies of the library's n×3 arrays: float64 (n, 3) and int32 (m, 3).
@@ -60,5 +78,6 @@ void bindRigFitting(py::module_& m);
 void bindDrive(py::module_& m);
 void bindExports(py::module_& m);
 void bindThreads(py::module_& m);
+void bindLive(py::module_& m);
 
 }  // namespace myo::python

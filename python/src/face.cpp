@@ -18,6 +18,7 @@
 #include "myoshell/head/jaw.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/muscle_library_file.h"
+#include "myoshell/io/scene_face.h"
 
 namespace myo::python {
 namespace {
@@ -83,6 +84,8 @@ std::shared_ptr<FaceHandle> buildFace(std::shared_ptr<const HeadHandle> head, co
     head = builtIn;
   }
   handle->head = head;
+  handle->library = sceneMuscleLibrary(library);
+  handle->muscles = use;
   if (!cacheDir.is_none()) handle->cache = std::make_shared<FileBasisCache>(cacheDir.cast<fs::path>());
   const std::vector<MuscleDef> muscles = libraryMuscles(library, use);
   py::gil_scoped_release unlocked;  // seconds without a cached basis

@@ -14,4 +14,5 @@ PYBIND11_MODULE(_myoshell, m) {
   myo::python::bindDrive(m);
   myo::python::bindExports(m);
   myo::python::bindThreads(m);
+  myo::python::bindLive(m);
 }

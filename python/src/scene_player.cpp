@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include "bindings.h"
 #include "myoshell/anim/scene_player.h"
@@ -18,11 +19,6 @@ namespace fs = std::filesystem;
 
 // Face time played between checks for Ctrl-C (the GIL is taken back for each check).
 constexpr int kStepsPerSignalCheck = 256;
-
-struct PlayerHandle {
-  std::shared_ptr<BasisCache> cache;
-  std::unique_ptr<ScenePlayer> player;
-};
 
 std::shared_ptr<PlayerHandle> openScene(const fs::path& path, const py::object& cacheDir) {
   auto handle = std::make_shared<PlayerHandle>();
@@ -70,6 +66,13 @@ Paths in the scene are relative to its folder. InputError for a bad scene.)doc")
             for (int i = 0; i < h.player->model().muscleCount(); ++i) names.push_back(h.player->model().muscleName(i));
             return names;
           })
+      .def("activations", [](const PlayerHandle& h) {
+            std::map<std::string, double> out;
+            const FaceStepper& sim = h.player->simulator();
+            for (int i = 0; i < h.player->model().muscleCount(); ++i) out[h.player->model().muscleName(i)] = sim.activation(i);
+            return out;
+          }, "Every muscle's activation target as last set (by the timeline before the last step, or a LiveFace): "
+             "dict name -> value.")
       .def("frame_time", [](const PlayerHandle& h, int k) { return h.player->frameTime(k); }, py::arg("k"),
            "Frame k's time, s")
       .def("advance_to", [](PlayerHandle& h, int k) { playTo(h, h.player->frameTime(k)); }, py::arg("k"),

@@ -19,12 +19,6 @@ namespace {
 // Steps between checks for Ctrl-C (the GIL is taken back for each check): about 1 s of face time.
 constexpr int kStepsPerSignalCheck = 256;
 
-struct SimulatorHandle {
-  std::shared_ptr<FaceHandle> face;
-  AnatomicalSimulator sim;
-  explicit SimulatorHandle(std::shared_ptr<FaceHandle> f) : face(std::move(f)), sim(face->face) {}
-};
-
 void step(SimulatorHandle& s, int n) {
   if (n < 0) throw InputError(fmt::format("step: the number of steps must be ≥ 0, got {}", n));
   py::gil_scoped_release unlocked;
