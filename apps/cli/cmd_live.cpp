@@ -108,13 +108,7 @@ int runLive(const LiveArgs& a) {
   AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames);
   LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink);
   ScenePlayer player(scene, model);
-  std::vector<int> muscleIndex;
-  for (const std::string& name : mapper.muscles()) {
-    int index = -1;
-    for (int m = 0; m < model->muscleCount(); ++m)
-      if (model->muscleName(m) == name) index = m;
-    muscleIndex.push_back(index);
-  }
+  const std::vector<int> muscleIndex = mapper.muscleIndex(*model);
   const std::atomic<bool>& interrupted = installInterruptHandlers();
   player.watch(&interrupted);
   if (!a.json)
