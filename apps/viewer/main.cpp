@@ -185,8 +185,11 @@ int main(int argc, char** argv) {
     if (session.live()) {
       const myo::viewer::LiveStatus st = session.liveStatus();
       const myo::LiveCounters& c = st.counters;
-      fmt::print("myoshell-view: live {}: {} packets, {} frames taken ({} malformed, {} dropped, {} superseded)\n",
-                 myo::toString(st.protocol), c.packets, c.taken, c.malformed, c.dropped, c.superseded);
+      fmt::print("myoshell-view: live {}: {} packets, {} frames taken ({} malformed, {} dropped, {} superseded); "
+                 "latency {}\n",
+                 myo::toString(st.protocol), c.packets, c.taken, c.malformed, c.dropped, c.superseded,
+                 st.latencySamples > 0 ? fmt::format("median {:.1f} ms over the last second", st.latencyMs)
+                                       : std::string("- (no frame in the last second)"));
       if (const auto unknown = session.liveUnknownNames(); !unknown.empty()) {
         std::string names;
         for (const std::string& n : unknown) names += (names.empty() ? "" : ", ") + n;
