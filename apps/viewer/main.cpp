@@ -177,7 +177,10 @@ int main(int argc, char** argv) {
       fmt::print("myoshell-view: listening for {} on {}:{}\n", myo::toString(source->protocol()), listen, source->port());
     const auto cache = myo::cli::openBasisCache(cacheDir, "myoshell-view");
     myo::viewer::ViewerSession session(scene, cache.get());
-    if (source) session.listen(std::move(source), clock);
+    if (source) {
+      session.listen(std::move(source), clock);
+      for (const std::string& w : session.takeWarnings()) fmt::print(stderr, "myoshell-view: warning: {}\n", w);
+    }
     const myo::viewer::ViewerStats stats = myo::viewer::runViewer(session, options);
     if (!options.screenshot.empty()) fmt::print("wrote {}\n", options.screenshot);
     fmt::print("myoshell-view: {} frames in {:.2f} s ({:.1f} frames/s), simulation {:.0f} steps/s\n", stats.frames,

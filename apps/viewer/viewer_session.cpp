@@ -255,6 +255,8 @@ void ViewerSession::listen(std::unique_ptr<LiveSource> source, LiveClock clock, 
   source_ = std::move(source);
   playing = false;
   takeLive();  // the frame that waited while the face was built, if any
+  // What the maps cannot do on this scene (curves that drive nothing, muscles it lacks), once.
+  for (const std::string& w : liveFrame_.warnings) warnings_.push_back(w);
 }
 
 void ViewerSession::calibrateNeutral(double seconds) {
