@@ -115,13 +115,7 @@ int runLive(const LiveArgs& a) {
   writeFileAtomically((out / "replay.json").string(), sceneToJson(replay), "cannot write the replay scene");
   ScenePlayer player(scene, model);
   FaceStepper& face = player.simulator();
-  std::vector<int> muscleIndex;
-  for (const std::string& name : mapper.muscles()) {
-    int index = -1;
-    for (int m = 0; m < model->muscleCount(); ++m)
-      if (model->muscleName(m) == name) index = m;
-    muscleIndex.push_back(index);
-  }
+  const std::vector<int> muscleIndex = mapper.muscleIndex(*model);
   const std::atomic<bool>& interrupted = installInterruptHandlers();
   player.watch(&interrupted);
   // Said once the face is built, when the take starts (to stderr under --json: a script waits for it).

@@ -3,14 +3,17 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cctype>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "myoshell/core/parallel.h"
 #include "myoshell/io/scene_face.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/io/live_source.h"
 #include "option_checks.h"  // apps/cli: the number checks of the CLI's options
 #include "resources.h"  // apps/cli: where the cache is
 #include "viewer_app.h"
@@ -47,6 +50,33 @@ static std::string meshNotSceneMessage(const std::string& path) {
          ".json";
 }
 
+// --live SPEC: vmc, livelink, vmc:PORT or livelink:PORT (the protocol's default port without one).
+struct LiveSpec {
+  myo::LiveProtocol protocol = myo::LiveProtocol::Vmc;
+  int port = 0;
+};
+
+static LiveSpec parseLiveSpec(const std::string& spec) {
+  const auto bad = [&] {
+    return myo::InputError("--live: expected vmc[:PORT] or livelink[:PORT] (got '" + spec + "')");
+  };
+  const size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  if (name != "vmc" && name != "livelink") throw bad();
+  LiveSpec live;
+  live.protocol = myo::liveProtocolFromString(name);
+  live.port = myo::defaultLivePort(live.protocol);
+  if (colon != std::string::npos) {
+    const std::string digits = spec.substr(colon + 1);
+    if (digits.empty() || digits.size() > 5 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+      throw bad();
+    live.port = std::stoi(digits);
+    if (live.port > 65535) throw bad();
+  }
+  return live;
+}
+
 int main(int argc, char** argv) {
   // Named here, not after argv[0]: --help reads the same however it is started (docs/cli.md).
   CLI::App app{"myoshell-view: a live face with a slider per muscle", "myoshell-view"};
@@ -71,6 +101,17 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads,
                  "threads for building the face (0 = every core, the default); the live step runs on one")
       ->check(myo::cli::wholeAtLeast(0, "0 = every core"));
+  std::string liveSpec, listen = "127.0.0.1", response;
+  bool lockstep = false;
+  app.add_option("--live", liveSpec,
+                 "drive the face from a tracker's stream (docs/live.md): vmc[:PORT] or livelink[:PORT] (default ports "
+                 "39539 and 11111; 0 any free one); the sliders follow it");
+  app.add_option("--listen", listen, "with --live: the address to listen on, 127.0.0.1 (default) or 0.0.0.0 for any "
+                                     "interface");
+  app.add_flag("--lockstep", lockstep, "with --live: acknowledge each frame taken to its sender (myoshell send --lockstep)");
+  app.add_option("--response", response,
+                 "follow (the activations' quasi-static shape at once; the default with --live) or dynamic (the skin "
+                 "trails them; the scene's numerics.response otherwise; docs/live.md, \"Lag\")");
   app.set_version_flag("--version", "myoshell-view 0.1.0");
   try {
     app.parse(argc, argv);
@@ -93,6 +134,25 @@ int main(int argc, char** argv) {
       throw myo::InputError("--library chooses the muscles of the built-in head or a performance; the scene names its "
                             "own (key muscles.library)");
     const std::string chosen = myo::sceneMuscleLibrary(library.empty() ? myo::defaultMuscleLibrary() : library);
+    if (!response.empty() && response != "follow" && response != "dynamic")
+      throw myo::InputError("--response: expected dynamic or follow (got '" + response + "')");
+    // Listening before anything is built: a bad spec or a port in use fails at once, and what
+    // arrives while the face builds waits (only the newest frame is kept).
+    std::unique_ptr<myo::LiveSource> source;
+    const myo::LiveClock clock = myo::steadyLiveClock();
+    if (!liveSpec.empty()) {
+      const LiveSpec live = parseLiveSpec(liveSpec);
+      if (isPerformanceFile(scenePath))
+        throw myo::InputError("--live drives the face from a stream and '" + scenePath +
+                              "' is a recorded performance: give one or the other");
+      myo::LiveSourceOptions sourceOptions;
+      sourceOptions.protocol = live.protocol;
+      sourceOptions.address = listen;
+      sourceOptions.port = live.port;
+      sourceOptions.clock = clock;
+      sourceOptions.acknowledge = lockstep;
+      source = std::make_unique<myo::LiveSource>(sourceOptions);
+    }
     myo::viewer::checkDisplay();  // no display: say so now, not after building the face
     myo::setParallelThreads(threads);  // the builds (core/parallel.h); a step never spreads
     myo::SceneDesc scene;
@@ -110,12 +170,35 @@ int main(int argc, char** argv) {
       scene.name = "default";
       scene.muscleLibrary = chosen;
     }
+    // Live: the activations' shape at once (as `myoshell live`), unless --response says otherwise.
+    if (!response.empty() || source)
+      scene.anatomical.response = response == "dynamic" ? myo::SkinResponse::Dynamic : myo::SkinResponse::Follow;
+    if (source)
+      fmt::print("myoshell-view: listening for {} on {}:{}\n", myo::toString(source->protocol()), listen, source->port());
     const auto cache = myo::cli::openBasisCache(cacheDir, "myoshell-view");
     myo::viewer::ViewerSession session(scene, cache.get());
+    if (source) {
+      session.listen(std::move(source), clock);
+      for (const std::string& w : session.takeWarnings()) fmt::print(stderr, "myoshell-view: warning: {}\n", w);
+    }
     const myo::viewer::ViewerStats stats = myo::viewer::runViewer(session, options);
     if (!options.screenshot.empty()) fmt::print("wrote {}\n", options.screenshot);
     fmt::print("myoshell-view: {} frames in {:.2f} s ({:.1f} frames/s), simulation {:.0f} steps/s\n", stats.frames,
                stats.seconds, stats.framesPerSecond(), stats.stepsPerSecond);
+    if (session.live()) {
+      const myo::viewer::LiveStatus st = session.liveStatus();
+      const myo::LiveCounters& c = st.counters;
+      fmt::print("myoshell-view: live {}: {} packets, {} frames taken ({} malformed, {} dropped, {} superseded); "
+                 "latency {}\n",
+                 myo::toString(st.protocol), c.packets, c.taken, c.malformed, c.dropped, c.superseded,
+                 st.latencySamples > 0 ? fmt::format("median {:.1f} ms over the last second", st.latencyMs)
+                                       : std::string("- (no frame in the last second)"));
+      if (const auto unknown = session.liveUnknownNames(); !unknown.empty()) {
+        std::string names;
+        for (const std::string& n : unknown) names += (names.empty() ? "" : ", ") + n;
+        fmt::print(stderr, "myoshell-view: warning: VMC blend names that mean nothing here, ignored: {}\n", names);
+      }
+    }
     return kExitOk;
   } catch (const myo::InputError& e) {
     fmt::print(stderr, "myoshell-view: error: {}\n", e.what());

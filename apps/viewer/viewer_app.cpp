@@ -307,6 +307,7 @@ class ViewerApp {
     ImGui::SetNextWindowSize(ImVec2(kPanelWidth - 16, static_cast<float>(std::max(height_ - 16, 200))), ImGuiCond_FirstUseEver);
     ImGui::Begin("Myoshell");
     ImGui::PushItemWidth(170);
+    if (session_.live()) livePanel();
     const StepTimings& t = session_.lastTimings();
     ImGui::Text("simulation %.0f steps/s   render %.0f FPS", session_.stepsPerSecond(), ImGui::GetIO().Framerate);
     ImGui::Text("step %.3f ms: muscles %.3f, springs %.3f, channels+sum %.3f", 1e3 * t.total, 1e3 * t.muscles,
@@ -409,6 +410,32 @@ class ViewerApp {
     ImGui::End();
   }
 
+  // The live stream's status line (docs/live.md, "In the viewer") and the calibration.
+  void livePanel() {
+    const LiveStatus st = session_.liveStatus();
+    const LiveCounters& c = st.counters;
+    const std::string latency = st.latencySamples > 0 ? fmt::format("{:.1f} ms", st.latencyMs) : "-";
+    ImGui::Text("live %s :%d   %.0f packets/s   latency %s", toString(st.protocol), st.port, st.packetsPerSecond,
+                latency.c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("a frame's arrival to its positions ready, median over the last second");
+    ImGui::Text("dropped %ld, malformed %ld, superseded %ld", c.dropped, c.malformed, c.superseded);
+    if (ImGui::Button("Calibrate neutral")) session_.calibrateNeutral(kCalibrateSeconds);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("hold a neutral face: the next %.0f s are subtracted as the resting weights", kCalibrateSeconds);
+    ImGui::SameLine();
+    if (st.calibrating)
+      ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "calibrating: hold a neutral face");
+    else if (c.frames == 0)
+      ImGui::TextDisabled("waiting for the first frame");
+    else if (st.liveness < 1.0)
+      ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.4f, 1.0f), "stream silent: easing to neutral");
+    else
+      ImGui::Text("receiving");
+    ImGui::Separator();
+  }
+  static constexpr double kCalibrateSeconds = 1.0;
+
   template <class Action>
   void pathButton(const char* label, std::string& path, Action action) {
     char buffer[512];
@@ -491,6 +518,15 @@ class ViewerApp {
       fmt::print("probe {} (vertex {}): displacement {:.6g} {:.6g} {:.6g} cm, |u| {:.6g} cm\n", c.args[0], v, d.x(),
                  d.y(), d.z(), d.norm());
     }
+    else if (c.verb == "sliders") {
+      for (int m = 0; m < session_.muscleCount(); ++m)
+        fmt::print("slider {} {:.6g}\n", session_.muscleName(m), session_.slider(m));
+      if (session_.hasJaw()) {
+        const JawPose& j = session_.jawSlider();
+        fmt::print("jaw {:.6g} {:.6g} {:.6g}\n", j.openDeg, j.forwardCm, j.lateralCm);
+      }
+    }
+    else if (c.verb == "calibrate") session_.calibrateNeutral(c.number(0));
     else if (c.verb == "key") session_.setKeysAtPlayhead();
     else if (c.verb == "save") session_.saveScene(c.args[0]);
     else if (c.verb == "export") session_.exportGlb(c.args[0]);

@@ -19,7 +19,7 @@ const std::map<std::string, std::string>& grammar() {
       {"release", ""},   {"key", ""},      {"save", "w"},    {"export", "w"},    {"screenshot", "w"},
       {"advance", "n"},  {"show", "wb"},   {"select", "w"},  {"view", "v"},      {"orbit", "nn"},
       {"zoom", "n"},     {"jaw", "nnn"},   {"blink", ""},
-      {"probe", "w"}};
+      {"probe", "w"},    {"sliders", ""},  {"calibrate", "n"}};
   return g;
 }
 

@@ -8,6 +8,8 @@
 //   grab V                grab skin vertex V (a number) or landmark V (a name) with the mouse drag
 //   pull FX FY FZ         force on the grabbed spot, dyn        release
 //   probe V               print vertex (or landmark) V's displacement, cm, to stdout
+//   sliders               print every muscle's slider (and the jaw's) to stdout
+//   calibrate S           live (--live): the next S seconds of the stream are the resting face
 //   key                   keys at the playhead from the sliders
 //   save PATH | export PATH (GLB) | screenshot PATH (PNG)
 //   advance N             N frames of the scene's frame rate: simulate and draw each

@@ -170,8 +170,10 @@ void ViewerSession::applyControls() {
 // After the timeline, before a step (the player calls it while playing): what the user controls.
 void ViewerSession::controls(FaceStepper& s) {
   if (playing && !gravityOn_ && hasGravity()) s.setGravity(0.0);
+  // Live: the stream's frame as `myoshell live` applies it; its sliders show it.
+  if (live()) LiveFaceMapper::apply(liveFrame_, liveIndex_, s);
   for (int m = 0; m < muscleCount(); ++m) {
-    if (playing && tracked_[static_cast<size_t>(m)])
+    if ((playing && tracked_[static_cast<size_t>(m)]) || (live() && liveDriven_[static_cast<size_t>(m)]))
       sliders_[static_cast<size_t>(m)] = s.activation(m);
     else
       s.setActivation(m, sliders_[static_cast<size_t>(m)]);
@@ -179,7 +181,7 @@ void ViewerSession::controls(FaceStepper& s) {
   if (blinking())
     for (int m : blinkMuscles_) s.setActivation(m, std::max(s.activation(m), blinkLevel()));
   if (hasJaw()) {
-    if (playing && scene().hasJaw())
+    if ((playing && scene().hasJaw()) || (live() && !liveFrame_.jaw.empty()))
       jaw_ = s.jaw();
     else
       s.setJaw(jaw_);
@@ -205,6 +207,10 @@ double ViewerSession::blinkLevel() const {
 }
 
 void ViewerSession::advance(double seconds) {
+  if (live()) {
+    playing = false;  // the stream drives the face, not the timeline
+    takeLive();
+  }
   const double dt = model_->dt();
   pending_ += std::max(seconds, 0.0);
   const int steps = static_cast<int>(std::floor(pending_ / dt + 1e-6));  // a step owed up to round-off is taken
@@ -231,6 +237,85 @@ void ViewerSession::advance(double seconds) {
     const double rate = steps / elapsed;
     stepsPerSecond_ = stepsPerSecond_ == 0.0 ? rate : 0.9 * stepsPerSecond_ + 0.1 * rate;
   }
+  if (live() && steps > 0) liveStepsDone();
+}
+
+// ---- the live stream ----
+
+void ViewerSession::listen(std::unique_ptr<LiveSource> source, LiveClock clock, const LiveFaceSettings& settings,
+                           const OneEuroSettings& filter) {
+  input_.emplace(settings);
+  mapper_.emplace(scene(), filter);  // the scene's maps, as `myoshell live` builds its mapper
+  liveIndex_ = mapper_->muscleIndex(*model_);
+  liveDriven_.assign(sliders_.size(), false);
+  for (const int m : liveIndex_)
+    if (m >= 0) liveDriven_[static_cast<size_t>(m)] = true;
+  clock_ = clock ? std::move(clock) : steadyLiveClock();
+  liveStart_ = clock_();
+  source_ = std::move(source);
+  playing = false;
+  takeLive();  // the frame that waited while the face was built, if any
+  // What the maps cannot do on this scene (curves that drive nothing, muscles it lacks), once.
+  for (const std::string& w : liveFrame_.warnings) warnings_.push_back(w);
+}
+
+void ViewerSession::calibrateNeutral(double seconds) {
+  if (!live()) throw InputError("calibrate: the viewer is not listening to a live stream (--live)");
+  input_->startCalibration(clock_(), seconds);
+}
+
+// Once per advance: the newest frame (if any) into the input, and the input at this instant mapped
+// as `myoshell live` maps it; the steps then apply it (controls()).
+void ViewerSession::takeLive() {
+  if (const std::optional<LiveSample> sample = source_->takeNewest()) {
+    input_->receive(*sample);
+    arrival_ = sample->arrival;
+  }
+  const double now = clock_();
+  liveFrame_ = mapper_->map(now - liveStart_, input_->at(now));
+  if (thesisModel()) {  // the thesis model has no jaw, eyes or head pose: its muscles only
+    liveFrame_.jaw.clear();
+    liveFrame_.gaze.clear();
+    liveFrame_.headPose.clear();
+  }
+  const long packets = source_->counters().packets;
+  packetTimes_.emplace_back(now, packets);
+  while (packetTimes_.size() > 1 && now - packetTimes_.front().first > 1.0) packetTimes_.pop_front();
+}
+
+// The steps that show the newest frame are done: its latency, arrival → positions ready.
+void ViewerSession::liveStepsDone() {
+  const double now = clock_();
+  if (arrival_) latencies_.emplace_back(now, 1e3 * (now - *std::exchange(arrival_, std::nullopt)));
+  while (!latencies_.empty() && now - latencies_.front().first > 1.0) latencies_.pop_front();
+}
+
+LiveStatus ViewerSession::liveStatus() const {
+  LiveStatus st;
+  if (!live()) return st;
+  const double now = clock_();
+  st.protocol = source_->protocol();
+  st.port = source_->port();
+  st.counters = source_->counters();
+  if (packetTimes_.size() > 1) {
+    const double span = packetTimes_.back().first - packetTimes_.front().first;
+    if (span > 0) st.packetsPerSecond = (packetTimes_.back().second - packetTimes_.front().second) / span;
+  }
+  std::vector<double> ms;
+  for (const auto& [t, value] : latencies_)
+    if (now - t <= 1.0) ms.push_back(value);
+  st.latencySamples = static_cast<int>(ms.size());
+  if (!ms.empty()) {
+    std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
+    st.latencyMs = ms[ms.size() / 2];
+  }
+  st.calibrating = input_->calibrating(now);
+  st.liveness = input_->liveness(now);
+  return st;
+}
+
+std::vector<std::string> ViewerSession::liveUnknownNames() const {
+  return live() ? source_->unknownNames() : std::vector<std::string>{};
 }
 
 void ViewerSession::seek(double t) {

@@ -5,7 +5,9 @@
 // tests drive it directly.
 #pragma once
 
+#include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,10 +15,26 @@
 #include "myoshell/anim/scene.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/head/jaw.h"
+#include "myoshell/io/live_source.h"
+#include "myoshell/io/live_take.h"
 #include "myoshell/reduce/basis_cache.h"
 #include "myoshell/thesis/simulator.h"
 
 namespace myo::viewer {
+
+// What the live stream did (the panel's status line and the run's summary).
+struct LiveStatus {
+  LiveProtocol protocol = LiveProtocol::Vmc;
+  int port = 0;
+  LiveCounters counters;
+  double packetsPerSecond = 0.0;  // over the last second
+  // Arrival → positions ready (the frame's steps done), ms: the median over the last second and
+  // how many frames it holds (0: no frame arrived in the last second).
+  double latencyMs = 0.0;
+  int latencySamples = 0;
+  bool calibrating = false;
+  double liveness = 0.0;  // 1 live, falling to 0 as a silent stream eases to neutral
+};
 
 class ViewerSession {
  public:
@@ -103,6 +121,21 @@ class ViewerSession {
   double playhead() const { return player_->time(); }
   double duration() const { return scene().duration; }
 
+  // --- the live stream (docs/live.md, "In the viewer") -----------------------------------------
+  // From now on each advance() takes the source's newest frame and maps it as `myoshell live` does
+  // (LiveFaceMapper with the scene's maps and `filter`; LiveFaceInput with `settings`): the mapped
+  // muscles, jaw, gaze and head turn drive the face, their sliders show the stream, the muscles
+  // the stream does not map keep their sliders. The timeline stops (playing is ignored while live).
+  // `clock` is the source's (its arrival stamps).
+  void listen(std::unique_ptr<LiveSource> source, LiveClock clock, const LiveFaceSettings& settings = {},
+              const OneEuroSettings& filter = {});
+  bool live() const { return source_ != nullptr; }
+  // "Calibrate neutral": the frames of the next `seconds` are the performer's resting face.
+  void calibrateNeutral(double seconds = 1.0);
+  LiveStatus liveStatus() const;  // only while live()
+  // VMC blend names the stream sent that mean nothing here (warn once at the end).
+  std::vector<std::string> liveUnknownNames() const;
+
   // --- authoring -------------------------------------------------------------------------------
   // A key at the playhead on every muscle's activation track with its slider value (a key already
   // at that time is replaced), and on the jaw's three tracks when the jaw is off rest or the scene
@@ -140,6 +173,21 @@ class ViewerSession {
   std::vector<int> blinkMuscles_;  // the palpebral muscles
   double stepsPerSecond_ = 0.0;
   std::vector<std::string> warnings_;
+
+  // The live stream (null when not live).
+  std::unique_ptr<LiveSource> source_;
+  LiveClock clock_;
+  std::optional<LiveFaceInput> input_;
+  std::optional<LiveFaceMapper> mapper_;
+  std::vector<int> liveIndex_;      // per mapped muscle: its index in the model (−1: none)
+  std::vector<bool> liveDriven_;    // per model muscle: whether the stream drives it
+  MappedPerformance liveFrame_;     // the frame the steps apply (mapped once per advance)
+  double liveStart_ = 0.0;          // s on clock_: the mapper's time origin
+  std::optional<double> arrival_;   // the newest frame's arrival, until the steps that show it are done
+  std::deque<std::pair<double, long>> packetTimes_;  // (s, packets so far), the last second
+  std::deque<std::pair<double, double>> latencies_;  // (s, ms), the last second
+  void takeLive();
+  void liveStepsDone();
 
   FaceStepper& sim() { return player_->simulator(); }
   void applyControls();

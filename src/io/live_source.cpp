@@ -187,9 +187,9 @@ LiveFaceInput::LiveFaceInput(LiveFaceSettings settings) : settings_(settings) {
 }
 
 void LiveFaceInput::receive(const LiveSample& sample) {
-  if (!firstArrival_) firstArrival_ = sample.arrival;
+  if (!calibrationStart_) calibrationStart_ = sample.arrival;
   if (!restDone_) {
-    if (sample.arrival - *firstArrival_ <= settings_.calibrateSeconds) {
+    if (sample.arrival - *calibrationStart_ <= settings_.calibrateSeconds) {
       for (int k = 0; k < kArkitWeightCount; ++k) restSum_[k] += sample.frame.weights[k];
       ++restCount_;
     } else {
@@ -201,7 +201,17 @@ void LiveFaceInput::receive(const LiveSample& sample) {
 }
 
 bool LiveFaceInput::calibrating(double now) const {
-  return !restDone_ && (!firstArrival_ || now - *firstArrival_ <= settings_.calibrateSeconds);
+  return !restDone_ && (!calibrationStart_ || now - *calibrationStart_ <= settings_.calibrateSeconds);
+}
+
+void LiveFaceInput::startCalibration(double now, double seconds) {
+  if (!(std::isfinite(seconds) && seconds > 0))
+    throw InputError("live input: the calibration must last a finite time > 0 s");
+  settings_.calibrateSeconds = seconds;
+  calibrationStart_ = now;
+  restSum_.fill(0.0);
+  restCount_ = 0;
+  restDone_ = false;  // the old rest is kept until the new one is known; the face is neutral meanwhile
 }
 
 double LiveFaceInput::liveness(double now) const {

@@ -54,6 +54,17 @@ MappedPerformance LiveFaceMapper::map(double t, const LiveFrame& frame) {
   return mapPerformance(one, mapping_.muscles, builtinFacsMap(), mapping_.arkitMap, off);
 }
 
+std::vector<int> LiveFaceMapper::muscleIndex(const FaceSystem& model) const {
+  std::vector<int> index;
+  for (const std::string& name : muscles()) {
+    int found = -1;
+    for (int m = 0; m < model.muscleCount(); ++m)
+      if (model.muscleName(m) == name) found = m;
+    index.push_back(found);
+  }
+  return index;
+}
+
 void LiveFaceMapper::apply(const MappedPerformance& mapped, const std::vector<int>& muscleIndex, FaceStepper& stepper) {
   for (size_t m = 0; m < mapped.activations.size(); ++m)
     if (muscleIndex[m] >= 0) stepper.setActivation(muscleIndex[m], mapped.activations[m][0]);

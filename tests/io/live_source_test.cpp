@@ -217,6 +217,28 @@ TEST(LiveFaceInput, CalibrationSubtractsTheRestingWeights) {
   EXPECT_EQ(input.at(1.2).weights[4], 0.0);  // below the rest: clamped, never negative
 }
 
+// "Calibrate neutral" at run time: the frames of the next seconds become the rest, the face is
+// neutral while they arrive, and what comes after is measured from the new rest.
+TEST(LiveFaceInput, CalibratingAgainTakesTheNewRestingWeights) {
+  LiveFaceInput input;  // no calibration at the start: the rest is zero
+  long n = 0;
+  input.receive(sampleAt(0.0, 0.3, ++n));
+  EXPECT_EQ(input.at(0.0).weights[2], 0.3);
+  input.startCalibration(5.0, 0.5);
+  EXPECT_TRUE(input.calibrating(5.0));
+  EXPECT_EQ(input.at(5.0).weights[2], 0.0);  // neutral while calibrating
+  input.receive(sampleAt(5.1, 0.2, ++n));
+  input.receive(sampleAt(5.4, 0.4, ++n));
+  EXPECT_EQ(input.at(5.4).weights[2], 0.0);
+  EXPECT_EQ(input.rest()[2], 0.0);  // not known before the window closes
+  input.receive(sampleAt(5.6, 0.5, ++n));  // after the window: the rest is the mean of 0.2 and 0.4
+  EXPECT_FALSE(input.calibrating(5.6));
+  EXPECT_NEAR(input.rest()[2], 0.3, 1e-12);
+  EXPECT_NEAR(input.at(5.6).weights[2], 0.2, 1e-12);
+  EXPECT_THROW(input.startCalibration(6.0, 0.0), InputError);
+  EXPECT_THROW(input.startCalibration(6.0, std::nan("")), InputError);
+}
+
 // 10 % of a take's packets lost at random: each lost frame is held, so the face input deviates
 // from the lossless take by at most what a weight moves over the longest run of lost frames.
 TEST(LiveFaceInput, RandomLossDeviatesByAtMostTheHeldChange) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 
@@ -12,6 +13,9 @@
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/whole_file.h"
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/io/live_packets.h"
+#include "myoshell/io/live_source.h"
 #include "myoshell/io/animation_export.h"
 #include "myoshell/io/scene_face.h"
 #include "support/free_vertex.h"
@@ -248,8 +252,9 @@ TEST(ViewerScript, ErrorsNameTheFileLineAndFault) {
     return std::string("no error");
   };
   EXPECT_EQ(message("set zygomaticus_major_left 1\nfrobnicate\n"),
-            "s.txt:2: unknown command 'frobnicate' (known: advance, blink, export, grab, gravity, jaw, key, link, orbit, pause, play, "
-            "probe, pull, release, reset, save, screenshot, seek, select, set, show, stiffness, view, zoom)");
+            "s.txt:2: unknown command 'frobnicate' (known: advance, blink, calibrate, export, grab, gravity, jaw, key, link, "
+            "orbit, pause, play, probe, pull, release, reset, save, screenshot, seek, select, set, show, sliders, "
+            "stiffness, view, zoom)");
   EXPECT_EQ(message("# a comment\n\nadvance\n"), "s.txt:3: 'advance' takes 1 argument, got 0");
   EXPECT_EQ(message("set zygomaticus_major_left lots\n"), "s.txt:1: 'set': 'lots' is not a finite number");
   EXPECT_EQ(message("stiffness nan\n"), "s.txt:1: 'stiffness': 'nan' is not a finite number");
@@ -448,6 +453,72 @@ TEST(ViewerSession, TheJawSlidersOpenTheMouthKeyAndFollowTheTimeline) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "the jaw needs \"model\": \"anatomical\"; the thesis model has no jaw");
   }
+}
+
+// --live: a frame from the stream drives the muscles it maps (their sliders show it, the simulator
+// holds it), the status counts it and times it (arrival → positions ready, on the injected clock),
+// and a silent stream eases the face back to neutral.
+TEST(ViewerSession, ALiveFrameDrivesTheSlidersAndTheStatusCountsIt) {
+  ViewerSession s(smallScene(), nullptr);  // its own: listening is for good
+  std::atomic<double> now{10.0};
+  const LiveClock clock = [&] { return now.load(); };
+  LiveSourceOptions options{LiveProtocol::LiveLink, "127.0.0.1", 0};
+  options.clock = clock;
+  auto source = std::make_unique<LiveSource>(options);
+  LiveSource* const receiver = source.get();
+  const int port = source->port();
+  EXPECT_THROW(s.calibrateNeutral(), InputError);  // not live yet
+  OneEuroSettings unfiltered;
+  unfiltered.enabled = false;  // the values as mapped, not smoothed from the neutral start
+  s.listen(std::move(source), clock, {}, unfiltered);
+  ASSERT_TRUE(s.live());
+  EXPECT_FALSE(s.playing);
+
+  const int zygomaticus = s.model().muscleIndex("zygomaticus_major_left");
+  LiveFrame smile;
+  const auto& names = arkitNames();
+  for (const char* name : {"mouthSmileLeft", "mouthSmileRight"})
+    smile.weights[static_cast<size_t>(std::find(names.begin(), names.end(), name) - names.begin())] = 0.8f;  // as sent
+  LiveSender to("127.0.0.1", port);
+  to.send(encodeLiveLinkPacket(smile, {1, 0.0f, 60, 1}));
+  ASSERT_TRUE(receiver->waitForFrame(5.0));
+  now = 10.004;  // the steps start 4 ms after the arrival (10.0)
+  s.advance(0.1);
+  // The stream's smile, mapped as `myoshell live` maps it (its LiveFaceMapper on the same scene).
+  LiveFaceMapper reference(s.scene(), unfiltered);
+  const MappedPerformance expected = reference.map(0.0, smile);
+  const auto& mapped = reference.muscles();
+  const size_t k = static_cast<size_t>(std::find(mapped.begin(), mapped.end(), "zygomaticus_major_left") - mapped.begin());
+  ASSERT_LT(k, mapped.size());
+  EXPECT_GT(expected.activations[k][0], 0.05);
+  EXPECT_DOUBLE_EQ(s.slider(zygomaticus), expected.activations[k][0]);
+  EXPECT_EQ(s.simulator().activation(zygomaticus), s.slider(zygomaticus));
+  const LiveStatus st = s.liveStatus();
+  EXPECT_EQ(st.protocol, LiveProtocol::LiveLink);
+  EXPECT_EQ(st.port, port);
+  EXPECT_EQ(st.counters.packets, 1);
+  EXPECT_EQ(st.counters.taken, 1);
+  EXPECT_EQ(st.counters.malformed, 0);
+  ASSERT_EQ(st.latencySamples, 1);
+  EXPECT_NEAR(st.latencyMs, 4.0, 1e-9);
+  EXPECT_NEAR(st.packetsPerSecond, 1 / 0.004, 1e-6);  // one packet since listen() at 10.0
+  EXPECT_GT(st.liveness, 0.99);
+  // The smile moved the skin.
+  EXPECT_GT(s.simulator().skinDisplacement().rowwise().norm().maxCoeff(), 0.01);
+
+  const double smiled = s.slider(zygomaticus);
+  now = 13.0;  // 3 s of silence: past the timeout and the ease
+  s.advance(0.1);
+  EXPECT_EQ(s.liveStatus().liveness, 0.0);
+  EXPECT_GT(smiled, 0.0);
+  EXPECT_EQ(s.slider(zygomaticus), 0.0);
+  EXPECT_EQ(s.liveStatus().latencySamples, 0);  // nothing arrived in the last second
+  s.calibrateNeutral(0.5);
+  EXPECT_TRUE(s.liveStatus().calibrating);
+  // A timeline does not play over the stream.
+  s.playing = true;
+  s.advance(0.05);
+  EXPECT_FALSE(s.playing);
 }
 
 }  // namespace

@@ -2,10 +2,19 @@
 // in the picture, the panel is drawn, and without a display it fails with a clear message.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
+
+#include "myoshell/fit/arkit_names.h"
+#include "myoshell/io/live_packets.h"
+#include "myoshell/io/live_source.h"
+#include "myoshell/io/performance_file.h"
 
 #include "support/picture.h"
 
@@ -195,6 +204,79 @@ TEST(ViewerWindow, ABadScriptNamesItsLineAndLeavesNoPicture) {
   EXPECT_EQ(usage.exitCode, 2);
   EXPECT_NE(usage.output.find("myoshell-view: error: --size '10x10' is not WxH with sides in [64, 8192]"), std::string::npos)
       << usage.output;
+}
+
+// --live SPEC: a bad spec and a port in use are refused (exit 2) before any display is needed.
+TEST(ViewerWindow, ABadLiveSpecOrAPortInUseIsRefused) {
+  const fs::path dir = scratch("live_bad");
+  for (const char* spec : {"osc", "livelink:", "vmc:70000", "livelink:12a", "LiveLink"}) {
+    const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", std::string("--live ") + spec, dir);
+    EXPECT_EQ(run.exitCode, 2) << spec << ": " << run.output;
+    EXPECT_NE(run.output.find(std::string("myoshell-view: error: --live: expected vmc[:PORT] or livelink[:PORT] (got '") +
+                              spec + "')"),
+              std::string::npos)
+        << run.output;
+  }
+  myo::LiveSource taken({myo::LiveProtocol::LiveLink, "127.0.0.1", 0});
+  const ViewerRun busy = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY",
+                                   "--live livelink:" + std::to_string(taken.port()), dir);
+  EXPECT_EQ(busy.exitCode, 2) << busy.output;
+  EXPECT_NE(busy.output.find("myoshell-view: error: port " + std::to_string(taken.port()) +
+                             " on 127.0.0.1 is in use (another receiver is listening; choose another port)"),
+            std::string::npos)
+      << busy.output;
+}
+
+// --live livelink:PORT under Xvfb while a sender streams the recorded Live Link take: the viewer
+// takes the frames, the sliders of the muscles it maps and the jaw show them, and it counts them.
+TEST(ViewerWindow, ALiveStreamDrivesTheSliders) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  const fs::path dir = scratch("live");
+  const myo::Performance take =
+      myo::readPerformanceFile(std::string(MYO_SOURCE_DIR) + "/tests/anim/performances/livelink_take.csv");
+  std::vector<myo::LiveFrame> frames(take.times.size());
+  const auto& names = myo::arkitNames();
+  for (const myo::PerformanceChannel& c : take.channels) {
+    const auto k = static_cast<size_t>(std::find(names.begin(), names.end(), c.name) - names.begin());
+    for (size_t i = 0; i < frames.size(); ++i) frames[i].weights[k] = c.values[i];
+  }
+  int port = 0;
+  {
+    const myo::LiveSource probe({myo::LiveProtocol::LiveLink, "127.0.0.1", 0});  // a free port, let go
+    port = probe.port();
+  }
+  // The sender streams at 200 frames per second until the viewer is done (UDP: what is sent before
+  // the viewer listens is lost, as from a tracker).
+  std::atomic<bool> done{false};
+  std::thread sender([&] {
+    myo::LiveSender to("127.0.0.1", port);
+    for (int i = 0; !done.load(); ++i) {
+      to.send(myo::encodeLiveLinkPacket(frames[static_cast<size_t>(i) % frames.size()], {i, 0.0f, 60, 1}));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  std::ofstream(dir / "live.txt") << "advance 20\nsliders\nscreenshot live.png\n";
+  const ViewerRun run =
+      runViewer(kXvfb, "--size 960x720 --live livelink:" + std::to_string(port) + " --script live.txt", dir);
+  done = true;
+  sender.join();
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const auto value = [&](const std::string& key) {  // a line "KEY X …" of the output
+    const size_t at = run.output.find("\n" + key + " ");
+    if (at == std::string::npos) return -1.0;
+    return std::stod(run.output.substr(at + key.size() + 2));
+  };
+  EXPECT_GT(value("slider zygomaticus_major_left"), 0.05) << run.output;  // the take smiles (mouthSmileLeft 0.34)
+  EXPECT_GT(value("jaw"), 0.5) << run.output;                             // degrees: jawOpen 0.21 opens the jaw
+  const size_t summary = run.output.find("myoshell-view: live livelink: ");
+  ASSERT_NE(summary, std::string::npos) << run.output;
+  std::istringstream in(run.output.substr(summary + 30));
+  long packets = 0, taken = 0;
+  std::string word;
+  in >> packets >> word >> taken;
+  EXPECT_GT(packets, 0) << run.output;
+  EXPECT_GE(taken, 1) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "live.png"));
 }
 
 }  // namespace

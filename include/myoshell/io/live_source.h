@@ -126,11 +126,16 @@ class LiveFaceInput {
   const std::array<double, kArkitWeightCount>& rest() const { return rest_; }
   // 1 while the stream is live, falling to 0 over the ease after the timeout.
   double liveness(double now) const;
+  // Captures the resting face again, now (the viewer's "Calibrate neutral"): the frames arriving
+  // in [now, now + seconds] are the new resting weights (their mean; zero when none arrives); the
+  // face is neutral meanwhile, as during the first calibration. InputError for seconds not > 0.
+  void startCalibration(double now, double seconds);
 
  private:
   LiveFaceSettings settings_;
   std::optional<LiveSample> last_;
-  std::optional<double> firstArrival_;
+  // When the calibration's window opens (s): the first arrival, or startCalibration's `now`.
+  std::optional<double> calibrationStart_;
   std::array<double, kArkitWeightCount> restSum_{};
   long restCount_ = 0;
   std::array<double, kArkitWeightCount> rest_{};

@@ -31,6 +31,8 @@ class LiveFaceMapper {
   // the gaze and the head pose each with one entry or none.
   MappedPerformance map(double t, const LiveFrame& frame);
   const std::vector<std::string>& muscles() const { return mapping_.muscles; }
+  // Each of muscles()' index in `model` (−1 for one the model lacks): apply()'s `muscleIndex`.
+  std::vector<int> muscleIndex(const FaceSystem& model) const;
   // Applies a mapped frame to a stepper as the scene player applies a timeline: every muscle's
   // activation (by name), the jaw, the gaze, the head's rotation (which turns gravity).
   static void apply(const MappedPerformance& mapped, const std::vector<int>& muscleIndex, FaceStepper& stepper);
