@@ -10,15 +10,17 @@ namespace myo::cli {
 namespace {
 void addFileOptions(CLI::App& sub, HeadOptions& head, const HeadHelp& notes) {
   head.landmarksOption =
-      sub.add_option("--landmarks", head.landmarks, "Landmark file of an OBJ head (docs/heads.md)" + notes.landmarks);
+      sub.add_option("--landmarks", head.landmarks, "Landmark file of an OBJ head (docs/heads.md); without it they are found automatically "
+                     "and kept in the cache folder" + notes.landmarks);
   head.unitsOption = sub.add_option("--units", head.units,
-                                    "Length unit of an OBJ head, m, mm or cm (scaled to cm on load; default cm)" + notes.units);
+                                    "Length unit of an OBJ head, m, mm or cm (scaled to cm on load; default cm, or, with "
+                                    "automatic landmarks, the unit inferred from its size)" + notes.units);
 }
 }  // namespace
 
 void addHeadOptions(CLI::App& sub, HeadOptions& head, const HeadHelp& notes) {
   head.headOption = sub.add_option("--head", head.head,
-                                   "The head: 'default' (the built-in head), an OBJ file (with --landmarks) or a folder "
+                                   "The head: 'default' (the built-in head), an OBJ file or a folder "
                                    "like ../shared/data/ict" + notes.head + "; default: " + notes.headDefault);
   addFileOptions(sub, head, notes);
 }
