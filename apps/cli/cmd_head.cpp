@@ -214,9 +214,7 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("head", args->head.head, "'default', an OBJ file, or a folder with head_skin.obj, "
                                            "landmarks_multipie68.json and rigid_vertices.json");
   addHeadFileOptions(*sub, args->head);
-  sub->add_option("--cache", args->cacheDir,
-                  "Cache folder keeping the landmarks found for an OBJ without --landmarks (default: $MYOSHELL_CACHE, "
-                  "$XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
+  addCacheOption(*sub, args->cacheDir);  // it keeps the landmarks found for an OBJ without --landmarks
   sub->add_option("--pins", args->pins, "vertex-set file of gravity pins (default: the rim rule)");
   addJsonFlag(*sub, args->json);
   sub->add_option("--render", args->render, "write a PNG picture with the landmarks marked");

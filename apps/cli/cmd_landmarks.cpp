@@ -197,10 +197,7 @@ static CommandRegistrar reg("landmarks", [](CLI::App& app) -> std::function<int(
   sub->add_option("--out", args->out, "landmark file to write (default: HEAD's stem + .landmarks.json, here)");
   sub->add_option("--picture", args->picture, "write a PNG of the points on the head, front and side");
   sub->add_option("--compare", args->compare, "a landmark file of the same mesh: report each point's distance (mm); ids that look 1-based or sides swapped exit 2, points over 1.5 cm off warn");
-  sub->add_option("--cache", args->cacheDir,
-                  "Cache folder that also keeps the landmarks, for the commands given this OBJ without --landmarks and "
-                  "to check a file given with --landmarks (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or "
-                  "~/.cache/myoshell)");
+  addCacheOption(*sub, args->cacheDir);  // it keeps the landmarks too (later commands reuse them and check a given file)
   addJsonFlag(*sub, args->json);
   return [args] { return runLandmarks(*args); };
 });

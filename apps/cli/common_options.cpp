@@ -48,7 +48,8 @@ void addLibraryOption(CLI::App& sub, std::string& library) {
 
 void addCacheOption(CLI::App& sub, std::string& cacheDir) {
   sub.add_option("--cache", cacheDir,
-                 "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
+                 "Basis cache folder, which also keeps automatic landmarks (default: $MYOSHELL_CACHE, "
+                 "$XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
 }
 
 void addDataOption(CLI::App& sub, std::string& dataDir) {

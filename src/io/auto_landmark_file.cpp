@@ -129,7 +129,13 @@ FoundLandmarkFile findLandmarkFile(const std::string& obj, const fs::path& cache
   AutoLandmarkOptions options;
   options.unit = unit;
   const AutoLandmarks found = findLandmarks(mesh, options);
-  const std::string written = storeAutoLandmarks(obj, found, cacheDir);
+  std::string written;
+  try {
+    written = storeAutoLandmarks(obj, found, cacheDir);
+  } catch (const InputError&) {  // a read-only (shared) cache folder: the temporary folder keeps it
+    if (cacheDir.empty()) throw;
+    written = storeAutoLandmarks(obj, found, {});
+  }
   FoundLandmarkFile f = describe(obj, written, found);
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return f;

@@ -46,7 +46,8 @@ std::string autoLandmarkFileText(const AutoLandmarks& found, const std::string& 
 std::string storeAutoLandmarks(const std::string& obj, const AutoLandmarks& found, const std::filesystem::path& cacheDir);
 
 // The landmarks of the OBJ head `obj` without a landmark file: the file kept from an earlier search
-// of the same bytes when there is one, else findLandmarks(readObj(obj), unit) written there.
+// of the same bytes when there is one, else findLandmarks(readObj(obj), unit) written there (in
+// landmarkFileFolder({}) when the cache folder cannot be written).
 // `unit` empty: the unit is the search's (inferred from the size); given: checked by the search and
 // by loadHead as for any OBJ. InputError from the OBJ reader or the search ("not a head: ...").
 FoundLandmarkFile findLandmarkFile(const std::string& obj, const std::filesystem::path& cacheDir,
