@@ -209,7 +209,7 @@ int runHead(const HeadArgs& a) {
 static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<HeadArgs>();
   CLI::App* sub = app.add_subcommand(
-      "head", "Load a head (the built-in default, an OBJ, its landmarks found automatically without a landmark file, or a folder like "
+      "head", "Load a head (the built-in default, an OBJ with or without a landmark file, or a folder like "
               "../shared/data/ict) and report counts, landmarks, face frame and gravity pins");
   sub->add_option("head", args->head.head, "'default', an OBJ file, or a folder with head_skin.obj, "
                                            "landmarks_multipie68.json and rigid_vertices.json");

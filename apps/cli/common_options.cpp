@@ -10,8 +10,8 @@ namespace myo::cli {
 namespace {
 void addFileOptions(CLI::App& sub, HeadOptions& head, const HeadHelp& notes) {
   head.landmarksOption =
-      sub.add_option("--landmarks", head.landmarks, "Landmark file of an OBJ head (docs/heads.md); without it they are found automatically "
-                     "and kept in the cache folder" + notes.landmarks);
+      sub.add_option("--landmarks", head.landmarks, "Landmark file of an OBJ head" + notes.landmarks +
+                         " (docs/heads.md; without one an OBJ's are found automatically and kept in the cache folder)");
   head.unitsOption = sub.add_option("--units", head.units,
                                     "Length unit of an OBJ head, m, mm or cm (scaled to cm on load; default cm, or, with "
                                     "automatic landmarks, the unit inferred from its size)" + notes.units);
