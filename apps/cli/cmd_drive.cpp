@@ -14,6 +14,7 @@
 
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/anim/performance_map.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/output_paths.h"
@@ -107,7 +108,10 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   addCacheOption(*sub, a->run.cacheDir);
   addJsonFlag(*sub, a->run.json);
   addThreadsOption(*sub);
-  return [a] { return runDrive(*a); };
+  return [a] {
+    resolveHeadLandmarks(a->head, a->run.cacheDir);
+    return runDrive(*a);
+  };
 });
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -236,7 +237,10 @@ static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
   addCacheOption(*sub, args->cacheDir);
   addJsonFlag(*sub, args->json);
   addThreadsOption(*sub);
-  return [args] { return runFit(*args); };
+  return [args] {
+    resolveHeadLandmarks(args->head, args->cacheDir);
+    return runFit(*args);
+  };
 });
 
 }  // namespace

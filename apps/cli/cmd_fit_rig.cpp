@@ -17,6 +17,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -212,7 +213,10 @@ static CommandRegistrar reg("fit-rig", [](CLI::App& app) -> std::function<int()>
   addCacheOption(*sub, args->cacheDir);
   addJsonFlag(*sub, args->json);
   addThreadsOption(*sub);
-  return [args] { return runFitRig(*args); };
+  return [args] {
+    resolveHeadLandmarks(args->head, args->cacheDir);
+    return runFitRig(*args);
+  };
 });
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/anatomy/eyelids.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -103,6 +104,7 @@ struct HeadArgs {
   bool closedEyes = false;
   std::string writeObj;
   std::string writeLandmarks;
+  std::string cacheDir;  // where the landmarks of an OBJ without --landmarks are kept
 };
 
 Head loadFromArgs(const HeadArgs& a) {
@@ -207,11 +209,12 @@ int runHead(const HeadArgs& a) {
 static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<HeadArgs>();
   CLI::App* sub = app.add_subcommand(
-      "head", "Load a head (the built-in default, an OBJ with a landmark file, or a folder like "
+      "head", "Load a head (the built-in default, an OBJ with or without a landmark file, or a folder like "
               "../shared/data/ict) and report counts, landmarks, face frame and gravity pins");
   sub->add_option("head", args->head.head, "'default', an OBJ file, or a folder with head_skin.obj, "
                                            "landmarks_multipie68.json and rigid_vertices.json");
   addHeadFileOptions(*sub, args->head);
+  addCacheOption(*sub, args->cacheDir);  // it keeps the landmarks found for an OBJ without --landmarks
   sub->add_option("--pins", args->pins, "vertex-set file of gravity pins (default: the rim rule)");
   addJsonFlag(*sub, args->json);
   sub->add_option("--render", args->render, "write a PNG picture with the landmarks marked");
@@ -227,7 +230,10 @@ static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
                 "default head: keep the eyes closed (the thesis model's head; the anatomical model's has them open)");
   sub->add_option("--write-obj", args->writeObj, "write the head as OBJ (landmarks in comments)");
   sub->add_option("--write-landmarks", args->writeLandmarks, "write the head's landmark file");
-  return [args] { return runHead(*args); };
+  return [args] {
+    resolveHeadLandmarks(args->head, args->cacheDir);
+    return runHead(*args);
+  };
 });
 
 }  // namespace

@@ -13,10 +13,12 @@
 #include "command.h"
 #include "common_options.h"
 #include "job_report.h"
+#include "resources.h"
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/head/auto_landmarks.h"
 #include "myoshell/head/head_checks.h"
+#include "myoshell/io/auto_landmark_file.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/output_paths.h"
 #include "myoshell/mesh/obj_reader.h"
@@ -36,22 +38,11 @@ struct LandmarksArgs {
   std::string out;
   std::string picture;
   std::string compare;
+  std::string cacheDir;
   bool json = false;
 };
 
 nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-// The landmark file: today's layout, plus a confidence per point (the reader ignores it).
-std::string landmarkFileText(const AutoLandmarks& a, const std::string& source) {
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(landmarksToJson(a.landmarks));
-  nlohmann::ordered_json out;
-  out["source"] = "myoshell landmarks " + source + " (automatic; edit any point and pass the file as --landmarks)";
-  out["multipie68"] = j["multipie68"];
-  out["named"] = j["named"];
-  for (auto& [name, e] : out["named"].items()) e["confidence"] = a.namedConfidence.at(name);
-  out["confidence"]["multipie68"] = a.confidence68;
-  return out.dump(1) + "\n";
-}
 
 // Front and side views with the 68 points red (yellow when their confidence is under 0.5) and the
 // named points blue, side by side.
@@ -102,7 +93,13 @@ int runLandmarks(const LandmarksArgs& a) {
   const TriMesh mesh = readObj(a.head);
   AutoLandmarks found = findLandmarks(mesh, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeFileAtomically(out, landmarkFileText(found, a.head), "cannot write landmark file");
+  writeFileAtomically(out, autoLandmarkFileText(found, a.head), "cannot write landmark file");
+  // Kept in the cache too: later commands on this OBJ reuse it, and check a file given as --landmarks against it.
+  try {
+    storeAutoLandmarks(a.head, found, cacheDir(a.cacheDir).dir);
+  } catch (const InputError& e) {
+    found.warnings.push_back(std::string("not kept in the cache: ") + e.what());
+  }
   if (!a.picture.empty()) drawPicture(mesh, found, a.picture);
 
   const double cm = centimetresPer(found.unit);
@@ -200,6 +197,7 @@ static CommandRegistrar reg("landmarks", [](CLI::App& app) -> std::function<int(
   sub->add_option("--out", args->out, "landmark file to write (default: HEAD's stem + .landmarks.json, here)");
   sub->add_option("--picture", args->picture, "write a PNG of the points on the head, front and side");
   sub->add_option("--compare", args->compare, "a landmark file of the same mesh: report each point's distance (mm); ids that look 1-based or sides swapped exit 2, points over 1.5 cm off warn");
+  addCacheOption(*sub, args->cacheDir);  // it keeps the landmarks too (later commands reuse them and check a given file)
   addJsonFlag(*sub, args->json);
   return [args] { return runLandmarks(*args); };
 });

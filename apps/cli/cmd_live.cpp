@@ -20,6 +20,7 @@
 
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "interrupt.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/anim/scene_player.h"
@@ -243,7 +244,10 @@ static CommandRegistrar reg("live", [](CLI::App& app) -> std::function<int()> {
   sub->add_flag("--lockstep", a->lockstep, "Acknowledge each frame taken to its sender (myoshell send --lockstep)");
   addCacheOption(*sub, a->cacheDir);
   addJsonFlag(*sub, a->json);
-  return [a] { return runLive(*a); };
+  return [a] {
+    resolveHeadLandmarks(a->head, a->cacheDir);
+    return runLive(*a);
+  };
 });
 
 }  // namespace

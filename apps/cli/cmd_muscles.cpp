@@ -13,6 +13,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/fit_head.h"
 #include "myoshell/muscles/muscle.h"
@@ -86,7 +87,10 @@ static CommandRegistrar reg("muscles", [](CLI::App& app) -> std::function<int()>
   help.headDefault = "none (the muscles listed, not placed)";
   addHeadOptions(*sub, args->head, help);
   addJsonFlag(*sub, args->json);
-  return [args] { return runMuscles(*args); };
+  return [args] {
+    resolveHeadLandmarks(args->head, "");
+    return runMuscles(*args);
+  };
 });
 
 }  // namespace

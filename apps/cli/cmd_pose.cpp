@@ -30,6 +30,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "resources.h"
 #include "myoshell/anatomy/anatomical_face.h"
 #include "myoshell/core/errors.h"
@@ -132,6 +133,7 @@ SceneDesc poseScene(const PoseArgs& a) {
     if (a.libraryOption && a.libraryOption->count() > 0)
       throw InputError("--library chooses the muscles without --scene; the scene names its own (key muscles.library)");
     SceneDesc scene = readScene(a.scene);
+    resolveSceneLandmarks(scene, a.cacheDir);
     if (scene.modelKind != FaceModelKind::Anatomical)
       throw InputError("pose settles the anatomical model; this scene's model is " +
                            std::string(toString(scene.modelKind)) + " (play it with `myoshell run`)",
@@ -339,7 +341,10 @@ static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
   addCacheOption(*sub, args->cacheDir);
   addJsonFlag(*sub, args->json);
   addThreadsOption(*sub);
-  return [args] { return runPose(*args); };
+  return [args] {
+    if (args->scene.empty()) resolveHeadLandmarks(args->head, args->cacheDir);
+    return runPose(*args);
+  };
 });
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "resources.h"
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/errors.h"
@@ -129,7 +130,8 @@ int runRender(const RenderCommandOptions& opt) {
   FaceOverlays overlays = parseOverlays(opt.overlays);
   const ViewPreset view = parseView(opt.view);
   checkOutputFolder(opt.outDir, "--out");
-  const SceneDesc scene = readScene(opt.scene);
+  SceneDesc scene = readScene(opt.scene);
+  resolveSceneLandmarks(scene, opt.cacheDir);
   if (overlays.roi && scene.modelKind != FaceModelKind::Thesis)
     throw InputError("--overlay roi: the muscles' ROIs are model: thesis only (the scene's model is " +
                      std::string(toString(scene.modelKind)) + ")");

@@ -15,6 +15,7 @@
 #include "job_report.h"
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/io/fit_head.h"
@@ -92,7 +93,10 @@ static CommandRegistrar reg("rig", [](CLI::App& app) -> std::function<int()> {
   addCacheOption(*sub, args->cacheDir);
   addJsonFlag(*sub, args->json);
   addThreadsOption(*sub);
-  return [args] { return runRig(*args); };
+  return [args] {
+    resolveHeadLandmarks(args->head, args->cacheDir);
+    return runRig(*args);
+  };
 });
 
 }  // namespace

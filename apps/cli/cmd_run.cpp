@@ -7,6 +7,7 @@
 
 #include "command.h"
 #include "common_options.h"
+#include "head_landmarks.h"
 #include "myoshell/anim/scene_parser.h"
 #include "myoshell/io/output_paths.h"
 #include "myoshell/io/scene_face.h"
@@ -40,7 +41,9 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_option("--color-scale", opt->colorScale, "Colour the skin by displacement on [0, CM] (default 0: not coloured)")->check(numberAtLeast(0));
   return std::function<int()>([opt] {
     checkOutputFolder(opt->outDir, "--out");  // before the scene is read
-    return runScene(readScene(opt->scene), *opt);
+    SceneDesc scene = readScene(opt->scene);
+    resolveSceneLandmarks(scene, opt->cacheDir);
+    return runScene(scene, *opt);
   });
 });
 
@@ -55,7 +58,8 @@ const CommandRegistrar checkRegistrar("check", [](CLI::App& app) {
   sub->add_option("scene", args->scene, "Scene file (JSON or YAML)")->required();
   addJsonFlag(*sub, args->json);
   return std::function<int()>([args] {
-    const SceneDesc scene = readScene(args->scene);
+    SceneDesc scene = readScene(args->scene);
+    resolveSceneLandmarks(scene, "");
     readSceneInputs(scene);  // every file it names and every name checked, as `run` does; nothing built
     if (!args->json) {
       fmt::print("{}", sceneToJson(scene));

@@ -10,15 +10,17 @@ namespace myo::cli {
 namespace {
 void addFileOptions(CLI::App& sub, HeadOptions& head, const HeadHelp& notes) {
   head.landmarksOption =
-      sub.add_option("--landmarks", head.landmarks, "Landmark file of an OBJ head (docs/heads.md)" + notes.landmarks);
+      sub.add_option("--landmarks", head.landmarks, "Landmark file of an OBJ head" + notes.landmarks +
+                         " (docs/heads.md; without one an OBJ's are found automatically and kept in the cache folder)");
   head.unitsOption = sub.add_option("--units", head.units,
-                                    "Length unit of an OBJ head, m, mm or cm (scaled to cm on load; default cm)" + notes.units);
+                                    "Length unit of an OBJ head, m, mm or cm (scaled to cm on load; default cm, or, with "
+                                    "automatic landmarks, the unit inferred from its size)" + notes.units);
 }
 }  // namespace
 
 void addHeadOptions(CLI::App& sub, HeadOptions& head, const HeadHelp& notes) {
   head.headOption = sub.add_option("--head", head.head,
-                                   "The head: 'default' (the built-in head), an OBJ file (with --landmarks) or a folder "
+                                   "The head: 'default' (the built-in head), an OBJ file or a folder "
                                    "like ../shared/data/ict" + notes.head + "; default: " + notes.headDefault);
   addFileOptions(sub, head, notes);
 }
@@ -46,7 +48,8 @@ void addLibraryOption(CLI::App& sub, std::string& library) {
 
 void addCacheOption(CLI::App& sub, std::string& cacheDir) {
   sub.add_option("--cache", cacheDir,
-                 "Basis cache folder (default: $MYOSHELL_CACHE, $XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
+                 "Basis cache folder, which also keeps automatic landmarks (default: $MYOSHELL_CACHE, "
+                 "$XDG_CACHE_HOME/myoshell or ~/.cache/myoshell)");
 }
 
 void addDataOption(CLI::App& sub, std::string& dataDir) {

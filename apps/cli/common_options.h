@@ -42,7 +42,8 @@ struct HeadHelp {
 void addHeadOptions(CLI::App& sub, HeadOptions& head, const HeadHelp& notes = {});
 // --landmarks and --units alone (`head`, whose head is its positional argument).
 void addHeadFileOptions(CLI::App& sub, HeadOptions& head);
-// The files they name (resolveHeadArgument: its InputErrors name the options).
+// The files they name (resolveHeadArgument: its InputErrors name the options); an OBJ without
+// --landmarks is first given its automatic landmark file by resolveHeadLandmarks (head_landmarks.h).
 HeadFiles headFiles(const HeadOptions& head);
 // The head and muscles of a fitting command (io/fit_head.h).
 FitHeadOptions fitHeadOptions(const HeadOptions& head, const std::string& library);

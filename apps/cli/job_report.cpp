@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "head_landmarks.h"
 #include "resources.h"
 
 namespace myo::cli {
@@ -28,6 +29,7 @@ void addJobReport(nlohmann::json& j) {
   j["basis_cache_counts"] = {{"hits", a.hits},         {"waited", a.waited},     {"computed", a.computed},
                              {"stored", a.stored},     {"rejected", a.rejected}, {"read_only", a.readOnly}};
   j["basis_cache_computed"] = a.computedKeys;
+  if (!autoLandmarkFileUsed().empty()) j["auto_landmarks"] = autoLandmarkFileUsed();
 }
 
 void printJsonReport(nlohmann::json j) {

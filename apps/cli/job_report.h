@@ -8,6 +8,8 @@
 //                         such as modes), "off" (no usable cache folder)
 //   basis_cache_counts    {hits, waited, computed, stored, rejected, read_only}
 //   basis_cache_computed  the keys (hex, the cache file names) of the bases it computed
+//   auto_landmarks        the landmark file found automatically for an OBJ head given without
+//                         landmarks (head_landmarks.h); absent otherwise
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -15,6 +15,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/io/live_source.h"
 #include "option_checks.h"  // apps/cli: the number checks of the CLI's options
+#include "head_landmarks.h"  // apps/cli: the landmarks of a scene's OBJ head without head.landmarks
 #include "resources.h"  // apps/cli: where the cache is
 #include "viewer_app.h"
 #include "viewer_session.h"
@@ -166,6 +167,7 @@ int main(int argc, char** argv) {
       for (const std::string& w : scene.performanceReport->warnings) fmt::print(stderr, "myoshell-view: warning: {}\n", w);
     } else if (!scenePath.empty()) {
       scene = myo::readScene(scenePath);
+      myo::cli::resolveSceneLandmarks(scene, cacheDir, "myoshell-view");
     } else {
       scene.name = "default";
       scene.muscleLibrary = chosen;

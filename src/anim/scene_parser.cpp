@@ -234,6 +234,7 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     scene.head.gravityPins = h.string("gravity_pins", "");
     scene.head.skull = h.string("skull", "");
     if (h.has("units")) {
+      scene.head.unitsGiven = true;
       try {
         scene.head.units = parseLengthUnit(h.string("units", "cm"));
       } catch (const InputError& e) {
@@ -242,8 +243,6 @@ SceneDesc parseScene(const std::string& text, const std::string& path) {
     }
     if (scene.head.obj.empty() && !scene.head.gravityPins.empty())
       h.fail("gravity_pins", "only a head OBJ takes a pin file (the built-in head has its own pins)");
-    if (!scene.head.obj.empty() && scene.head.landmarks.empty())
-      h.fail("landmarks", "a head OBJ needs a landmark file");
     if (scene.head.obj.empty() && scene.head.units != LengthUnit::cm)
       h.fail("units", "applies to a head OBJ (head.obj); the built-in head is in cm");
     if (scene.head.obj.empty() && scene.head.builtin != "default")

@@ -87,6 +87,10 @@ void loadScenePerformance(SceneDesc& scene) {
 SceneInputs readSceneInputs(const SceneDesc& scene) {
   auto resolve = [&](const std::string& p) { return resolveAgainstScene(scene, p); };
   SceneInputs in;
+  if (!scene.head.obj.empty() && scene.head.landmarks.empty())
+    throw InputError("head.landmarks: none given for head.obj '" + scene.head.obj +
+                         "' and none found (completeSceneHead, io/auto_landmark_file.h, finds them)",
+                     scene.path);
   in.head = scene.head.obj.empty()
                 ? loadDefaultHead(defaultHeadOptions(scene.modelKind))
                 : loadHead(resolve(scene.head.obj), resolve(scene.head.landmarks),

@@ -126,9 +126,6 @@ TEST(HeadCommand, LandmarkErrorsAreBadInput) {
   test::CliResult r = runIn(dir, "head h.obj --landmarks lm.json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("lm.json: missing landmark 'right_eye_outer'"));
-  r = runIn(dir, "head h.obj");
-  EXPECT_EQ(r.exitCode, 2);
-  EXPECT_THAT(r.out, HasSubstr("needs --landmarks FILE"));
   r = runIn(dir, "head h.obj --landmarks nope.json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("nope.json: cannot open landmark file"));

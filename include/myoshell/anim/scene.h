@@ -22,10 +22,11 @@ namespace myo {
 struct HeadDesc {
   std::string builtin = "default";  // "default" (the built-in head) unless obj is set
   std::string obj;                  // a user's head OBJ (absolute, or resolved against the scene's folder)
-  std::string landmarks;            // its landmark file (required with obj)
+  std::string landmarks;            // its landmark file; empty with obj: found automatically (io/auto_landmark_file.h)
   std::string gravityPins;          // thesis: its gravity pin set (vertex-set JSON); empty = rim + landmarks
   std::string skull;                // a skull OBJ in the head's space (optional): muscle origins sit on it
   LengthUnit units = LengthUnit::cm;  // the unit obj and skull are written in (scaled to cm on load)
+  bool unitsGiven = false;          // the scene names head.units (else, with automatic landmarks, the search's unit)
 };
 
 struct DragDesc {

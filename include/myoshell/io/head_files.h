@@ -33,7 +33,9 @@ struct HeadFiles {
 // InputErrors name the option: "--units: unknown length unit 'X' (use m, mm or cm)", "--landmarks,
 // --pins and --units apply to an OBJ head, not the default head", "OBJ: no such head: give
 // 'default', an OBJ file or a folder with head_skin.obj", "OBJ: an OBJ head needs --landmarks FILE
-// (layout of docs/heads.md); `myoshell landmarks OBJ` finds them automatically".
+// (layout of docs/heads.md); `myoshell landmarks OBJ` finds them automatically". The command line
+// never meets the last: it gives an OBJ without landmarks its automatic file first
+// (findLandmarkFile, io/auto_landmark_file.h); Python's load_head still needs one.
 HeadFiles resolveHeadArgument(const std::string& head, const std::string& landmarks, const std::string& pins,
                               const std::string& units);
 
