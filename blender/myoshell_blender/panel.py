@@ -53,12 +53,13 @@ class VIEW3D_PT_myoshell(bpy.types.Panel):
         box = layout.box()
         box.label(text="Head", icon='USER')
         if obj is not None and obj.type == 'MESH':
+            box.label(text=obj.name, icon='MESH_DATA')
             builtin = obj.get("myoshell_head") == "default"
-            box.label(text="%s: %d vertices%s" % (obj.name, len(obj.data.vertices),
-                                                  " (built-in head)" if builtin else ""), icon='MESH_DATA')
+            box.label(text="%d vertices%s" % (len(obj.data.vertices), ", built-in head" if builtin else ""))
         else:
             box.label(text="Select a mesh as the head", icon='INFO')
-        box.prop(settings, "landmarks")
+        box.label(text="Landmark file:")
+        box.prop(settings, "landmarks", text="")
         box.operator("myoshell.add_head", icon='ADD')
 
         box = layout.box()
@@ -68,14 +69,15 @@ class VIEW3D_PT_myoshell(bpy.types.Panel):
         box = layout.box()
         box.label(text="Performance", icon='ACTION')
         box.prop(settings, "performance", text="")
-        box.prop(settings, "input")
+        box.prop(settings, "input", text="")
         op = box.operator("myoshell.import_performance", icon='IMPORT')
         op.filepath = settings.performance
         op.input = settings.input
 
         box = layout.box()
         box.label(text="Muscles", icon='HIDE_OFF')
-        box.label(text="Overlay: the module does not give the muscles' meshes yet")
+        box.label(text="No overlay yet: the module")
+        box.label(text="gives no muscle meshes")
 
         if module.error():
             layout.label(text="Module not loaded (see the preferences)", icon='ERROR')
