@@ -22,8 +22,8 @@ _error = None
 
 def restore_np_bool():
     """Debian 12's Blender 3.4 ships add-ons (the glTF importer) that still use `np.bool`, an alias
-    numpy 1.24 removed: without it the importer fails. Put the alias back (it is `bool`, as numpy
-    2 defines it again) when it is missing; nothing else of numpy is touched."""
+    numpy 1.24 removed: without it the importer fails. Put the alias back (Python's `bool`, as numpy
+    before 1.24 had it) when it is missing; nothing else of numpy is touched."""
     try:
         import numpy as np
     except ImportError:
