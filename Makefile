@@ -9,7 +9,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup setup-test configure configure-test build build-test python test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
+.PHONY: all setup setup-test configure configure-test build build-test python blender-addon test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
 
 all: build
 
@@ -38,6 +38,11 @@ build-test: configure-test
 # The Python module alone, into $(BUILD_DIR)/python/myoshell (docs/python.md); `make test` runs its tests.
 python: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target _myoshell
+
+# The Blender add-on's zip, $(BUILD_DIR)/myoshell-blender.zip: blender/ and the Python module built
+# for the system's Python 3.11 (docs/blender.md).
+blender-addon: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target blender-addon
 
 test: build-test
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
