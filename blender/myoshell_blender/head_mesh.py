@@ -90,7 +90,8 @@ def write_obj(path, obj, scene):
 
 def landmark_file(obj, settings):
     """The landmark file for this object: the panel's field, else the built-in head's file for a
-    mesh "Add the built-in head" made (still its 6990 vertices), else an error saying what to do."""
+    mesh "Add the built-in head" made (still its 6990 vertices), else None: the module finds them
+    (automatic_landmarks)."""
     from . import module
     path = settings.landmarks.strip()
     if path:
@@ -101,6 +102,11 @@ def landmark_file(obj, settings):
         return path
     if obj.get("myoshell_head") == "default" and len(obj.data.vertices) == obj.get("myoshell_vertices", -1):
         return module.DEFAULT_LANDMARKS
-    raise HeadError(
-        "%s needs a landmark file (docs/heads.md, 'Landmark files'; `myoshell landmarks HEAD.obj` "
-        "finds them automatically): the module cannot find landmarks by itself yet" % obj.name)
+    return None
+
+
+def automatic_landmarks(m, obj_path, cache):
+    """The landmarks of the head written to obj_path found by the module, as every command finds
+    them for an OBJ without --landmarks (docs/heads.md): kept in the cache folder, keyed on the
+    file's bytes, so the same mesh is searched once."""
+    return m.find_landmarks(obj_path, units="cm", cache=cache)["path"]

@@ -97,7 +97,8 @@ class MYOSHELL_OT_make_shape_keys(jobs.ModuleJobOperator, bpy.types.Operator):
         m = myoshell(context)
         self.head = HeadInput(context)
         head, cache = self.head, cache_folder(context)
-        return lambda: m.rig(head=head.obj_path, landmarks=head.landmarks, units="cm", cache=cache)
+        return lambda: m.rig(head=head.obj_path, units="cm", cache=cache,
+                             landmarks=head.landmarks or head_mesh.automatic_landmarks(m, head.obj_path, cache))
 
     def finish(self, context, result):
         head = self.head
@@ -166,7 +167,8 @@ class MYOSHELL_OT_import_performance(jobs.ModuleJobOperator, bpy.types.Operator)
         self.head = HeadInput(context)
         head, cache = self.head, cache_folder(context)
         kind = None if self.input == 'AUTO' else self.input
-        return lambda: m.drive(path, head=head.obj_path, landmarks=head.landmarks, units="cm", input=kind, cache=cache)
+        return lambda: m.drive(path, head=head.obj_path, units="cm", input=kind, cache=cache,
+                               landmarks=head.landmarks or head_mesh.automatic_landmarks(m, head.obj_path, cache))
 
     def finish(self, context, result):
         try:

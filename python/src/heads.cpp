@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/head/head_checks.h"
+#include "myoshell/io/auto_landmark_file.h"
 #include "myoshell/io/head_files.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/obj_writer.h"
@@ -18,9 +19,44 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::shared_ptr<HeadHandle> loadHeadHandle(const std::string& head, const std::string& landmarks, const std::string& pins,
-                                           const std::string& units) {
-  const HeadFiles files = resolveHeadArgument(head, landmarks, pins, units);
+std::string text(const py::object& o) { return o.is_none() ? std::string() : py::str(o).cast<std::string>(); }
+
+// findLandmarkFile (the command line's path for an OBJ without --landmarks), its result as a dict.
+FoundLandmarkFile findLandmarks(const std::string& obj, const py::object& units, const py::object& cache) {
+  std::optional<LengthUnit> unit;
+  if (!units.is_none()) unit = parseLengthUnit(text(units));
+  py::gil_scoped_release unlocked;  // a second or two of search
+  return findLandmarkFile(obj, cache.is_none() ? fs::path() : fs::path(text(cache)), unit);
+}
+
+py::dict foundDict(const FoundLandmarkFile& f) {
+  py::dict d;
+  d["path"] = f.path;
+  d["reused"] = f.reused;
+  d["units"] = std::string(lengthUnitName(f.unit));
+  d["units_inferred"] = f.unitInferred;
+  d["eyes"] = f.eyesOpen ? "open" : "closed";
+  d["mouth"] = f.mouthOpen ? "open" : "closed";
+  d["warnings"] = f.warnings;
+  d["seconds"] = f.seconds;
+  return d;
+}
+
+std::shared_ptr<HeadHandle> loadHeadHandle(const std::string& head, std::string landmarks, const std::string& pins,
+                                           const py::object& units, const py::object& cache) {
+  std::string unitName = units.is_none() ? "cm" : text(units);
+  // An OBJ without a landmark file: found automatically, as every command does (docs/heads.md).
+  if (landmarks.empty() && head != "default" && fs::is_regular_file(head)) {
+    const FoundLandmarkFile f = findLandmarks(head, units, cache);
+    landmarks = f.path;
+    unitName = lengthUnitName(f.unit);
+    std::string line = (f.reused ? "using the landmarks of " + head + " found automatically before (" + f.path
+                                 : "found the landmarks of " + head + " automatically (written to " + f.path) +
+                       "; units " + unitName + (f.unitInferred ? ", inferred from its size" : "") + ")";
+    for (const std::string& w : f.warnings) line += "; " + w;
+    if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  const HeadFiles files = resolveHeadArgument(head, landmarks, pins, unitName);
   auto handle = std::make_shared<HeadHandle>();
   handle->obj = files.obj;
   handle->unit = files.unit;
@@ -87,19 +123,36 @@ that file with its positions replaced. The folder must exist. InputError otherwi
       });
 
   m.def("load_head",
-        [](const py::object& head, const py::object& landmarks, const std::string& units, const py::object& pins) {
-          auto text = [](const py::object& o) { return o.is_none() ? std::string() : py::str(o).cast<std::string>(); };
-          return loadHeadHandle(head.is_none() ? "default" : text(head), text(landmarks), text(pins), units);
+        [](const py::object& head, const py::object& landmarks, const py::object& units, const py::object& pins,
+           const py::object& cache) {
+          return loadHeadHandle(head.is_none() ? "default" : text(head), text(landmarks), text(pins), units, cache);
         },
-        py::arg("head") = "default", py::arg("landmarks") = py::none(), py::arg("units") = "cm",
-        py::arg("pins") = py::none(), R"doc(
+        py::arg("head") = "default", py::arg("landmarks") = py::none(), py::arg("units") = py::none(),
+        py::arg("pins") = py::none(), py::arg("cache") = py::none(), R"doc(
 Loads a head as `myoshell --head` names it:
   load_head()                                   the built-in head (about 7.2k vertices)
   load_head("../shared/data/ict")               a folder with head_skin.obj and its landmark file
   load_head("face.obj", landmarks="face.json", units="mm")   any OBJ head (docs/heads.md)
-units: the OBJ's length unit, 'm', 'mm' or 'cm' (the head is used in cm). pins: a vertex-set file of
-gravity pins (default: a folder's rigid_vertices.json, else the rim rule). Raises InputError with
-the command line's message for a missing file, a bad unit or a head that fails the checks.)doc");
+  load_head("face.obj")                         landmarks found automatically (find_landmarks)
+units: the OBJ's length unit, 'm', 'mm' or 'cm' (the head is used in cm); default 'cm' with a
+landmark file, the unit inferred from the face's size without one. Without landmarks the file
+find_landmarks writes (in `cache`/landmarks, else the temporary folder) is used and a UserWarning
+says where. pins: a vertex-set file of gravity pins (default: a folder's rigid_vertices.json, else
+the rim rule). Raises InputError with the command line's message for a missing file, a bad unit,
+a mesh that is not a head or a head that fails the checks.)doc");
+
+  m.def("find_landmarks",
+        [](const fs::path& obj, const py::object& units, const py::object& cache) {
+          return foundDict(findLandmarks(obj.string(), units, cache));
+        },
+        py::arg("obj"), py::arg("units") = py::none(), py::arg("cache") = py::none(), R"doc(
+Finds an OBJ head's landmarks automatically, as `myoshell landmarks` and every command given an OBJ
+without --landmarks do (docs/heads.md), and keeps the landmark file in `cache`/landmarks (a basis
+cache folder; default: the temporary folder's myoshell-landmarks), keyed on the OBJ's bytes: a
+second call on the same file reuses it. units: 'm', 'mm' or 'cm' (default: inferred from the size).
+Returns a dict: path (the landmark file, editable, for load_head(landmarks=...)), reused, units,
+units_inferred, eyes and mouth ('open' or 'closed'), warnings, seconds. InputError for a mesh that
+is not a head.)doc");
 
   m.def("muscle_names", &muscleNames, py::arg("library") = defaultMuscleLibrary(), R"doc(
 The muscle names of a library, in its order: 'face' (the whole face's 39, docs/muscles.md; the
