@@ -30,6 +30,7 @@
 #include "myoshell/io/scene_face.h"
 #include "option_checks.h"
 #include "resources.h"
+#include "scene_runner.h"
 
 namespace myo::cli {
 namespace {
@@ -105,7 +106,7 @@ int runLive(const LiveArgs& a) {
   const auto model = buildSceneFace(scene, cache.get());
   const fs::path out(a.outDir);
   const int frames = ScenePlayer::frameCount(scene.duration, scene.fps);
-  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames);
+  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames, scene.head.units);
   LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink);
   ScenePlayer player(scene, model);
   std::vector<int> muscleIndex;
@@ -152,8 +153,10 @@ int runLive(const LiveArgs& a) {
   const double seconds = clock() - start;
   const bool cut = framesDone < frames;
   std::vector<std::string> written;
-  if (!cut)
+  if (!cut) {
     for (const std::string& rel : exporter.finish()) written.push_back(rel);
+    if (const GlbReport* glb = exporter.glbReport()) warnIfGlbInexact(*glb);
+  }
   source.stop();
   const LiveCounters c = source.counters();
   if (!source.unknownNames().empty())
@@ -177,6 +180,7 @@ int runLive(const LiveArgs& a) {
     j["recording"] = recorder.path();
     j["recorded_frames"] = recorder.rows();
     j["outputs"] = written;
+    if (const GlbReport* glb = exporter.glbReport()) j["glb"] = glbJson<nlohmann::ordered_json>(*glb);
     j["last_malformed"] = source.lastMalformed();
     j["warnings"] = warnings;
     j["interrupted"] = cut;

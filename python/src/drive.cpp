@@ -94,7 +94,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   std::optional<AnimationExporter> exporter;
   ScenePlayer player(scene, model);
   const int frameCount = player.frameCount();
-  if (!out.is_none()) exporter.emplace(outDir, formats, scene.name, model->head().mesh, scene.fps, frameCount);
+  if (!out.is_none()) exporter.emplace(outDir, formats, scene.name, model->head().mesh, scene.fps, frameCount, scene.head.units);
   const Eigen::Index n = model->head().mesh.vertexCount();
   py::array_t<double> frames({static_cast<py::ssize_t>(frameCount), static_cast<py::ssize_t>(n), py::ssize_t{3}});
   py::array_t<double> times(frameCount);
@@ -152,6 +152,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   result["steps"] = steps;
   result["performance"] = report;
   result["written"] = written;
+  if (const GlbReport* glb = exporter ? exporter->glbReport() : nullptr) result["glb"] = glbDict(*glb);
   return result;
 }
 

@@ -1,6 +1,6 @@
 // Heads checked where they are loaded (docs/heads.md, "Checks on load"): ICT written in metres is
 // refused with the --units proposal, accepted with --units m (the same head and the same motion as
-// in cm), and the built-in head's landmarks on ICT's mesh are refused naming a landmark.
+// in cm, its OBJ frames and PC2 written in metres), and the built-in head's landmarks on ICT's mesh are refused naming a landmark.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/io/animation_export.h"
 #include "support/cli_runner.h"
 
 namespace myo {
@@ -126,24 +127,44 @@ TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
   const fs::path sceneM = scene((dir / "ict_m.obj").string(), "m");
   for (const auto& [s, out] : {std::pair{sceneCm, dir / "out_cm"}, std::pair{sceneM, dir / "out_m"}}) {
     const test::CliResult r = test::runCli("run '" + s.string() + "' --out '" + out.string() + "' --cache '" +
-                                           (dir / "cache").string() + "'");
+                                           (dir / "cache").string() + "' --format obj,pc2,glb");
     ASSERT_EQ(r.exitCode, 0) << r.merged;
   }
-  // The last frame's displacement from the rest head, in cm, agrees to 1e-6 relative.
-  const std::vector<double> rest = objVertices(ictDir() / "head_skin.obj");
-  auto displacement = [&](const fs::path& out) {
+  // The OBJ frames and the PC2 are in the head's own unit: the run in metres writes the run in cm's
+  // positions × 0.01; the last frame's displacement from the rest head agrees to 1e-6 relative.
+  auto lastFrame = [&](const fs::path& out) {
     std::vector<fs::path> frames;
     for (const auto& e : fs::directory_iterator(out / "obj")) frames.push_back(e.path());
     std::sort(frames.begin(), frames.end());
-    std::vector<double> u = objVertices(frames.back());
-    for (size_t i = 0; i < u.size() && i < rest.size(); ++i) u[i] -= rest[i];
-    return u;
+    return objVertices(frames.back());
   };
-  const std::vector<double> uCm = displacement(dir / "out_cm"), uM = displacement(dir / "out_m");
+  const std::vector<double> restCm = objVertices(ictDir() / "head_skin.obj"), restM = objVertices(dir / "ict_m.obj");
+  const std::vector<double> lastCm = lastFrame(dir / "out_cm"), lastM = lastFrame(dir / "out_m");
+  ASSERT_EQ(lastM.size(), lastCm.size());
+  std::vector<double> uCm(lastCm.size()), uMinCm(lastM.size()), lastCmInM(lastCm.size());
+  for (size_t i = 0; i < lastCm.size(); ++i) {
+    uCm[i] = lastCm[i] - restCm[i];
+    uMinCm[i] = 100.0 * (lastM[i] - restM[i]);
+    lastCmInM[i] = 0.01 * lastCm[i];
+  }
   double peak = 0.0;
   for (double x : uCm) peak = std::max(peak, std::abs(x));
   EXPECT_GT(peak, 0.01);  // the muscle moved the skin (cm)
-  EXPECT_LE(relativeDifference(uM, uCm), 1e-6);
+  EXPECT_LE(relativeDifference(uMinCm, uCm), 1e-6);
+  EXPECT_LE(relativeDifference(lastM, lastCmInM), 1e-9);
+  // The PC2, every frame (float32: to 1e-6 relative).
+  const PointCache pcCm = readPc2(dir / "out_cm" / "u.pc2"), pcM = readPc2(dir / "out_m" / "u.pc2");
+  ASSERT_EQ(pcM.samples.size(), pcCm.samples.size());
+  for (size_t f = 0; f < pcCm.samples.size(); ++f)
+    EXPECT_LE((pcM.samples[f] - 0.01 * pcCm.samples[f]).cwiseAbs().maxCoeff(), 1e-6 * 0.01 * pcCm.samples[f].cwiseAbs().maxCoeff())
+        << "frame " << f;
+  // stats.json names the unit; the GLB is in metres for both.
+  for (const auto& [out, unit] : {std::pair{dir / "out_cm", "cm"}, std::pair{dir / "out_m", "m"}}) {
+    std::ifstream statsFile(out / "stats.json");
+    const nlohmann::json stats = nlohmann::json::parse(statsFile);
+    EXPECT_EQ(stats["units"], unit);
+    EXPECT_LE(stats["glb"]["max_error_mm"].get<double>(), 0.05);
+  }
 }
 
 TEST(HeadUnits, TheBuiltInLandmarksOnTheIctMeshAreRefused) {
