@@ -184,7 +184,9 @@ cache folder or None. The GIL is released while it plays (Ctrl-C is seen between
 Returns a dict: frames float64 (F, n, 3) cm (frame k at times[k] = k / fps s), times (F,), fps,
 name, rest (n, 3), triangles int32 (m, 3), muscle_names, steps, written (files relative to out),
 performance (file, input, au_scale, frames, fps, duration, dropped_frames, warnings, unmapped; each
-warning is also a UserWarning). InputError with drive's messages; SimulationError; IoError.)doc");
+warning is also a UserWarning), and with a GLB written glb (targets, max_error_mm, within_tolerance,
+fps, frames, vertices; docs/exports.md). The OBJ frames and the PC2 are in the head's units, the GLB
+in metres; frames, rest and times stay in cm. InputError with drive's messages; SimulationError; IoError.)doc");
 }
 
 }  // namespace myo::python
