@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/head/head.h"
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/obj_writer.h"
+#include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
 
 namespace myo {
@@ -165,6 +169,44 @@ TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
     EXPECT_EQ(stats["units"], unit);
     EXPECT_LE(stats["glb"]["max_error_mm"].get<double>(), 0.05);
   }
+}
+
+// `drive --units m`: the OBJ frames and the PC2 of a head in metres are in metres, the simulation's
+// cm × 0.01 — each frame's largest displacement from the file's rest, × 100, is the cm figure
+// stats.json reports for it — and the OBJ frames and the PC2 hold the same positions.
+TEST(HeadUnits, DriveWithUnitsMWritesObjAndPc2InMetres) {
+  const fs::path dir = scratch("drive_m");
+  const Head head = loadDefaultHead();
+  const MatX3 metres = head.mesh.V * 0.01;
+  writeObj((dir / "head_m.obj").string(), head.mesh, &metres);
+  std::ofstream(dir / "landmarks.json") << defaultHeadLandmarkJson();
+  {
+    std::ofstream take(dir / "take.csv");
+    take << "timestamp,AU12_r,AU04_r\n";
+    for (int k = 0; k < 5; ++k) take << k / 30.0 << "," << 0.2 * k << "," << 0.1 * (4 - k) << "\n";
+  }
+  const test::CliResult r = test::runCli(
+      "drive '" + (dir / "take.csv").string() + "' --head '" + (dir / "head_m.obj").string() + "' --landmarks '" +
+      (dir / "landmarks.json").string() + "' --units m --library builtin --format obj,pc2,glb --out '" +
+      (dir / "out").string() + "' --cache '" + (dir / "cache").string() + "' --json");
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["units"], "m");
+  EXPECT_LE(j["glb"]["max_error_mm"].get<double>(), 0.05);
+  std::ifstream statsFile(dir / "out" / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  const PointCache pc = readPc2(dir / "out" / "take.pc2");
+  ASSERT_EQ(pc.samples.size(), 5u);
+  ASSERT_EQ(stats["per_frame"].size(), 5u);
+  double moved = 0.0;
+  for (int f = 0; f < 5; ++f) {
+    const MatX3 obj = readObj((dir / "out" / "obj" / ("take_000" + std::to_string(f) + ".obj")).string()).V;
+    const double peakCm = stats["per_frame"][f]["max_displacement_cm"].get<double>();
+    EXPECT_NEAR(100.0 * (obj - metres).rowwise().norm().maxCoeff(), peakCm, 1e-9 + 1e-6 * peakCm) << f;
+    EXPECT_LT((pc.samples[f] - obj).cwiseAbs().maxCoeff(), 1e-7) << f;  // float32 of metres
+    moved = std::max(moved, peakCm);
+  }
+  EXPECT_GT(moved, 0.05);  // the smile moved the skin (cm)
 }
 
 TEST(HeadUnits, TheBuiltInLandmarksOnTheIctMeshAreRefused) {
