@@ -137,50 +137,72 @@ MorphAnimation compressToMorphTargets(const MatX3& rest, const std::vector<MatX3
   Eigen::Index K = 0;
   while (K < std::min<Eigen::Index>(r, maxTargets) && lambda(K) > floor && lambda(K) > 0.0) ++K;
 
-  // V = Dᵀ Q U Σ⁻¹ (3n × K), re-orthonormalised (nested spans kept), and W = D V (F × K).
-  MatX V = MatX::Zero(N, std::max<Eigen::Index>(K, 1));
-  if (K > 0) {
-    const MatX U = eig.eigenvectors().rowwise().reverse().leftCols(K);
-    const VecX invSigma = lambda.head(K).cwiseSqrt().cwiseInverse();
-    const MatX QU = Q * (U * invSigma.asDiagonal());  // F × K
+  // W (F × K): the weights, D V. With Q = I, W = D Dᵀ U Σ⁻¹ = U Σ straight from the eigenvectors,
+  // and V = Dᵀ U Σ⁻¹ is orthonormal to round-off, so only the columns the bisection may use are
+  // formed. With a randomized Q, V = Dᵀ Q U Σ⁻¹ is re-orthonormalised (nested spans kept) and
+  // W = D V. Every k is checked on every frame, so neither shortcut can hide an error.
+  const MatX U = eig.eigenvectors().rowwise().reverse().leftCols(K);
+  const VecX sigma = lambda.head(K).cwiseSqrt();
+  MatX V(N, 0), W(F, K);
+  // V's first m columns (the exact path forms them on demand).
+  auto formV = [&](Eigen::Index m) {
+    if (V.cols() >= m) return;
+    const MatX QU = Q * (U.leftCols(m) * sigma.head(m).cwiseInverse().asDiagonal());  // F × m
+    V.resize(N, m);
     forColumnBlocks(D, [&](Eigen::Index c0, Eigen::Index w, const RowMat& Dc) {
       V.middleRows(c0, w).noalias() = Dc.transpose() * QU;
     });
-    V = orthonormalColumns(V);
+  };
+  if (K == 0) {  // nothing moves: one target that every frame weighs 0
+    K = 1;
+    V = MatX::Zero(N, 1);
+    V(0, 0) = 1.0;
+    W = MatX::Zero(F, 1);
+  } else if (exact) {
+    W = U * sigma.asDiagonal();
   } else {
-    V(0, 0) = 1.0;  // nothing moves: one target that every frame weighs 0
+    formV(K);
+    V = orthonormalColumns(V);
+    W.setZero();
+    forColumnBlocks(D, [&](Eigen::Index c0, Eigen::Index w, const RowMat& Dc) {
+      W.noalias() += Dc * V.middleRows(c0, w);
+    });
   }
-  K = V.cols();
-  MatX W = MatX::Zero(F, K);
-  forColumnBlocks(D, [&](Eigen::Index c0, Eigen::Index w, const RowMat& Dc) {
-    W.noalias() += Dc * V.middleRows(c0, w);
-  });
 
-  // The smallest k whose error over every frame is within the tolerance. The residual's norm per
-  // frame, ‖d_f‖² − Σ_{j≤k} w_fj², bounds every vertex's error from above: the bisection starts there.
+  // The smallest k whose error over every frame is within the tolerance, by bisection between two
+  // bounds from each frame's residual norm ‖r_f(k)‖ (‖r_f‖² = ‖d_f‖² − Σ_{j≤k} w_fj²): no vertex is
+  // off by more than ‖r_f‖ (k with max_f ‖r_f‖ ≤ tolerance is feasible), and the worst vertex is
+  // off by at least the RMS ‖r_f‖ / √n (k with max_f ‖r_f‖ / √n > tolerance is not).
   VecX residual2(F);
   for (Eigen::Index f = 0; f < F; ++f) residual2(f) = (frames[f] - rest).squaredNorm();
-  Eigen::Index hi = K;
+  const double n = static_cast<double>(rest.rows());
+  Eigen::Index lo = 0, hi = K;
   for (Eigen::Index k = 1; k <= K; ++k) {
     residual2 -= W.col(k - 1).cwiseAbs2();
-    if (std::sqrt(std::max(residual2.maxCoeff(), 0.0)) <= tolerance) {
+    const double worst = std::sqrt(std::max(residual2.maxCoeff(), 0.0));
+    if (worst / std::sqrt(n) > tolerance) lo = k;
+    if (worst <= tolerance) {
       hi = k;
       break;
     }
   }
   MorphAnimation out;
-  Eigen::Index k = hi;
-  if (maxVertexError(D, W, V, hi) > tolerance) {
-    k = K;  // the bound was not reached (round-off) or the cap binds: all K
-    out.withinTolerance = maxVertexError(D, W, V, K) <= tolerance;
-  } else {
-    Eigen::Index lo = 0;  // error(lo) > tolerance is assumed for lo = 0 (k ≥ 1 anyway)
-    while (hi - lo > 1) {
-      const Eigen::Index mid = (lo + hi) / 2;
-      (maxVertexError(D, W, V, mid) <= tolerance ? hi : lo) = mid;
+  formV(hi);
+  if (maxVertexError(D, W, V, hi) > tolerance) {  // the bound not reached within the cap (or round-off)
+    formV(K);
+    if (hi < K && maxVertexError(D, W, V, K) <= tolerance) {
+      lo = hi;
+      hi = K;
+    } else {
+      lo = hi = K;
+      out.withinTolerance = false;  // the cap binds: all K
     }
-    k = hi;
   }
+  while (hi - lo > 1) {
+    const Eigen::Index mid = (lo + hi) / 2;
+    (maxVertexError(D, W, V, mid) <= tolerance ? hi : lo) = mid;
+  }
+  const Eigen::Index k = hi;
 
   // Weights into [0, 1]: w = lo + (hi − lo) s; the constant part lo joins the base.
   const VecX wLo = W.leftCols(k).colwise().minCoeff().transpose();

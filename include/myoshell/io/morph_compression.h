@@ -8,9 +8,12 @@
 // sketch and two power iterations), r = maxTargets + 16 columns, so the cost stays O(F · 3n · r).
 // D is never formed: it is read in blocks of vertices (columns) or frames (rows) from the frames.
 //
-// k is the smallest target count whose largest vertex error over ALL frames — the distance between
-// what a player computes (base + Σ s_fk T_k) and the frame — is at most the tolerance; it is found
-// by bisection on k (the error falls with k; every tested k is measured over every frame). The
+// With Q = I the weights come straight from the eigenvectors (W = D V = U Σ) and only the columns
+// of V the search may use are formed. k is the smallest target count whose largest vertex error
+// over ALL frames — the distance between what a player computes (base + Σ s_fk T_k) and the frame —
+// is at most the tolerance; it is found by bisection on k between two bounds from each frame's
+// residual norm (no vertex is off by more than it, the worst by at least its RMS), every tested k
+// measured over every frame (the error falls with k). The
 // weights are then mapped affinely into [0, 1] (s = (w − lo) / (hi − lo), lo and hi the weight's
 // extremes over the frames), so no player clamps them (Blender's shape-key sliders and Unity's blend
 // shapes clamp to their ranges): T_k = (hi_k − lo_k) V_k and base = rest + Σ lo_k V_k. The error
