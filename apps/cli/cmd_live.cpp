@@ -34,6 +34,7 @@
 #include "myoshell/io/scene_face.h"
 #include "option_checks.h"
 #include "resources.h"
+#include "scene_runner.h"
 
 namespace myo::cli {
 namespace {
@@ -110,7 +111,7 @@ int runLive(const LiveArgs& a) {
   const auto model = buildSceneFace(scene, cache.get());
   const fs::path out(a.outDir);
   const int frames = ScenePlayer::frameCount(scene.duration, scene.fps);
-  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames);
+  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames, scene.head.units);
   LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink, scene.fps);
   const SceneDesc replay = liveReplayScene(scene, "live.csv", scene.fps, filter);
   writeFileAtomically((out / "replay.json").string(), sceneToJson(replay), "cannot write the replay scene");
@@ -169,6 +170,7 @@ int runLive(const LiveArgs& a) {
   const bool cut = framesDone < frames;
   // Cut short (Ctrl-C), the exports hold the frames made.
   const std::vector<std::string> written = exporter.finish();
+  if (const GlbReport* glb = exporter.glbReport()) warnIfGlbInexact(*glb);
   source.stop();
   const LiveCounters c = source.counters();
   if (!source.unknownNames().empty())
@@ -193,6 +195,7 @@ int runLive(const LiveArgs& a) {
     j["replay"] = (out / "replay.json").string();
     j["recorded_frames"] = recorder.rows();
     j["outputs"] = written;
+    if (const GlbReport* glb = exporter.glbReport()) j["glb"] = glbJson<nlohmann::ordered_json>(*glb);
     j["last_malformed"] = source.lastMalformed();
     j["warnings"] = warnings;
     j["interrupted"] = cut;

@@ -24,6 +24,7 @@
 #include "myoshell/core/io_error.h"
 #include "myoshell/core/timer.h"
 #include "myoshell/head/face_frame.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/animation_exporter.h"
 #include "myoshell/io/output_manifest.h"
 #include "myoshell/io/output_paths.h"
@@ -42,6 +43,14 @@ std::unique_ptr<FacePainter> makePainter(bool software) {
   std::unique_ptr<FacePainter> painter = makeFacePainter(software, &warning);
   if (!warning.empty()) fmt::print(stderr, "myoshell: warning: {}\n", warning);
   return painter;
+}
+
+void warnIfGlbInexact(const GlbReport& report) {
+  if (!report.withinTolerance)
+    fmt::print(stderr,
+               "myoshell: warning: the GLB's {} morph targets (the cap) leave a frame {:.3f} mm from the simulation, "
+               "more than the GLB's tolerance; the PC2 and OBJ frames are exact\n",
+               report.targets, 10.0 * report.maxErrorCm);
 }
 
 int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
@@ -68,7 +77,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
                "its eye corners: no lids, so nothing follows the gaze\n");
   // Folders only once the scene has built: a bad scene leaves nothing behind.
   AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps,
-                             ScenePlayer::frameCount(scene.duration, scene.fps));
+                             ScenePlayer::frameCount(scene.duration, scene.fps), scene.head.units);
   // What the last run here wrote: whatever of it this run does not rewrite goes at the end.
   const std::vector<std::string> previous = readOutputManifest(out);
   std::vector<std::string> written;  // relative to out
@@ -175,6 +184,7 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     written.push_back(scene.name + ".gif");
   }
   for (const std::string& rel : exporter.finish()) written.push_back(rel);
+  if (const GlbReport* glb = exporter.glbReport()) warnIfGlbInexact(*glb);
 
   nlohmann::json stats;
   stats["scene"] = scene.name;
@@ -204,6 +214,8 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     stats["unmapped"] = p.unmapped;
   }
   stats["step_ms_mean"] = steps ? 1e3 * stepSeconds / steps : 0.0;
+  stats["units"] = lengthUnitName(scene.head.units);  // the OBJ frames' and the PC2's
+  if (const GlbReport* glb = exporter.glbReport()) stats["glb"] = glbJson(*glb);
   nlohmann::json ch = nlohmann::json::array();
   nlohmann::json mus = nlohmann::json::array();
   if (const auto* thesis = dynamic_cast<const FaceModel*>(model.get())) {
@@ -258,7 +270,9 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
     fmt::print("{}: {} frames, {} steps at {:.0f} steps/s (precompute {:.2f} s, {} cached bases)\n", scene.name,
                frames, steps, steps / std::max(stepSeconds, 1e-12), buildSeconds, model->cacheHits());
     if (formats.obj) fmt::print("wrote {}/obj/{}_NNNN.obj\n", out.string(), scene.name);
-    if (formats.glb) fmt::print("wrote {}/{}.glb\n", out.string(), scene.name);
+    if (const GlbReport* glb = exporter.glbReport())
+      fmt::print("wrote {}/{}.glb ({} frames at {:g} fps as {} morph targets, every frame within {:.3f} mm)\n",
+                 out.string(), scene.name, glb->frames, glb->fps, glb->targets, 10.0 * glb->maxErrorCm);
     if (formats.pc2) fmt::print("wrote {}/{}.pc2\n", out.string(), scene.name);
     if (video) fmt::print("wrote {} and {}\n", videoPath.string(), gifPath.string());
     fmt::print("wrote {}/stats.json\n", out.string());

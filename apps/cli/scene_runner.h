@@ -3,10 +3,12 @@
 #pragma once
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "myoshell/anim/scene.h"
+#include "myoshell/io/animation_export.h"
 #include "myoshell/render/curve_panel.h"
 #include "myoshell/render/face_picture.h"
 
@@ -47,6 +49,21 @@ struct RunOptions {
 
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.
 int runScene(const SceneDesc& scene, const RunOptions& options);
+
+// The animation GLB's report for --json: {"targets", "max_error_mm", "within_tolerance", "fps",
+// "frames", "vertices"}; and, when the cap left frames beyond the tolerance, a warning on stderr.
+template <typename Json = nlohmann::json>
+Json glbJson(const GlbReport& report) {
+  Json j;
+  j["targets"] = report.targets;
+  j["max_error_mm"] = 10.0 * report.maxErrorCm;
+  j["within_tolerance"] = report.withinTolerance;
+  j["fps"] = report.fps;
+  j["frames"] = report.frames;
+  j["vertices"] = report.vertices;
+  return j;
+}
+void warnIfGlbInexact(const GlbReport& report);
 
 // The face painter for `run`, `render` and `figures`: OpenGL unless `software` or unavailable
 // (then the software rasterizer, after one warning line on standard error saying why).

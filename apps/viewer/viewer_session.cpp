@@ -379,6 +379,7 @@ int ViewerSession::exportGlb(const std::string& path) const {
   animation.triangles = model_->head().mesh.F;
   animation.rest = model_->head().mesh.V;
   animation.uv = model_->head().mesh.UV;
+  animation.cornerUV = model_->head().mesh.cornerUV;
   animation.fps = scene().fps;
   for (int f = 0; f < frames; ++f) {
     fresh.advanceTo(f);

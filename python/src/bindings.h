@@ -13,6 +13,7 @@
 #include "myoshell/anim/scene_player.h"
 #include "myoshell/core/types.h"
 #include "myoshell/head/head.h"
+#include "myoshell/io/animation_export.h"
 #include "myoshell/reduce/basis_cache.h"
 
 namespace myo::python {
@@ -66,6 +67,10 @@ const TriMesh& meshOf(const py::handle& headOrFace);
 
 // Writes `positions` (n×3, cm) as an OBJ in the head's own unit, as `myoshell pose --out` does.
 void writeHeadObj(const HeadHandle& head, const std::string& path, const MatX3& positions);
+
+// An animation GLB's report (io/animation_export.h) as drive's and write_glb's dict: targets,
+// max_error_mm, within_tolerance, fps, frames, vertices (the CLI's --json "glb").
+py::dict glbDict(const GlbReport& report);
 
 void bindErrors(py::module_& m);
 void bindHeads(py::module_& m);

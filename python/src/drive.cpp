@@ -94,7 +94,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   std::optional<AnimationExporter> exporter;
   ScenePlayer player(scene, model);
   const int frameCount = player.frameCount();
-  if (!out.is_none()) exporter.emplace(outDir, formats, scene.name, model->head().mesh, scene.fps, frameCount);
+  if (!out.is_none()) exporter.emplace(outDir, formats, scene.name, model->head().mesh, scene.fps, frameCount, scene.head.units);
   const Eigen::Index n = model->head().mesh.vertexCount();
   py::array_t<double> frames({static_cast<py::ssize_t>(frameCount), static_cast<py::ssize_t>(n), py::ssize_t{3}});
   py::array_t<double> times(frameCount);
@@ -152,6 +152,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   result["steps"] = steps;
   result["performance"] = report;
   result["written"] = written;
+  if (const GlbReport* glb = exporter ? exporter->glbReport() : nullptr) result["glb"] = glbDict(*glb);
   return result;
 }
 
@@ -183,7 +184,9 @@ cache folder or None. The GIL is released while it plays (Ctrl-C is seen between
 Returns a dict: frames float64 (F, n, 3) cm (frame k at times[k] = k / fps s), times (F,), fps,
 name, rest (n, 3), triangles int32 (m, 3), muscle_names, steps, written (files relative to out),
 performance (file, input, au_scale, frames, fps, duration, dropped_frames, warnings, unmapped; each
-warning is also a UserWarning). InputError with drive's messages; SimulationError; IoError.)doc");
+warning is also a UserWarning), and with a GLB written glb (targets, max_error_mm, within_tolerance,
+fps, frames, vertices; docs/exports.md). The OBJ frames and the PC2 are in the head's units, the GLB
+in metres; frames, rest and times stay in cm. InputError with drive's messages; SimulationError; IoError.)doc");
 }
 
 }  // namespace myo::python

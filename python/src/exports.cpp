@@ -38,6 +38,7 @@ AnimationFrames animationOf(const py::handle& head, const py::handle& frames, do
   a.triangles = mesh.F;
   a.rest = mesh.V;
   a.uv = mesh.UV;
+  a.cornerUV = mesh.cornerUV;
   a.fps = checkedFps(fps);
   a.positions = toFrames(frames, "frames", mesh.vertexCount());
   return a;
@@ -45,20 +46,36 @@ AnimationFrames animationOf(const py::handle& head, const py::handle& frames, do
 
 }  // namespace
 
+py::dict glbDict(const GlbReport& report) {
+  py::dict d;
+  d["targets"] = report.targets;
+  d["max_error_mm"] = 10.0 * report.maxErrorCm;
+  d["within_tolerance"] = report.withinTolerance;
+  d["fps"] = report.fps;
+  d["frames"] = report.frames;
+  d["vertices"] = report.vertices;
+  return d;
+}
+
 void bindExports(py::module_& m) {
   m.def("write_glb", [](const fs::path& path, const py::object& head, const py::object& frames, double fps,
                         const std::string& name) {
           checkFilePath(path, "GLB file");
           const AnimationFrames a = animationOf(head, frames, fps, name);
-          py::gil_scoped_release unlocked;
-          writeGlb(path, a);
+          GlbReport report;
+          {
+            py::gil_scoped_release unlocked;
+            report = writeGlb(path, a);
+          }
+          return glbDict(report);
         },
         py::arg("path"), py::arg("head"), py::arg("frames"), py::kw_only(), py::arg("fps") = 30.0,
         py::arg("name") = "animation", R"doc(
-Writes frames (float (F, n, 3) cm, n the head's vertex count) as a glTF binary: the head's rest mesh
-(a Head or a Face), frame k a morph target played at k / fps s (docs/exports.md; at most 240 targets:
-with more frames every stride-th and the last). name: the mesh's and animation's (drive names them
-after the performance file's stem). With drive's frames, fps and name the file is drive's.)doc");
+Writes frames (float (F, n, 3) cm, n the head's vertex count) as a glTF binary in metres: every frame,
+exact to 0.05 mm, as the head's mesh (a Head or a Face; UV seams split) plus a few morph targets with
+a weight key at every frame, k / fps s (docs/exports.md "The animation GLB"). name: the mesh's and
+animation's (drive names them after the performance file's stem). With drive's frames, fps and name
+the file is drive's. Returns {targets, max_error_mm, within_tolerance, fps, frames, vertices}.)doc");
 
   m.def("write_pc2", [](const fs::path& path, const py::object& frames) {
           checkFilePath(path, "PC2 file");

@@ -8,6 +8,7 @@
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/io_error.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/obj_writer.h"
 
 namespace myo {
@@ -26,8 +27,8 @@ ExportFormats parseExportFormats(const std::vector<std::string>& names) {
 }
 
 AnimationExporter::AnimationExporter(fs::path out, ExportFormats formats, std::string name, const TriMesh& mesh,
-                                     double fps, int frames)
-    : out_(std::move(out)), formats_(formats), mesh_(mesh) {
+                                     double fps, int frames, LengthUnit units)
+    : out_(std::move(out)), formats_(formats), mesh_(mesh), perCm_(1.0 / centimetresPer(units)) {
   std::error_code ec;
   fs::create_directories(formats_.obj ? out_ / "obj" : out_, ec);
   if (ec && isRunTimeIoFailure(ec.value())) throw IoError("cannot create the output folder (" + ec.message() + ")", out_.string());
@@ -37,6 +38,7 @@ AnimationExporter::AnimationExporter(fs::path out, ExportFormats formats, std::s
     animation_.triangles = mesh.F;
     animation_.rest = mesh.V;
     animation_.uv = mesh.UV;  // TEXCOORD_0 when the head has UVs
+    animation_.cornerUV = mesh.cornerUV;  // its seams split
     animation_.fps = fps;
     animation_.positions.reserve(static_cast<size_t>(std::max(frames, 0)));
   }
@@ -46,7 +48,12 @@ std::string AnimationExporter::addFrame(int f, const MatX3& positions) {
   std::string rel;
   if (formats_.obj) {
     rel = fmt::format("obj/{}_{:04d}.obj", animation_.name, f);
-    writeObj((out_ / rel).string(), mesh_, &positions);
+    if (perCm_ == 1.0) {
+      writeObj((out_ / rel).string(), mesh_, &positions);
+    } else {
+      const MatX3 inUnits = positions * perCm_;  // the head's own unit
+      writeObj((out_ / rel).string(), mesh_, &inUnits);
+    }
   }
   if (formats_.glb || formats_.pc2) animation_.positions.push_back(positions);
   return rel;
@@ -55,11 +62,19 @@ std::string AnimationExporter::addFrame(int f, const MatX3& positions) {
 std::vector<std::string> AnimationExporter::finish() {
   std::vector<std::string> written;
   if (formats_.glb) {
-    writeGlb(out_ / (animation_.name + ".glb"), animation_);
+    glb_ = writeGlb(out_ / (animation_.name + ".glb"), animation_);
     written.push_back(animation_.name + ".glb");
   }
   if (formats_.pc2) {
-    writePc2(out_ / (animation_.name + ".pc2"), animation_);
+    if (perCm_ == 1.0) {
+      writePc2(out_ / (animation_.name + ".pc2"), animation_);
+    } else {  // the head's own unit
+      AnimationFrames inUnits;
+      inUnits.rest = animation_.rest * perCm_;
+      inUnits.positions.reserve(animation_.positions.size());
+      for (const MatX3& p : animation_.positions) inUnits.positions.push_back(p * perCm_);
+      writePc2(out_ / (animation_.name + ".pc2"), inUnits);
+    }
     written.push_back(animation_.name + ".pc2");
   }
   return written;

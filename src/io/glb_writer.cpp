@@ -1,4 +1,5 @@
-// GLB export: the skin with its frames baked as one-hot morph targets (scheme in animation_export.h).
+// GLB exports: an animation (every frame as base + weighted morph targets, scheme in
+// io/animation_export.h) and a rig (io/rig_export.h), both through one mesh writer.
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/morph_compression.h"
 #include "myoshell/io/rig_export.h"
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/mesh/uv_seams.h"
@@ -81,28 +83,18 @@ std::vector<float> toFloat(const MatX3& M) {
 
 }  // namespace
 
-std::vector<int> glbFrameIndices(int frameCount, int maxMorphTargets) {
-  MYO_CHECK_GE(maxMorphTargets, 1);
-  std::vector<int> out;
-  if (frameCount <= 0) return out;
-  const int stride = (frameCount + maxMorphTargets - 1) / maxMorphTargets;
-  for (int f = 0; f < frameCount; f += stride) out.push_back(f);
-  if (out.back() != frameCount - 1) out.push_back(frameCount - 1);
-  return out;
-}
-
 namespace {
 
 // The one mesh with its morph targets, in a single primitive: POSITION, NORMAL, TEXCOORD_0 (when
 // there are UVs), UNSIGNED_INT indices, one POSITION target per delta named in
-// meshes[0].extras.targetNames, and the node that places it. Positions and deltas (cm) are
-// multiplied by `toFile` as written; the node's scale (when not 1) turns them into metres. The
-// normals are given (not computed from these triangles) so that a mesh split along its UV seams
-// can carry the normals of the unsplit mesh: computed on the split one, a seam would show.
+// meshes[0].extras.targetNames, the mesh's default weights, and the node (no transform) that
+// places it. Positions and deltas are in metres as given. The normals are given (not computed from
+// these triangles) so that a mesh split along its UV seams can carry the normals of the unsplit
+// mesh: computed on the split one, a seam would show.
 void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& name, const MatX3& rest,
                   const MatX3i& triangles, const MatX2& uvs, const MatX3& normalsPerVertex,
-                  const std::vector<MatX3>& deltas, const std::vector<std::string>& names, double toFile,
-                  double nodeScale) {
+                  const std::vector<MatX3>& deltas, const std::vector<std::string>& names,
+                  const std::vector<double>& defaultWeights) {
   const auto n = static_cast<size_t>(rest.rows());
   const size_t T = deltas.size();
 
@@ -116,7 +108,7 @@ void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& 
 
   // Rest positions and normals.
   std::vector<double> lo, hi;
-  const std::vector<float> restFloats = toFloat(rest * toFile);
+  const std::vector<float> restFloats = toFloat(rest);
   bounds(restFloats, lo, hi);
   const int positionAccessor = bb.addAccessor(bb.addView(restFloats.data(), restFloats.size() * 4, kArrayBuffer), 0,
                                               TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
@@ -142,7 +134,7 @@ void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& 
   targets.reserve(T * 3 * n);
   std::vector<std::pair<std::vector<double>, std::vector<double>>> targetBounds;
   for (const MatX3& delta : deltas) {
-    std::vector<float> d = toFloat(delta * toFile);
+    std::vector<float> d = toFloat(delta);
     bounds(d, lo, hi);
     targetBounds.emplace_back(lo, hi);
     targets.insert(targets.end(), d.begin(), d.end());
@@ -166,7 +158,8 @@ void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& 
   tinygltf::Mesh mesh;
   mesh.name = name;
   mesh.primitives.push_back(prim);
-  mesh.weights.assign(T, 0.0);
+  MYO_CHECK_EQ(defaultWeights.size(), T);
+  mesh.weights = defaultWeights;
   tinygltf::Value::Object extras;
   extras["targetNames"] = tinygltf::Value(std::move(targetNames));
   mesh.extras = tinygltf::Value(std::move(extras));
@@ -175,7 +168,6 @@ void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& 
   tinygltf::Node node;
   node.name = name;
   node.mesh = 0;
-  if (nodeScale != 1.0) node.scale = {nodeScale, nodeScale, nodeScale};
   model.nodes.push_back(node);
   tinygltf::Scene scene;
   scene.name = name;
@@ -184,13 +176,36 @@ void addMorphMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& 
   model.defaultScene = 0;
 }
 
-void checkMesh(const MatX3& rest, const MatX3i& triangles, const MatX2& uv) {
+// The mesh as addMorphMesh writes it, split along its UV seams when cornerUV has rows (rigs and
+// animations alike: mesh/uv_seams.h): the seam duplicates follow the head's own vertices and carry
+// their originals' positions, normals of the unsplit mesh and deltas. `rest` and `deltas` in metres.
+// Returns the vertex count written.
+int addSeamSplitMesh(tinygltf::Model& model, BufferBuilder& bb, const std::string& name, const MatX3& rest,
+                     const MatX3i& triangles, const MatX2& uv, const MatX2& cornerUV, const MatX3& normals,
+                     const std::vector<MatX3>& deltas, const std::vector<std::string>& names,
+                     const std::vector<double>& defaultWeights) {
+  if (cornerUV.rows() == 0) {
+    addMorphMesh(model, bb, name, rest, triangles, uv, normals, deltas, names, defaultWeights);
+    return static_cast<int>(rest.rows());
+  }
+  const SeamSplit split = splitUvSeams(static_cast<int>(rest.rows()), triangles, uv, cornerUV);
+  std::vector<MatX3> splitDeltas;
+  splitDeltas.reserve(deltas.size());
+  for (const MatX3& d : deltas) splitDeltas.push_back(expandToSplit(split, d));
+  addMorphMesh(model, bb, name, expandToSplit(split, rest), split.triangles, split.uv, expandToSplit(split, normals),
+               splitDeltas, names, defaultWeights);
+  return split.vertexCount();
+}
+
+void checkMesh(const MatX3& rest, const MatX3i& triangles, const MatX2& uv, const MatX2& cornerUV) {
   const auto n = static_cast<size_t>(rest.rows());
   MYO_CHECK_GT(triangles.rows(), 0);
   MYO_CHECK(triangles.minCoeff() >= 0 && static_cast<size_t>(triangles.maxCoeff()) < n,
             "triangle indices must lie in [0, " << n << ")");
   MYO_CHECK(uv.rows() == 0 || static_cast<size_t>(uv.rows()) == n,
             "uv must have 0 or " << n << " rows (one per vertex), got " << uv.rows());
+  MYO_CHECK(cornerUV.rows() == 0 || cornerUV.rows() == 3 * triangles.rows(),
+            "cornerUV must have 0 or " << 3 * triangles.rows() << " rows (3 per triangle), got " << cornerUV.rows());
 }
 
 void writeModel(const std::filesystem::path& path, tinygltf::Model& model) {
@@ -203,36 +218,37 @@ void writeModel(const std::filesystem::path& path, tinygltf::Model& model) {
 
 }  // namespace
 
-void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, int maxMorphTargets) {
+GlbReport writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, const GlbOptions& options) {
   detail::checkFrames(frames);
-  MYO_CHECK_GT(frames.fps, 0.0);
-  checkMesh(frames.rest, frames.triangles, frames.uv);
-  const std::vector<int> exported = glbFrameIndices(static_cast<int>(frames.positions.size()), maxMorphTargets);
-  const size_t T = exported.size();
+  MYO_CHECK(frames.fps > 0.0 && std::isfinite(frames.fps), "fps must be finite and > 0, got " << frames.fps);
+  checkMesh(frames.rest, frames.triangles, frames.uv, frames.cornerUV);
+  const auto F = static_cast<int>(frames.positions.size());
+
+  // Every frame, exact to the tolerance, as base + Σ s_k T_k, in metres (glTF's unit).
+  const MorphAnimation morph =
+      compressToMorphTargets(frames.rest, frames.positions, options.toleranceCm, options.maxTargets, 0.01);
+  const auto T = static_cast<int>(morph.targets.size());
+  std::vector<std::string> names;
+  for (int k = 0; k < T; ++k) names.push_back(fmt::format("mode_{:02d}", k));
+  std::vector<double> firstFrame(T);  // the mesh's default weights, as stored
+  for (int k = 0; k < T; ++k) firstFrame[k] = static_cast<float>(morph.weights(0, k));
 
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "Myoshell";
   BufferBuilder bb(model);
-  // Frame k's target is its displacement from the rest; the node carries the cm → m scale
-  // (glTF's unit is the metre), accessors stay in cm.
-  std::vector<MatX3> deltas;
-  std::vector<std::string> names;
-  for (const int f : exported) {
-    deltas.push_back(frames.positions[f] - frames.rest);
-    names.push_back(fmt::format("frame_{:04d}", f));
-  }
-  addMorphMesh(model, bb, frames.name, frames.rest, frames.triangles, frames.uv,
-               vertexNormals(frames.rest, frames.triangles), deltas, names, 1.0, 0.01);
+  GlbReport report;
+  report.vertices = addSeamSplitMesh(model, bb, frames.name, morph.base, frames.triangles, frames.uv, frames.cornerUV,
+                                     vertexNormals(frames.rest, frames.triangles), morph.targets, names, firstFrame);
 
-  // Animation: keyframe k at exported[k] / fps with one-hot weights e_k.
-  std::vector<float> times(T), weights(T * T, 0.0f);
-  for (size_t k = 0; k < T; ++k) {
-    times[k] = static_cast<float>(exported[k] / frames.fps);
-    weights[k * T + k] = 1.0f;
+  // Animation: a key at every frame, f / fps, with that frame's T weights.
+  std::vector<float> times(F), weights(static_cast<size_t>(F) * T);
+  for (int f = 0; f < F; ++f) {
+    times[f] = static_cast<float>(f / frames.fps);
+    for (int k = 0; k < T; ++k) weights[static_cast<size_t>(f) * T + k] = static_cast<float>(morph.weights(f, k));
   }
-  const int timeAccessor = bb.addAccessor(bb.addView(times.data(), T * 4, 0), 0, TINYGLTF_COMPONENT_TYPE_FLOAT, T,
-                                          TINYGLTF_TYPE_SCALAR, {times.front()}, {times.back()});
+  const int timeAccessor = bb.addAccessor(bb.addView(times.data(), times.size() * 4, 0), 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                          times.size(), TINYGLTF_TYPE_SCALAR, {times.front()}, {times.back()});
   const int weightAccessor = bb.addAccessor(bb.addView(weights.data(), weights.size() * 4, 0), 0,
                                             TINYGLTF_COMPONENT_TYPE_FLOAT, weights.size(), TINYGLTF_TYPE_SCALAR);
   tinygltf::Animation anim;
@@ -247,16 +263,25 @@ void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, 
   channel.target_node = 0;
   channel.target_path = "weights";
   anim.channels.push_back(channel);
+  // glTF has no frame rate: players convert the keys' seconds at their own (docs/exports.md).
+  tinygltf::Value::Object rate;
+  rate["fps"] = tinygltf::Value(frames.fps);
+  rate["frames"] = tinygltf::Value(F);
+  anim.extras = tinygltf::Value(rate);
+  model.scenes[0].extras = tinygltf::Value(rate);
   model.animations.push_back(anim);
 
   writeModel(path, model);
+  report.targets = T;
+  report.maxErrorCm = morph.maxError;
+  report.withinTolerance = morph.withinTolerance;
+  report.frames = F;
+  report.fps = frames.fps;
+  return report;
 }
 
 void writeRigGlb(const std::filesystem::path& path, const RigExport& rig) {
-  checkMesh(rig.rest, rig.triangles, rig.uv);
-  MYO_CHECK(rig.cornerUV.rows() == 0 || rig.cornerUV.rows() == 3 * rig.triangles.rows(),
-            "cornerUV must have 0 or " << 3 * rig.triangles.rows() << " rows (3 per triangle), got "
-                                       << rig.cornerUV.rows());
+  checkMesh(rig.rest, rig.triangles, rig.uv, rig.cornerUV);
   MYO_CHECK_EQ(rig.names.size(), rig.deltas.size());
   for (const MatX3& d : rig.deltas)
     MYO_CHECK(d.rows() == rig.rest.rows() && d.allFinite(), "every delta must be n×3 and finite");
@@ -264,20 +289,12 @@ void writeRigGlb(const std::filesystem::path& path, const RigExport& rig) {
   model.asset.version = "2.0";
   model.asset.generator = "Myoshell";
   BufferBuilder bb(model);
+  std::vector<MatX3> deltas;  // cm → m
+  deltas.reserve(rig.deltas.size());
+  for (const MatX3& d : rig.deltas) deltas.push_back(d * 0.01);
   // Normals of the unsplit mesh, so that both sides of a UV seam shade alike.
-  const MatX3 normals = vertexNormals(rig.rest, rig.triangles);
-  if (rig.cornerUV.rows() == 0) {
-    addMorphMesh(model, bb, rig.name, rig.rest, rig.triangles, rig.uv, normals, rig.deltas, rig.names, 0.01,
-                 1.0);  // cm → m
-  } else {
-    // Seam duplicates appended after the head's own vertices, moving exactly as their originals.
-    const SeamSplit split = splitUvSeams(static_cast<int>(rig.rest.rows()), rig.triangles, rig.uv, rig.cornerUV);
-    std::vector<MatX3> deltas;
-    deltas.reserve(rig.deltas.size());
-    for (const MatX3& d : rig.deltas) deltas.push_back(expandToSplit(split, d));
-    addMorphMesh(model, bb, rig.name, expandToSplit(split, rig.rest), split.triangles, split.uv,
-                 expandToSplit(split, normals), deltas, rig.names, 0.01, 1.0);  // cm → m
-  }
+  addSeamSplitMesh(model, bb, rig.name, rig.rest * 0.01, rig.triangles, rig.uv, rig.cornerUV,
+                   vertexNormals(rig.rest, rig.triangles), deltas, rig.names, std::vector<double>(deltas.size(), 0.0));
   writeModel(path, model);
 }
 

@@ -1,5 +1,6 @@
 // `myoshell run --format`: GLB, PC2 and OBJ exports of one run agree; unknown formats are errors.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
@@ -53,8 +54,20 @@ TEST_F(ExportCommand, WritesGlbPc2AndObjThatAgree) {
   ASSERT_EQ(m.meshes.size(), 1u);
   EXPECT_EQ(m.accessors[m.meshes[0].primitives[0].attributes.at("POSITION")].count,
             static_cast<size_t>(first.vertexCount()));
-  EXPECT_EQ(m.meshes[0].primitives[0].targets.size(), 3u);
+  const size_t targets = m.meshes[0].primitives[0].targets.size();
+  EXPECT_GE(targets, 1u);
+  EXPECT_LE(targets, 3u);  // at most one per frame
   EXPECT_EQ(m.animations.size(), 1u);
+  // stats.json (and --json) say what the GLB holds: its targets, every frame's largest error, the rate.
+  std::ifstream statsFile(out / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  ASSERT_TRUE(stats.contains("glb")) << stats.dump(2);
+  EXPECT_EQ(stats["glb"]["targets"].get<size_t>(), targets);
+  EXPECT_EQ(stats["glb"]["frames"].get<int>(), 3);
+  EXPECT_EQ(stats["glb"]["fps"].get<double>(), m.animations[0].extras.Get("fps").GetNumberAsDouble());
+  EXPECT_LE(stats["glb"]["max_error_mm"].get<double>(), 0.05);
+  EXPECT_TRUE(stats["glb"]["within_tolerance"].get<bool>());
+  EXPECT_EQ(stats["units"], "cm");
 }
 
 TEST_F(ExportCommand, OnlyTheRequestedFormatsAreWritten) {

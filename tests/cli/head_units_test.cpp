@@ -1,9 +1,10 @@
 // Heads checked where they are loaded (docs/heads.md, "Checks on load"): ICT written in metres is
 // refused with the --units proposal, accepted with --units m (the same head and the same motion as
-// in cm), and the built-in head's landmarks on ICT's mesh are refused naming a landmark.
+// in cm, its OBJ frames and PC2 written in metres), and the built-in head's landmarks on ICT's mesh are refused naming a landmark.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "myoshell/head/head.h"
+#include "myoshell/io/animation_export.h"
+#include "myoshell/io/obj_writer.h"
+#include "myoshell/mesh/obj_reader.h"
 #include "support/cli_runner.h"
 
 namespace myo {
@@ -126,24 +131,82 @@ TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
   const fs::path sceneM = scene((dir / "ict_m.obj").string(), "m");
   for (const auto& [s, out] : {std::pair{sceneCm, dir / "out_cm"}, std::pair{sceneM, dir / "out_m"}}) {
     const test::CliResult r = test::runCli("run '" + s.string() + "' --out '" + out.string() + "' --cache '" +
-                                           (dir / "cache").string() + "'");
+                                           (dir / "cache").string() + "' --format obj,pc2,glb");
     ASSERT_EQ(r.exitCode, 0) << r.merged;
   }
-  // The last frame's displacement from the rest head, in cm, agrees to 1e-6 relative.
-  const std::vector<double> rest = objVertices(ictDir() / "head_skin.obj");
-  auto displacement = [&](const fs::path& out) {
+  // The OBJ frames and the PC2 are in the head's own unit: the run in metres writes the run in cm's
+  // positions × 0.01; the last frame's displacement from the rest head agrees to 1e-6 relative.
+  auto lastFrame = [&](const fs::path& out) {
     std::vector<fs::path> frames;
     for (const auto& e : fs::directory_iterator(out / "obj")) frames.push_back(e.path());
     std::sort(frames.begin(), frames.end());
-    std::vector<double> u = objVertices(frames.back());
-    for (size_t i = 0; i < u.size() && i < rest.size(); ++i) u[i] -= rest[i];
-    return u;
+    return objVertices(frames.back());
   };
-  const std::vector<double> uCm = displacement(dir / "out_cm"), uM = displacement(dir / "out_m");
+  const std::vector<double> restCm = objVertices(ictDir() / "head_skin.obj"), restM = objVertices(dir / "ict_m.obj");
+  const std::vector<double> lastCm = lastFrame(dir / "out_cm"), lastM = lastFrame(dir / "out_m");
+  ASSERT_EQ(lastM.size(), lastCm.size());
+  std::vector<double> uCm(lastCm.size()), uMinCm(lastM.size()), lastCmInM(lastCm.size());
+  for (size_t i = 0; i < lastCm.size(); ++i) {
+    uCm[i] = lastCm[i] - restCm[i];
+    uMinCm[i] = 100.0 * (lastM[i] - restM[i]);
+    lastCmInM[i] = 0.01 * lastCm[i];
+  }
   double peak = 0.0;
   for (double x : uCm) peak = std::max(peak, std::abs(x));
   EXPECT_GT(peak, 0.01);  // the muscle moved the skin (cm)
-  EXPECT_LE(relativeDifference(uM, uCm), 1e-6);
+  EXPECT_LE(relativeDifference(uMinCm, uCm), 1e-6);
+  EXPECT_LE(relativeDifference(lastM, lastCmInM), 1e-9);
+  // The PC2, every frame (float32: to 1e-6 relative).
+  const PointCache pcCm = readPc2(dir / "out_cm" / "u.pc2"), pcM = readPc2(dir / "out_m" / "u.pc2");
+  ASSERT_EQ(pcM.samples.size(), pcCm.samples.size());
+  for (size_t f = 0; f < pcCm.samples.size(); ++f)
+    EXPECT_LE((pcM.samples[f] - 0.01 * pcCm.samples[f]).cwiseAbs().maxCoeff(), 1e-6 * 0.01 * pcCm.samples[f].cwiseAbs().maxCoeff())
+        << "frame " << f;
+  // stats.json names the unit; the GLB is in metres for both.
+  for (const auto& [out, unit] : {std::pair{dir / "out_cm", "cm"}, std::pair{dir / "out_m", "m"}}) {
+    std::ifstream statsFile(out / "stats.json");
+    const nlohmann::json stats = nlohmann::json::parse(statsFile);
+    EXPECT_EQ(stats["units"], unit);
+    EXPECT_LE(stats["glb"]["max_error_mm"].get<double>(), 0.05);
+  }
+}
+
+// `drive --units m`: the OBJ frames and the PC2 of a head in metres are in metres, the simulation's
+// cm × 0.01 — each frame's largest displacement from the file's rest, × 100, is the cm figure
+// stats.json reports for it — and the OBJ frames and the PC2 hold the same positions.
+TEST(HeadUnits, DriveWithUnitsMWritesObjAndPc2InMetres) {
+  const fs::path dir = scratch("drive_m");
+  const Head head = loadDefaultHead();
+  const MatX3 metres = head.mesh.V * 0.01;
+  writeObj((dir / "head_m.obj").string(), head.mesh, &metres);
+  std::ofstream(dir / "landmarks.json") << defaultHeadLandmarkJson();
+  {
+    std::ofstream take(dir / "take.csv");
+    take << "timestamp,AU12_r,AU04_r\n";
+    for (int k = 0; k < 5; ++k) take << k / 30.0 << "," << 0.2 * k << "," << 0.1 * (4 - k) << "\n";
+  }
+  const test::CliResult r = test::runCli(
+      "drive '" + (dir / "take.csv").string() + "' --head '" + (dir / "head_m.obj").string() + "' --landmarks '" +
+      (dir / "landmarks.json").string() + "' --units m --library builtin --format obj,pc2,glb --out '" +
+      (dir / "out").string() + "' --cache '" + (dir / "cache").string() + "' --json");
+  ASSERT_EQ(r.exitCode, 0) << r.merged;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["units"], "m");
+  EXPECT_LE(j["glb"]["max_error_mm"].get<double>(), 0.05);
+  std::ifstream statsFile(dir / "out" / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  const PointCache pc = readPc2(dir / "out" / "take.pc2");
+  ASSERT_EQ(pc.samples.size(), 5u);
+  ASSERT_EQ(stats["per_frame"].size(), 5u);
+  double moved = 0.0;
+  for (int f = 0; f < 5; ++f) {
+    const MatX3 obj = readObj((dir / "out" / "obj" / ("take_000" + std::to_string(f) + ".obj")).string()).V;
+    const double peakCm = stats["per_frame"][f]["max_displacement_cm"].get<double>();
+    EXPECT_NEAR(100.0 * (obj - metres).rowwise().norm().maxCoeff(), peakCm, 1e-9 + 1e-6 * peakCm) << f;
+    EXPECT_LT((pc.samples[f] - obj).cwiseAbs().maxCoeff(), 1e-7) << f;  // float32 of metres
+    moved = std::max(moved, peakCm);
+  }
+  EXPECT_GT(moved, 0.05);  // the smile moved the skin (cm)
 }
 
 TEST(HeadUnits, TheBuiltInLandmarksOnTheIctMeshAreRefused) {

@@ -1,8 +1,11 @@
-// PC2 and GLB animation exports: round trips, the GLB morph-target scheme, and atomic failures.
+// PC2 and GLB animation exports: round trips, the GLB's exact frames (base + weighted morph
+// targets), metres, seams and frame rate, and atomic failures.
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -10,8 +13,13 @@
 #include <iterator>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/head/head_checks.h"
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/animation_exporter.h"
+#include "myoshell/io/morph_compression.h"
+#include "myoshell/mesh/obj_reader.h"
 #include "support/scratch_folder.h"
+#include "support/uv_seam_mesh.h"
 
 namespace myo {
 namespace {
@@ -96,27 +104,113 @@ std::vector<float> floats(const tinygltf::Model& m, int a) {
   return out;
 }
 
-TEST_F(AnimationExport, GlbHasOneHotMorphTargetsThatRebuildTheFrames) {
-  const AnimationFrames a = waveAnimation(9);
-  const fs::path path = dir_ / "wave.glb";
-  writeGlb(path, a);
-  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+// The GLB read back with tinygltf, and every frame as a player computes it: base + Σ_k s_fk T_k at
+// key f, in the file's unit (metres).
+struct PlayedGlb {
+  tinygltf::Model model;
+  std::vector<float> times;
+  std::vector<MatX3> frames;  // metres
+  std::vector<float> weights;  // F × k, key-major
+  int targets = 0;
+};
 
-  tinygltf::Model m;
+PlayedGlb play(const fs::path& path) {
+  PlayedGlb g;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
-  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, path.string())) << err;
-  EXPECT_TRUE(err.empty()) << err;
-  ASSERT_EQ(m.meshes.size(), 1u);
-  ASSERT_EQ(m.meshes[0].primitives.size(), 1u);
-  const tinygltf::Primitive& prim = m.meshes[0].primitives[0];
-  EXPECT_EQ(prim.mode, TINYGLTF_MODE_TRIANGLES);
-  const int pos = prim.attributes.at("POSITION");
-  EXPECT_EQ(m.accessors[pos].count, 4u);
-  EXPECT_EQ(m.accessors[prim.indices].count, 6u);
-  ASSERT_EQ(prim.targets.size(), 9u);
-  EXPECT_EQ(m.meshes[0].weights.size(), 9u);
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&g.model, &err, &warn, path.string())) << err;
+  const tinygltf::Model& m = g.model;
+  const tinygltf::Primitive& prim = m.meshes.at(0).primitives.at(0);
+  g.targets = static_cast<int>(prim.targets.size());
+  const std::vector<float> base = floats(m, prim.attributes.at("POSITION"));
+  std::vector<std::vector<float>> targets;
+  for (const auto& t : prim.targets) targets.push_back(floats(m, t.at("POSITION")));
+  const tinygltf::AnimationSampler& s = m.animations.at(0).samplers.at(0);
+  EXPECT_EQ(s.interpolation, "LINEAR");
+  g.times = floats(m, s.input);
+  g.weights = floats(m, s.output);
+  EXPECT_EQ(g.weights.size(), g.times.size() * targets.size());
+  const size_t n = base.size() / 3;
+  for (size_t f = 0; f < g.times.size(); ++f) {
+    MatX3 P(n, 3);
+    for (size_t i = 0; i < 3 * n; ++i) {
+      double x = base[i];
+      for (size_t k = 0; k < targets.size(); ++k) x += double(g.weights[f * targets.size() + k]) * targets[k][i];
+      P.data()[i] = x;
+    }
+    g.frames.push_back(P);
+  }
+  return g;
+}
 
+// Largest vertex distance between the played frames (m) and the frames (cm) over the first n vertices, mm.
+double maxErrorMm(const PlayedGlb& g, const std::vector<MatX3>& frames) {
+  double worst = 0;
+  for (size_t f = 0; f < frames.size(); ++f)
+    worst = std::max(worst, (g.frames[f].topRows(frames[f].rows()) - 0.01 * frames[f]).rowwise().norm().maxCoeff());
+  return 1e3 * worst;
+}
+
+// A 12×10 grid (120 vertices) moved by three fixed fields with their own time curves: 120 frames
+// of rank 3.
+AnimationFrames lowRankAnimation(int frameCount) {
+  AnimationFrames a;
+  a.name = "lowrank";
+  a.fps = 30.0;
+  const int nx = 12, ny = 10;
+  a.rest.resize(nx * ny, 3);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) a.rest.row(j * nx + i) << 0.5 * i, 0.5 * j, 0.05 * i * j;
+  a.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
+  int t = 0;
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int v = j * nx + i;
+      a.triangles.row(t++) << v, v + 1, v + nx + 1;
+      a.triangles.row(t++) << v, v + nx + 1, v + nx;
+    }
+  std::vector<MatX3> fields(3, MatX3(nx * ny, 3));
+  for (int v = 0; v < nx * ny; ++v) {
+    fields[0].row(v) << 0, 0, std::sin(0.3 * v);
+    fields[1].row(v) << 0.2 * std::cos(0.1 * v), 0, 0;
+    fields[2].row(v) << 0, 0.1 * (v % 7), 0.05 * (v % 5);
+  }
+  for (int f = 0; f < frameCount; ++f) {
+    const double time = f / a.fps;
+    a.positions.push_back(a.rest + std::sin(3 * time) * fields[0] + (1 - std::cos(2 * time)) * fields[1] +
+                          time * time * fields[2]);
+  }
+  return a;
+}
+
+// Every frame, exact: a key at every frame, f / fps; base + Σ s T within 0.05 mm (the tolerance) of
+// every frame; three targets for the rank-3 animation; weights in [0, 1]; no node transform.
+TEST_F(AnimationExport, GlbPlaysEveryFrameWithinTheTolerance) {
+  const AnimationFrames a = lowRankAnimation(120);
+  const fs::path path = dir_ / "lowrank.glb";
+  const GlbReport report = writeGlb(path, a);
+  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+  EXPECT_EQ(report.targets, 3);
+  EXPECT_TRUE(report.withinTolerance);
+  EXPECT_LE(report.maxErrorCm, 0.005);
+  EXPECT_EQ(report.frames, 120);
+  EXPECT_EQ(report.fps, 30.0);
+  EXPECT_EQ(report.vertices, 120);
+
+  const PlayedGlb g = play(path);
+  EXPECT_EQ(g.targets, 3);
+  ASSERT_EQ(g.times.size(), 120u);
+  for (int f = 0; f < 120; ++f) EXPECT_NEAR(g.times[f], f / 30.0, 1e-6) << f;
+  for (const float w : g.weights) {
+    EXPECT_GE(w, 0.0f);
+    EXPECT_LE(w, 1.0f);
+  }
+  const double error = maxErrorMm(g, a.positions);
+  EXPECT_LT(error, 0.05);
+  EXPECT_NEAR(error, 10.0 * report.maxErrorCm, 1e-6);  // the report is the file's own error
+  const tinygltf::Model& m = g.model;
+  EXPECT_TRUE(m.nodes.at(0).scale.empty());  // metres in the accessors, no node scale
+  EXPECT_EQ(m.meshes[0].weights.size(), 3u);
   // Every POSITION accessor has min/max bounding its values.
   auto checkBounds = [&](int acc) {
     const auto& A = m.accessors[acc];
@@ -128,50 +222,107 @@ TEST_F(AnimationExport, GlbHasOneHotMorphTargetsThatRebuildTheFrames) {
       EXPECT_LE(v[i], A.maxValues[i % 3]);
     }
   };
-  checkBounds(pos);
+  const tinygltf::Primitive& prim = m.meshes[0].primitives[0];
+  checkBounds(prim.attributes.at("POSITION"));
   for (const auto& t : prim.targets) checkBounds(t.at("POSITION"));
-
-  // The animation: one weights channel, keyframe k at k / fps with weight 1 on target k only.
   ASSERT_EQ(m.animations.size(), 1u);
-  const tinygltf::Animation& anim = m.animations[0];
-  ASSERT_EQ(anim.channels.size(), 1u);
-  EXPECT_EQ(anim.channels[0].target_path, "weights");
-  EXPECT_EQ(anim.channels[0].target_node, 0);
-  EXPECT_EQ(m.nodes[0].mesh, 0);
-  const tinygltf::AnimationSampler& s = anim.samplers[anim.channels[0].sampler];
-  const std::vector<float> times = floats(m, s.input);
-  const std::vector<float> weights = floats(m, s.output);
-  ASSERT_EQ(times.size(), 9u);
-  ASSERT_EQ(weights.size(), 81u);
-  for (int k = 0; k < 9; ++k) {
-    EXPECT_NEAR(times[k], k / 24.0, 1e-6) << k;
-    for (int j = 0; j < 9; ++j) EXPECT_EQ(weights[9 * k + j], j == k ? 1.0f : 0.0f) << k << " " << j;
-  }
-
-  // rest + target k is frame k.
-  const std::vector<float> rest = floats(m, pos);
-  for (int k : {0, 3, 8}) {
-    const std::vector<float> d = floats(m, prim.targets[k].at("POSITION"));
-    for (int i = 0; i < 4; ++i)
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(rest[3 * i + c] + d[3 * i + c], a.positions[k](i, c), 1e-5) << k;
-  }
+  EXPECT_EQ(m.animations[0].channels.at(0).target_path, "weights");
 }
 
-TEST_F(AnimationExport, GlbStridesLongAnimations) {
-  EXPECT_EQ(glbFrameIndices(5, 240), (std::vector<int>{0, 1, 2, 3, 4}));
-  EXPECT_EQ(glbFrameIndices(7, 3), (std::vector<int>{0, 3, 6}));
-  EXPECT_EQ(glbFrameIndices(8, 3), (std::vector<int>{0, 3, 6, 7}));  // the last frame is always kept
-  const AnimationFrames a = waveAnimation(8);
-  writeGlb(dir_ / "strided.glb", a, 3);
-  tinygltf::Model m;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (dir_ / "strided.glb").string())) << err;
-  EXPECT_EQ(m.meshes[0].primitives[0].targets.size(), 4u);
-  const std::vector<float> times = floats(m, m.animations[0].samplers[0].input);
-  ASSERT_EQ(times.size(), 4u);
-  EXPECT_NEAR(times[2], 6 / 24.0, 1e-6);
-  EXPECT_NEAR(times[3], 7 / 24.0, 1e-6);
+// The frame rate and frame count, where glTF can hold them: the animation's and the scene's extras.
+TEST_F(AnimationExport, GlbCarriesTheFrameRateInExtras) {
+  const AnimationFrames a = waveAnimation(9);  // 24 fps
+  writeGlb(dir_ / "wave.glb", a);
+  const PlayedGlb g = play(dir_ / "wave.glb");
+  for (const tinygltf::Value* extras : {&g.model.animations.at(0).extras, &g.model.scenes.at(0).extras}) {
+    ASSERT_TRUE(extras->IsObject());
+    EXPECT_EQ(extras->Get("fps").GetNumberAsDouble(), 24.0);
+    EXPECT_EQ(extras->Get("frames").GetNumberAsInt(), 9);
+  }
+  EXPECT_LT(maxErrorMm(g, a.positions), 0.05);  // full rank (9 frames, 9 targets at most): still exact
+  EXPECT_LE(g.targets, 9);
+}
+
+// Metres: a still animation is the rest × 0.01, with one target that no frame weighs.
+TEST_F(AnimationExport, GlbIsInMetres) {
+  AnimationFrames a = waveAnimation(1);
+  a.positions = {a.rest, a.rest};
+  const GlbReport report = writeGlb(dir_ / "still.glb", a);
+  EXPECT_EQ(report.targets, 1);
+  EXPECT_LT(report.maxErrorCm, 1e-6);  // float32 round-off of the positions in metres
+  const PlayedGlb g = play(dir_ / "still.glb");
+  const std::vector<float> base = floats(g.model, g.model.meshes[0].primitives[0].attributes.at("POSITION"));
+  for (int i = 0; i < 4; ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(base[3 * i + c], static_cast<float>(0.01 * a.rest(i, c))) << i;
+  for (const float w : g.weights) EXPECT_EQ(w, 0.0f);
+}
+
+// More frames than the exact Gram path takes (io/morph_compression.h: the randomized range finder):
+// still every frame within the tolerance, three targets.
+TEST_F(AnimationExport, LongTakesAreExactToo) {
+  const AnimationFrames a = lowRankAnimation(kExactRangeFrames + 100);
+  const GlbReport report = writeGlb(dir_ / "long.glb", a);
+  EXPECT_EQ(report.targets, 3);
+  EXPECT_LT(maxErrorMm(play(dir_ / "long.glb"), a.positions), 0.05);
+}
+
+// The cap reached before the tolerance: the GLB keeps the cap's targets and says how far off it is.
+TEST_F(AnimationExport, TheTargetCapIsReported) {
+  const AnimationFrames a = lowRankAnimation(60);
+  GlbOptions options;
+  options.maxTargets = 2;
+  const GlbReport report = writeGlb(dir_ / "capped.glb", a, options);
+  EXPECT_EQ(report.targets, 2);
+  EXPECT_FALSE(report.withinTolerance);
+  const double error = maxErrorMm(play(dir_ / "capped.glb"), a.positions);
+  EXPECT_GT(error, 0.05);
+  EXPECT_NEAR(error, 10.0 * report.maxErrorCm, 1e-6);
+}
+
+// A head with UV seams (tests/support/uv_seam_mesh.h): the head's 7 vertices in order, then the two
+// seam duplicates (of vertices 1 and 4), each at its original's place in every frame; each corner
+// its OBJ's texture coordinate.
+TEST_F(AnimationExport, GlbSplitsUvSeamsAsRigsDo) {
+  const TriMesh head = readObjFromString(test::kUvSeamObj, "seam.obj");
+  AnimationFrames a;
+  a.name = "seam";
+  a.rest = head.V;
+  a.triangles = head.F;
+  a.uv = head.UV;
+  a.cornerUV = head.cornerUV;
+  for (int f = 0; f < 5; ++f) {
+    MatX3 P = head.V;
+    for (int v = 0; v < P.rows(); ++v) P.row(v) += Vec3(0.1 * v * std::sin(f), -0.05 * v * f, 0.2 * ((v + f) % 3)).transpose();
+    a.positions.push_back(P);
+  }
+  const GlbReport report = writeGlb(dir_ / "seam.glb", a);
+  EXPECT_EQ(report.vertices, 9);
+  const PlayedGlb g = play(dir_ / "seam.glb");
+  const int source[9] = {0, 1, 2, 3, 4, 5, 6, 1, 4};
+  for (int f = 0; f < 5; ++f) {
+    ASSERT_EQ(g.frames[f].rows(), 9);
+    for (int i = 0; i < 9; ++i)
+      EXPECT_LT((g.frames[f].row(i) - 0.01 * a.positions[f].row(source[i])).norm(), 5e-5) << f << " " << i;
+    EXPECT_LT((g.frames[f].row(7) - g.frames[f].row(1)).norm(), 1e-9) << f;  // a duplicate moves as its original
+    EXPECT_LT((g.frames[f].row(8) - g.frames[f].row(4)).norm(), 1e-9) << f;
+  }
+  const tinygltf::Primitive& prim = g.model.meshes[0].primitives[0];
+  const std::vector<float> uv = [&] {
+    const tinygltf::Accessor& acc = g.model.accessors[prim.attributes.at("TEXCOORD_0")];
+    const tinygltf::BufferView& view = g.model.bufferViews[acc.bufferView];
+    std::vector<float> out(2 * acc.count);
+    std::memcpy(out.data(), g.model.buffers[0].data.data() + view.byteOffset + acc.byteOffset, out.size() * 4);
+    return out;
+  }();
+  const tinygltf::Accessor& idx = g.model.accessors[prim.indices];
+  const tinygltf::BufferView& iv = g.model.bufferViews[idx.bufferView];
+  std::vector<uint32_t> indices(idx.count);
+  std::memcpy(indices.data(), g.model.buffers[0].data.data() + iv.byteOffset + idx.byteOffset, idx.count * 4);
+  ASSERT_EQ(indices.size(), static_cast<size_t>(3 * head.F.rows()));
+  for (size_t c = 0; c < indices.size(); ++c) {
+    EXPECT_NEAR(uv[2 * indices[c]], head.cornerUV(c, 0), 1e-6) << c;
+    EXPECT_NEAR(uv[2 * indices[c] + 1], 1.0 - head.cornerUV(c, 1), 1e-6) << c;
+  }
 }
 
 // TEXCOORD_0 only when the frames carry UVs: VEC2 floats, one per vertex, v flipped to glTF's
@@ -213,6 +364,31 @@ TEST_F(AnimationExport, GlbTexcoordsOnlyWhenTheHeadHasUvs) {
   a.uv.conservativeResize(3, 2);
   EXPECT_THROW(writeGlb(dir_ / "bad.glb", a), CheckError);
   EXPECT_FALSE(fs::exists(dir_ / "bad.glb"));
+}
+
+// The exporter writes the OBJ frames and the PC2 in the head's own unit (cm positions × 0.01 for a
+// head in metres, × 10 in mm), the GLB in metres whatever the unit.
+TEST_F(AnimationExport, TheExporterWritesObjAndPc2InTheHeadsUnit) {
+  const AnimationFrames a = waveAnimation(3);
+  TriMesh mesh;
+  mesh.V = a.rest;
+  mesh.F = a.triangles;
+  ExportFormats formats;
+  formats.obj = formats.pc2 = formats.glb = true;
+  for (const auto& [unit, perCm] : {std::pair{LengthUnit::cm, 1.0}, std::pair{LengthUnit::m, 0.01}, std::pair{LengthUnit::mm, 10.0}}) {
+    const fs::path out = dir_ / lengthUnitName(unit);
+    AnimationExporter exporter(out, formats, "wave", mesh, a.fps, 3, unit);
+    for (int f = 0; f < 3; ++f) exporter.addFrame(f, a.positions[f]);
+    exporter.finish();
+    const PointCache pc = readPc2(out / "wave.pc2");
+    for (int f = 0; f < 3; ++f) {
+      EXPECT_LT((pc.samples[f] - perCm * a.positions[f]).cwiseAbs().maxCoeff(), 1e-6 * perCm) << f;
+      const TriMesh obj = readObj((out / "obj" / fmt::format("wave_{:04d}.obj", f)).string());
+      EXPECT_LT((obj.V - perCm * a.positions[f]).cwiseAbs().maxCoeff(), 1e-12 * perCm) << f;
+    }
+    ASSERT_NE(exporter.glbReport(), nullptr);
+    EXPECT_LT(maxErrorMm(play(out / "wave.glb"), a.positions), 0.05);  // metres
+  }
 }
 
 TEST_F(AnimationExport, WritingIntoAMissingFolderFailsAndLeavesNoFile) {

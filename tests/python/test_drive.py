@@ -65,8 +65,12 @@ def test_exports_of_python_frames_equal_drives(driven, tmp_path):
     folder, python = driven
     head = myoshell.load_head()
     frames = python["frames"]
-    myoshell.write_glb(tmp_path / "take.glb", head, frames, fps=python["fps"], name=python["name"])
+    report = myoshell.write_glb(tmp_path / "take.glb", head, frames, fps=python["fps"], name=python["name"])
     assert (tmp_path / "take.glb").read_bytes() == (folder / "cli" / "take.glb").read_bytes()
+    # What the GLB holds: every frame within 0.05 mm, a key per frame, at the take's rate.
+    assert report == python["glb"]
+    assert report["frames"] == len(frames) and report["fps"] == python["fps"]
+    assert 1 <= report["targets"] <= len(frames) and report["max_error_mm"] <= 0.05 and report["within_tolerance"]
     myoshell.write_pc2(tmp_path / "take.pc2", frames)
     assert (tmp_path / "take.pc2").read_bytes() == (folder / "cli" / "take.pc2").read_bytes()
     written = myoshell.write_obj_sequence(tmp_path / "seq", head, list(frames), name="take")

@@ -6,19 +6,20 @@
 //   sampleRate f32 | numSamples i32 | numSamples × numPoints × (x, y, z) f32
 // We write startFrame 0 and sampleRate 1 (one sample per frame), points in the head's vertex order.
 //
-// GLB: one mesh (the rest skin: POSITION, NORMAL of the rest, TEXCOORD_0 when the frames carry
-// UVs, UNSIGNED_INT indices), one node, one scene. Each exported frame k becomes morph target k holding the displacement
-// positions[k] − rest; the animation's "weights" channel (LINEAR) has keyframe times
-// frame_k / fps with the one-hot weights e_k, so the player shows rest + target k at frame k and
-// blends neighbours in between (the scheme three.js and Blender play). Every POSITION accessor
-// carries min/max. At most maxMorphTargets frames are exported: with more frames, every
-// stride-th frame (stride = ceil(frames / maxMorphTargets)) and always the last one.
-// TEXCOORD_0 (float VEC2, one per vertex) holds (u, 1 − v) of AnimationFrames::uv: UVs here are
-// per vertex in the OBJ convention (origin at the image's bottom-left, TriMesh::UV), glTF's origin
-// is the top-left. A head whose OBJ gave one vertex several texture coordinates (a UV seam) is
-// written with the first corner's (TriMesh::UV) and no vertex is split, so the GLB keeps the head's
-// vertex order and count, as the PC2 cache and OBJ frames do (those keep the seams' own UVs;
-// docs/exports.md). Rigs split seams (io/rig_export.h). Without UVs no TEXCOORD_0 is written.
+// GLB (docs/exports.md "The animation GLB"): one mesh (POSITION, NORMAL of the rest, TEXCOORD_0
+// when the frames carry UVs, UNSIGNED_INT indices), one node without transform, one scene, one
+// animation; in metres (glTF's unit: the frames' cm × 0.01). Every frame is exact to a tolerance:
+// the frames are compressed (io/morph_compression.h) to a base mesh (POSITION) plus k morph targets
+// with one weight per target and frame in [0, 1], so frame f plays as base + Σ_k s_fk T_k. The
+// animation's one "weights" channel (LINEAR) has a key at every frame, f / fps s. The frame rate
+// and count are in the animation's and the scene's extras, {"fps": F, "frames": N}; the mesh's
+// default weights are frame 0's (a viewer that plays nothing shows the first frame), its
+// extras.targetNames "mode_00", "mode_01", …. Every POSITION accessor carries min/max.
+// TEXCOORD_0 (float VEC2) holds (u, 1 − v): OBJ's texture origin is the image's bottom-left,
+// glTF's the top-left. With per-corner UVs (AnimationFrames::cornerUV) the seams are split as in
+// rigs (io/rig_export.h, mesh/uv_seams.h): each further UV a vertex has is a duplicate appended after
+// the head's vertices, moving exactly as its original in every frame; the first n vertices are the
+// head's, in its order. Without UVs no TEXCOORD_0 is written.
 // Both writers go through a temporary name renamed into place; a failure leaves no file.
 #pragma once
 
@@ -38,6 +39,23 @@ struct AnimationFrames {
   std::vector<MatX3> positions;    // one n×3 matrix per frame, cm, same vertex order as rest
   double fps = 30.0;               // frames per second; frame k is at time k / fps, s
   MatX2 uv;                        // n×2 per-vertex texture coordinates (TriMesh::UV), or 0×2: none
+  MatX2 cornerUV;                  // 3m×2 per-corner UVs (TriMesh::cornerUV) or 0×2: the GLB splits seams
+};
+
+// How exact the GLB's frames are, and how many targets that takes (io/morph_compression.h).
+struct GlbOptions {
+  double toleranceCm = 0.005;  // largest vertex error allowed in any frame: 0.05 mm
+  int maxTargets = 256;        // the cap; reached, the GLB keeps this many and reports its error
+};
+
+// What writeGlb wrote.
+struct GlbReport {
+  int targets = 0;              // morph targets k
+  double maxErrorCm = 0.0;      // largest vertex distance over all frames between the played GLB and the frames
+  bool withinTolerance = true;  // false when the cap was reached before the tolerance
+  int frames = 0;               // keys (one per frame)
+  double fps = 0.0;
+  int vertices = 0;             // the GLB's, seam duplicates included
 };
 
 // A PC2 file read back.
@@ -56,12 +74,9 @@ void writePc2(const std::filesystem::path& path, const AnimationFrames& frames);
 // (signature, version) or its size disagrees with its header.
 PointCache readPc2(const std::filesystem::path& path);
 
-// The frame indices writeGlb exports for `frameCount` frames (see above): 0, s, 2s, … and the last.
-std::vector<int> glbFrameIndices(int frameCount, int maxMorphTargets = 240);
-
 // Writes the GLB described above. Throws InputError when the file cannot be written and
-// CheckError when the frames are inconsistent (no frames, shapes, uv neither 0 nor n rows, fps ≤ 0,
-// bad triangle indices).
-void writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, int maxMorphTargets = 240);
+// CheckError when the frames are inconsistent (no frames, shapes, uv neither 0 nor n rows,
+// cornerUV neither 0 nor 3m rows, fps ≤ 0, bad triangle indices).
+GlbReport writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, const GlbOptions& options = {});
 
 }  // namespace myo
