@@ -9,7 +9,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup setup-test configure configure-test build build-test python blender-addon test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
+.PHONY: all setup setup-test setup-web web configure configure-test build build-test python blender-addon test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
 
 all: build
 
@@ -18,6 +18,9 @@ setup:
 
 setup-test:
 	@bash scripts/setup --test
+
+setup-web:
+	@bash scripts/setup --web
 
 CONFIGURE = cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
 
@@ -34,6 +37,20 @@ configure-test: setup-test
 
 build-test: configure-test
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The web page (docs/web.md) into web/dist: the face data written by the native build
+# (myoshell-web-data), the page's layers compiled to WebAssembly by emscripten in build-web, the
+# page's files. Serve it with `python3 -m http.server -d web/dist`. Debian's emscripten finds
+# Debian's acorn only through NODE_PATH when node comes from elsewhere (docs/web.md).
+WEB_BUILD_DIR ?= build-web
+WEB_ENV = NODE_PATH=$${NODE_PATH:-/usr/share/nodejs}
+web: setup-web configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target myoshell-web-data
+	@$(WEB_ENV) emcmake cmake -S web/wasm -B $(WEB_BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null
+	@$(WEB_ENV) cmake --build $(WEB_BUILD_DIR) -j $(JOBS)
+	@mkdir -p web/dist
+	@cp web/index.html web/app.js web/favicon.svg $(WEB_BUILD_DIR)/myoshell_web.js $(WEB_BUILD_DIR)/myoshell_web.wasm web/dist/
+	@$(BUILD_DIR)/bin/myoshell-web-data web/dist/face.myoweb
 
 # The Python module alone, into $(BUILD_DIR)/python/myoshell (docs/python.md); `make test` runs its tests.
 python: configure

@@ -6,6 +6,7 @@
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/portable_math.h"
 
 namespace myo {
 
@@ -51,7 +52,7 @@ std::vector<MatX3> contactLoadPatterns(const SkinPlacement& placement, const Mat
       const Vec3 q = mouth->frame.axes.transpose() * (p - mouth->frame.origin);
       const double x = q.x() / mouth->a, z = (q.z() - mouth->zCentre) / mouth->b;
       const double s = std::sqrt(x * x + z * z);
-      const double rho = std::hypot(q.x(), q.z() - mouth->zCentre);
+      const double rho = planarLength(q.x(), q.z() - mouth->zCentre);
       const double clearance = s > 0.0 ? rho * (1.0 - 1.0 / s) : 0.0;
       const double w = std::max(0.0, 1.0 - clearance / kTeethPatternReach);
       if (w == 0.0) continue;

@@ -9,6 +9,7 @@
 #include "myoshell/core/check.h"
 #include "myoshell/core/curves.h"
 #include "myoshell/core/errors.h"
+#include "myoshell/core/portable_math.h"
 #include "myoshell/head/face_frame.h"
 #include "myoshell/mesh/subdivision.h"
 #include "myoshell/mesh/surface_paths.h"
@@ -64,7 +65,7 @@ struct EyeFrame {
   Vec3 centre, x, y, z;
   double along(const Vec3& p) const { return (p - centre).dot(x); }
   double elevation(const Vec3& p) const { return std::atan2((p - centre).dot(y), (p - centre).dot(z)); }
-  double fromAxis(const Vec3& p) const { return std::hypot((p - centre).dot(y), (p - centre).dot(z)); }
+  double fromAxis(const Vec3& p) const { return planarLength((p - centre).dot(y), (p - centre).dot(z)); }
 };
 
 // A margin path through the landmarks from..via..to, joined shortest edge paths (no repeats).

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/portable_math.h"
 #include "myoshell/mesh/subdivision.h"
 
 namespace myo {
@@ -28,7 +29,7 @@ double archClearance(const MouthContact& m, const Vec3& q) {
   const Vec3 axis(0.0, q.y(), m.zCentre);
   const double radial = s > 1.0 ? (q - axis).norm() * (1.0 - 1.0 / s) : 0.0;
   const double vertical = std::max({0.0, q.y() - m.upperTop, m.lowerBottom - q.y()});
-  return std::hypot(radial, vertical);
+  return planarLength(radial, vertical);
 }
 
 enum class Proxy { None, Upper, Lower };
@@ -174,7 +175,7 @@ double teethPenetration(const MouthContact& m, const RigidMotion& mandible, cons
   // ellipse-normalised radius; ∇d = (1/s − 1) ∇ρ − (ρ/s²) ∇s, nothing along y.
   auto grad = [&](const Vec3& q) {
     const double x = q.x(), z = q.z() - m.zCentre;
-    const double rho = std::hypot(x, z), s = archRadius(m, q);
+    const double rho = planarLength(x, z), s = archRadius(m, q);
     const double dsx = x / (m.a * m.a * s), dsz = z / (m.b * m.b * s);
     return Vec3((1.0 / s - 1.0) * x / rho - rho / (s * s) * dsx, 0.0, (1.0 / s - 1.0) * z / rho - rho / (s * s) * dsz);
   };

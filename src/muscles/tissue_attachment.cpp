@@ -5,6 +5,7 @@
 #include <string>
 
 #include "myoshell/core/errors.h"
+#include "myoshell/core/portable_math.h"
 #include "myoshell/mesh/geometry.h"
 
 namespace myo {
@@ -98,7 +99,7 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
     // (centre between the canthi, semi-axes 0.30 × 0.22), lower half only (the brow stays free).
     {
       const Vec2 c(0.5 * (eye.x() + inner.x()), 0.5 * (eye.y() + inner.y()));
-      const double r = std::hypot((q.x() - c.x()) / 0.30, (q.y() - c.y()) / 0.22);
+      const double r = planarLength((q.x() - c.x()) / 0.30, (q.y() - c.y()) / 0.22);
       w = std::max(w, bump(std::abs(r - 1.0) * 0.26, 0.02, 0.04) * smooth((c.y() + 0.05 - q.y()) / 0.05));
     }
     // Zygomatic ligament (McGregor's patch): below the outer canthus on the zygomatic body.

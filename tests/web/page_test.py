@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""The web page in a real browser (docs/web.md): headless chromium, driven by selenium, loads web/dist
+served by `python3 -m http.server` on a free loopback port; the page must load without console
+errors, and its settle() with zygomaticus_major_left at 1 and gravity off must move the left mouth
+corner as `myoshell pose --set zygomaticus_major_left=1 --gravity off` does (its OBJ), to 1e-3 cm.
+
+usage: page_test.py DIST MYOSHELL [--screenshot PNG] [--measure]
+Exit 77 (ctest's skip) with a message when chromium, chromedriver, selenium or emscripten are absent.
+"""
+import argparse
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+SKIP = 77
+
+
+def skip(why):
+    print(f"SKIPPED: {why}")
+    sys.exit(SKIP)
+
+
+def free_port():
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def obj_vertices(path):
+    out = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("v "):
+                out.append([float(x) for x in line.split()[1:4]])
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("dist")
+    ap.add_argument("myoshell")
+    ap.add_argument("--screenshot", default="")
+    ap.add_argument("--measure", action="store_true", help="print load time, steps/s, frame rate as JSON")
+    a = ap.parse_args()
+
+    chromium = shutil.which("chromium")
+    driver = shutil.which("chromedriver")
+    if not chromium:
+        skip("chromium is not installed (scripts/setup --test installs it)")
+    if not driver:
+        skip("chromedriver is not installed (Debian's chromium-driver; scripts/setup --test)")
+    try:
+        from selenium import webdriver
+        from selenium.webdriver.chrome.service import Service
+    except ImportError:
+        skip("python3-selenium is not installed (scripts/setup --test)")
+    if not shutil.which("emcc"):
+        skip("emscripten is not installed: the page cannot be built (scripts/setup --web)")
+    for f in ["index.html", "app.js", "favicon.svg", "myoshell_web.js", "myoshell_web.wasm", "face.myoweb"]:
+        if not os.path.exists(os.path.join(a.dist, f)):
+            print(f"FAILED: {a.dist}/{f} is missing: build the page with `make web`")
+            return 1
+
+    # The native shape first (the basis cache is the test's, MYOSHELL_CACHE).
+    with tempfile.TemporaryDirectory() as tmp:
+        obj = os.path.join(tmp, "pose.obj")
+        rest = os.path.join(tmp, "rest.obj")
+        subprocess.run([a.myoshell, "pose", "--set", "zygomaticus_major_left=1", "--gravity", "off", "--out", obj],
+                       check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([a.myoshell, "pose", "--gravity", "off", "--out", rest], check=True, stdout=subprocess.DEVNULL)
+        native = obj_vertices(obj)
+        native_rest = obj_vertices(rest)
+
+    port = free_port()
+    server = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind", "127.0.0.1", "-d", a.dist],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    browser = None
+    try:
+        opts = webdriver.ChromeOptions()
+        opts.binary_location = chromium
+        for arg in ["--headless=new", "--no-sandbox", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
+                    "--window-size=1200,800"]:
+            opts.add_argument(arg)
+        opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+        for _ in range(50):  # the server is up when it accepts a connection
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=0.2).close()
+                break
+            except OSError:
+                time.sleep(0.1)
+        browser = webdriver.Chrome(service=Service(driver), options=opts)
+        browser.set_script_timeout(60)
+        t0 = time.time()
+        browser.get(f"http://127.0.0.1:{port}/index.html")
+        state = None
+        while time.time() - t0 < 60:
+            state = browser.execute_script("return {ready: window.myoshell.ready, error: window.myoshell.error};")
+            if state["ready"] or state["error"]:
+                break
+            time.sleep(0.1)
+        wall_load = time.time() - t0
+        if not state or not state["ready"]:
+            print(f"FAILED: the page did not become ready in 60 s: {state}")
+            return 1
+
+        page = browser.execute_script("""
+            const m = window.myoshell;
+            m.setGravity(false);
+            m.setActivation('zygomaticus_major_left', 1);
+            const seconds = m.settle();
+            const i = m.landmarkVertex('mouth_corner_left');
+            return {i, seconds, p: m.vertex(i), rest: m.restVertex(i), load: m.loadSeconds, build: m.buildSeconds,
+                    n: m.vertexCount};""")
+        i = page["i"]
+        moved_page = [page["p"][c] - page["rest"][c] for c in range(3)]
+        moved_native = [native[i][c] - native_rest[i][c] for c in range(3)]
+        error = max(abs(moved_page[c] - moved_native[c]) for c in range(3))
+        length = sum(x * x for x in moved_native) ** 0.5
+        print(f"left mouth corner (vertex {i}): page moved {moved_page}, pose moved {moved_native} "
+              f"(|d| {length:.4f} cm), largest difference {error:.2e} cm")
+        ok = True
+        if page["n"] != len(native):
+            print(f"FAILED: the page has {page['n']} vertices, pose's OBJ {len(native)}")
+            ok = False
+        if not (length > 0.1):
+            print("FAILED: pose barely moves the mouth corner: the comparison would prove nothing")
+            ok = False
+        if not (error <= 1e-3):
+            print("FAILED: the page's settled mouth corner differs from pose's by more than 1e-3 cm")
+            ok = False
+
+        measured = {"load_seconds_page": page["load"], "load_seconds_wall": wall_load,
+                    "build_seconds": page["build"], "settle_seconds": page["seconds"]}
+        if a.measure:
+            bench = browser.execute_script("""
+                const m = window.myoshell;
+                m.setActivation('zygomaticus_major_left', 0.5);
+                m.benchmark(20);
+                return m.benchmark(400);""")
+            time.sleep(3)  # the frame loop's own figures (real time, drawing each frame)
+            loop = browser.execute_script("return {fps: window.myoshell.framesPerSecond, "
+                                          "steps: window.myoshell.stepsPerSecond};")
+            measured.update({"steps_per_second_benchmark": bench, "frames_per_second": loop["fps"],
+                             "steps_per_second_in_loop": loop["steps"]})
+        if a.screenshot:
+            browser.execute_script("window.myoshell.settle();")
+            time.sleep(0.5)
+            browser.save_screenshot(a.screenshot)
+        print(json.dumps(measured))
+
+        errors = [e for e in browser.get_log("browser") if e.get("level") == "SEVERE"]
+        for e in errors:
+            print(f"FAILED: console error: {e.get('message')}")
+        ok = ok and not errors
+        print("PASSED" if ok else "FAILED")
+        return 0 if ok else 1
+    finally:
+        if browser:
+            browser.quit()
+        server.terminate()
+        server.wait()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

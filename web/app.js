@@ -1,0 +1,250 @@
+// The page (docs/web.md): builds the face in WebAssembly from face.myoweb, steps it in real time,
+// draws its skin with WebGL2 (positions uploaded each frame) and exposes window.myoshell for tests
+// and embedding.
+'use strict';
+
+const hook = (window.myoshell = { ready: false, error: null });
+const pageStart = performance.now();
+
+function message(Module, e) {
+  // A C++ exception reaches JavaScript as the address of the exception object.
+  if (typeof e === 'number' && Module) return Module.exceptionMessage(e);
+  return e && e.message ? e.message : String(e);
+}
+
+function list(v) {  // an embind vector as a JavaScript array
+  const out = [];
+  for (let i = 0; i < v.size(); ++i) out.push(v.get(i));
+  v.delete();
+  return out;
+}
+
+// --- WebGL2 -------------------------------------------------------------------------------------
+const VS = `#version 300 es
+in vec3 position;
+uniform mat4 viewProjection;
+out vec3 world;
+void main() { world = position; gl_Position = viewProjection * vec4(position, 1.0); }`;
+const FS = `#version 300 es
+precision highp float;
+in vec3 world;
+out vec4 colour;
+void main() {
+  // The face's normal from the screen-space derivatives of the position: no normals to upload.
+  vec3 n = normalize(cross(dFdx(world), dFdy(world)));
+  vec3 light = normalize(vec3(0.3, 0.5, 1.0));
+  float d = max(dot(n, light), 0.0);
+  vec3 skin = vec3(0.85, 0.66, 0.56);
+  colour = vec4(skin * (0.25 + 0.75 * d), 1.0);
+}`;
+
+function compile(gl, type, text) {
+  const s = gl.createShader(type);
+  gl.shaderSource(s, text);
+  gl.compileShader(s);
+  if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
+  return s;
+}
+
+function perspective(fovy, aspect, near, far) {
+  const f = 1 / Math.tan(fovy / 2);
+  return [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, (2 * far * near) / (near - far), 0];
+}
+
+function multiply(a, b) {  // column-major 4×4
+  const o = new Array(16).fill(0);
+  for (let c = 0; c < 4; ++c)
+    for (let r = 0; r < 4; ++r)
+      for (let k = 0; k < 4; ++k) o[c * 4 + r] += a[k * 4 + r] * b[c * 4 + k];
+  return o;
+}
+
+class Drawing {
+  constructor(canvas, Module, page) {
+    const gl = (this.gl = canvas.getContext('webgl2', { antialias: true }));
+    if (!gl) throw new Error('this browser gives no WebGL2 context');
+    this.Module = Module;
+    this.page = page;
+    this.n = page.vertexCount();
+    const prog = (this.prog = gl.createProgram());
+    gl.attachShader(prog, compile(gl, gl.VERTEX_SHADER, VS));
+    gl.attachShader(prog, compile(gl, gl.FRAGMENT_SHADER, FS));
+    gl.linkProgram(prog);
+    if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(prog));
+    this.vao = gl.createVertexArray();
+    gl.bindVertexArray(this.vao);
+    this.positions = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
+    gl.bufferData(gl.ARRAY_BUFFER, this.n * 12, gl.DYNAMIC_DRAW);
+    const loc = gl.getAttribLocation(prog, 'position');
+    gl.enableVertexAttribArray(loc);
+    gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0);
+    const count = 3 * page.triangleCount();
+    const tri = new Uint32Array(Module.HEAPU32.buffer, page.trianglesAddress(), count).slice();
+    const ib = gl.createBuffer();
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, ib);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, tri, gl.STATIC_DRAW);
+    this.count = count;
+    // Frame the rest face: its bounding box's centre, seen from the front (+z) at a distance that fits it.
+    const p = this.shape();
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < p.length; i += 3)
+      for (let c = 0; c < 3; ++c) { lo[c] = Math.min(lo[c], p[i + c]); hi[c] = Math.max(hi[c], p[i + c]); }
+    this.centre = lo.map((v, c) => (v + hi[c]) / 2);
+    this.radius = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2;
+    this.yaw = 0.35;
+    this.pitch = 0.05;
+  }
+
+  shape() {  // the module's float32 positions (the view is remade: memory may have grown)
+    return new Float32Array(this.Module.HEAPF32.buffer, this.page.positionsAddress(), 3 * this.n);
+  }
+
+  draw() {
+    const gl = this.gl, canvas = gl.canvas;
+    const w = canvas.clientWidth * devicePixelRatio, h = canvas.clientHeight * devicePixelRatio;
+    if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
+    gl.viewport(0, 0, canvas.width, canvas.height);
+    gl.clearColor(0.13, 0.14, 0.15, 1);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    gl.enable(gl.DEPTH_TEST);
+    gl.useProgram(this.prog);
+    gl.bindVertexArray(this.vao);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 0, this.shape());
+    const dist = 2.6 * this.radius;
+    const [cx, cy, cz] = this.centre;
+    const cyw = Math.cos(this.yaw), syw = Math.sin(this.yaw), cp = Math.cos(this.pitch), sp = Math.sin(this.pitch);
+    // view = translate(0,0,-dist) · Rx(pitch) · Ry(-yaw) · translate(-centre)
+    const ry = [cyw, 0, syw, 0, 0, 1, 0, 0, -syw, 0, cyw, 0, 0, 0, 0, 1];
+    const rx = [1, 0, 0, 0, 0, cp, -sp, 0, 0, sp, cp, 0, 0, 0, 0, 1];
+    const t = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -cx, -cy, -cz, 1];
+    const back = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -dist, 1];
+    const view = multiply(back, multiply(rx, multiply(ry, t)));
+    const proj = perspective(0.7, canvas.width / canvas.height, dist / 10, dist * 10);
+    gl.uniformMatrix4fv(gl.getUniformLocation(this.prog, 'viewProjection'), false, multiply(proj, view));
+    gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
+  }
+}
+
+// --- the page -----------------------------------------------------------------------------------
+async function main() {
+  const status = document.getElementById('status');
+  let Module = null;
+  try {
+    Module = await createMyoshell();
+    const response = await fetch('face.myoweb');
+    if (!response.ok) throw new Error('face.myoweb: HTTP ' + response.status);
+    const bytes = new Uint8Array(await response.arrayBuffer());
+    let page;
+    try {
+      page = new Module.Page(bytes);
+    } catch (e) {
+      throw new Error(message(Module, e));
+    }
+    const drawing = new Drawing(document.getElementById('canvas'), Module, page);
+    const names = list(page.muscleNames());
+    const sliders = {};
+    const box = document.getElementById('muscles');
+    for (const name of [...names].sort()) {
+      const label = document.createElement('label');
+      label.className = 'slider';
+      label.textContent = name.replace(/_/g, ' ');
+      const input = document.createElement('input');
+      Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, value: 0 });
+      input.addEventListener('input', () => page.setActivation(name, Number(input.value)));
+      label.appendChild(input);
+      box.appendChild(label);
+      sliders[name] = input;
+    }
+    const call = (f) => { try { return f(); } catch (e) { throw new Error(message(Module, e)); } };
+    const gravity = document.getElementById('gravity');
+    gravity.addEventListener('change', () => page.setGravity(gravity.checked));
+    const pitch = document.getElementById('pitch');
+    pitch.addEventListener('input', () => page.setHeadPitch(Number(pitch.value)));
+    const jaw = document.getElementById('jaw');
+    jaw.addEventListener('input', () => page.setJaw(Number(jaw.value)));
+    document.getElementById('settle').addEventListener('click', () => page.settle());
+    document.getElementById('reset').addEventListener('click', () => {
+      for (const name of names) { sliders[name].value = 0; page.setActivation(name, 0); }
+    });
+    // Turn the head view with the mouse.
+    const canvas = document.getElementById('canvas');
+    let drag = null;
+    canvas.addEventListener('pointerdown', (e) => { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
+    canvas.addEventListener('pointerup', () => { drag = null; });
+    canvas.addEventListener('pointermove', (e) => {
+      if (!drag) return;
+      drawing.yaw += (e.clientX - drag[0]) * 0.01;
+      drawing.pitch = Math.max(-1.2, Math.min(1.2, drawing.pitch + (e.clientY - drag[1]) * 0.01));
+      drag = [e.clientX, e.clientY];
+    });
+
+    Object.assign(hook, {
+      muscleNames: names,
+      vertexCount: page.vertexCount(),
+      modeCount: page.modeCount(),
+      buildSeconds: page.buildSeconds(),
+      setActivation(name, value) {
+        call(() => page.setActivation(name, value));
+        if (sliders[name]) sliders[name].value = value;
+      },
+      setGravity(on) { gravity.checked = !!on; call(() => page.setGravity(!!on)); },
+      setJaw(deg) { jaw.value = deg; call(() => page.setJaw(deg)); },
+      setHeadPitch(deg) { pitch.value = deg; call(() => page.setHeadPitch(deg)); },
+      settle() { return call(() => page.settle()); },
+      vertex(i) { return call(() => list(page.vertex(i))); },
+      restVertex(i) { return call(() => list(page.restVertex(i))); },
+      landmarkVertex(name) { return call(() => page.landmarkVertex(name)); },
+      // Steps `count` times as fast as it can (the settled hold released): steps/s of the whole face.
+      benchmark(count) {
+        if (page.settled()) call(() => page.setGravity(gravity.checked));  // releases the hold
+        const s = call(() => page.step(count));
+        return count / s;
+      },
+      stepsPerSecond: 0,
+      framesPerSecond: 0,
+    });
+
+    // Real time: as many steps of dt as the wall clock advanced (at most 0.1 s of them a frame).
+    const dt = page.dt();
+    let last = performance.now(), owed = 0, frames = 0, steps = 0, stepSeconds = 0, windowStart = last;
+    const stats = document.getElementById('stats');
+    function frame(now) {
+      owed = Math.min(owed + (now - last) / 1000, 0.1);
+      last = now;
+      const k = Math.floor(owed / dt);
+      owed -= k * dt;
+      try {
+        if (k > 0 && !page.settled()) { stepSeconds += page.step(k); steps += k; }
+      } catch (e) {
+        hook.error = message(Module, e);
+        status.textContent = hook.error;
+      }
+      drawing.draw();
+      ++frames;
+      if (now - windowStart > 1000) {
+        const span = (now - windowStart) / 1000;
+        hook.framesPerSecond = frames / span;
+        if (stepSeconds > 0) hook.stepsPerSecond = steps / stepSeconds;
+        stats.textContent =
+          `${hook.framesPerSecond.toFixed(1)} frames/s\n` +
+          `${steps} steps in ${span.toFixed(2)} s (${(steps / span).toFixed(0)}/s real time)\n` +
+          `step capacity ${hook.stepsPerSecond.toFixed(0)} steps/s (dt ${(dt * 1000).toFixed(2)} ms)\n` +
+          `${page.vertexCount()} vertices, ${page.modeCount()} modes, built in ${hook.buildSeconds.toFixed(2)} s`;
+        frames = 0; steps = 0; stepSeconds = 0; windowStart = now;
+      }
+      requestAnimationFrame(frame);
+    }
+    requestAnimationFrame(frame);
+    hook.loadSeconds = (performance.now() - pageStart) / 1000;
+    hook.ready = true;
+    status.textContent = `ready in ${hook.loadSeconds.toFixed(2)} s (face built in ${hook.buildSeconds.toFixed(2)} s)`;
+  } catch (e) {
+    hook.error = message(Module, e);
+    status.textContent = 'error: ' + hook.error;
+    console.error('myoshell: ' + hook.error);
+  }
+}
+
+main();

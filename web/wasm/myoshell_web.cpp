@@ -1,0 +1,178 @@
+// The page's bindings (docs/web.md): the anatomical face built in the browser from the same sources
+// as the native library (web/web_face.h), with its muscles and released basis read from the face
+// data the native build wrote (io/web_face_file.h), stepped by AnatomicalSimulator and settled by
+// AnatomicalSkin::settle as `myoshell pose` settles it. The page draws positions() each frame.
+#include <emscripten/bind.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../web_face.h"
+#include "myoshell/anatomy/anatomical_skin.h"
+#include "myoshell/core/errors.h"
+#include "myoshell/core/timer.h"
+#include "myoshell/io/web_face_file.h"
+
+namespace myo::web {
+
+class Page {
+ public:
+  // Builds the face from the face data's bytes; throws (the page shows the message) when the data
+  // is not this face's.
+  explicit Page(const std::string& data) {
+    Stopwatch clock;
+    WebFace w = readWebFace(data, "face.myoweb");
+    WebFaceBasisCache cache(w.basisKey, std::move(w.basis));
+    face_ = buildWebFace(w.muscles, &cache);
+    if (face_->skin().settings().warping) throw InputError("the page steps linear modes: warping must be off");
+    sim_ = std::make_unique<AnatomicalSimulator>(face_);
+    activations_ = VecX::Zero(face_->muscleCount());
+    buildSeconds_ = clock.seconds();
+    const TriMesh& mesh = face_->head().mesh;
+    triangles_.resize(static_cast<size_t>(mesh.F.size()));
+    for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
+      for (int k = 0; k < 3; ++k) triangles_[static_cast<size_t>(3 * t + k)] = static_cast<uint32_t>(mesh.F(t, k));
+    positions_.resize(static_cast<size_t>(3 * mesh.vertexCount()));
+    shape_ = mesh.V;
+    copyShape();
+  }
+
+  double buildSeconds() const { return buildSeconds_; }
+  int vertexCount() const { return face_->head().mesh.vertexCount(); }
+  int triangleCount() const { return static_cast<int>(face_->head().mesh.F.rows()); }
+  int modeCount() const { return face_->skin().basis()->modeCount(); }
+  double dt() const { return face_->dt(); }
+  std::vector<std::string> muscleNames() const { return face_->skin().muscleNames(); }
+
+  void setActivation(const std::string& name, double a) {
+    const int m = face_->muscleIndex(name);
+    sim_->setActivation(m, a);
+    activations_(m) = a;
+    settled_ = false;
+  }
+  double activation(const std::string& name) const { return activations_(face_->muscleIndex(name)); }
+  // Gravity as `myoshell pose --gravity on|off` reads it: the rest shape already hangs under upright
+  // gravity, so only its turn with the head loads the skin (reading (b)); off, gravity stays the rest
+  // gravity whatever the head's tilt (no load at all). Not weightlessness (a gravity scale of 0).
+  void setGravity(bool on) {
+    gravityOn_ = on;
+    updateGravity();
+  }
+  // The head's pitch (degrees about the face frame's x; + nods forward, 90 face-down): it turns
+  // gravity (headPoseRotation); the head is drawn upright.
+  void setHeadPitch(double degrees) {
+    pitch_ = degrees;
+    updateGravity();
+  }
+  void setJaw(double openDeg) {
+    JawPose j;
+    j.openDeg = openDeg;
+    sim_->setJaw(j);
+    settled_ = false;
+  }
+
+  // Steps `count` times (while not held on a settled shape), then places the skin; returns the
+  // stepping's wall time (s).
+  double step(int count) {
+    if (settled_) return 0.0;
+    Stopwatch clock;
+    for (int i = 0; i < count; ++i) sim_->step();
+    const double s = clock.seconds();
+    sim_->skinPositions(shape_);
+    copyShape();
+    return s;
+  }
+
+  // The static shape under the current loads, as `myoshell pose` computes it (AnatomicalSkin::settle
+  // with the simulator's loads, linear modes, the contact penalty as the skin's settings say; placed
+  // by the face's SkinPlacement). Held until a load changes. Returns the wall time (s).
+  double settle() {
+    Stopwatch clock;
+    const AnatomicalSkin& skin = face_->skin();
+    SkinLoads loads = sim_->loads();
+    const SettledSkin s = skin.settle(loads, /*warped=*/false);
+    if (!s.converged || !s.u.allFinite()) throw NumericalError("settle: the static solve did not converge");
+    face_->placeSkin(s.u, sim_->jaw(), loads.activations, shape_, loads.gaze);
+    copyShape();
+    settled_ = true;
+    return clock.seconds();
+  }
+  bool settled() const { return settled_; }
+
+  // Vertex i's position (cm, the head's order) in the shape last placed.
+  std::vector<double> vertex(int i) const {
+    if (i < 0 || i >= vertexCount()) throw InputError("vertex " + std::to_string(i) + " is outside the head");
+    return {shape_(i, 0), shape_(i, 1), shape_(i, 2)};
+  }
+  std::vector<double> restVertex(int i) const {
+    const MatX3& V = face_->head().mesh.V;
+    if (i < 0 || i >= vertexCount()) throw InputError("vertex " + std::to_string(i) + " is outside the head");
+    return {V(i, 0), V(i, 1), V(i, 2)};
+  }
+  // Addresses in the module's memory, for WebGL uploads without copies: float32 n×3 positions (cm)
+  // and uint32 triangle indices.
+  uintptr_t positionsAddress() const { return reinterpret_cast<uintptr_t>(positions_.data()); }
+  uintptr_t trianglesAddress() const { return reinterpret_cast<uintptr_t>(triangles_.data()); }
+  double stepCount() const { return static_cast<double>(sim_->stepCount()); }
+  // The vertex of a landmark by name ("mouth_corner_left", …; head/landmarks.h).
+  int landmarkVertex(const std::string& name) const { return face_->head().landmarks.vertex(name); }
+
+ private:
+  void copyShape() {
+    for (Eigen::Index i = 0; i < shape_.rows(); ++i)
+      for (int c = 0; c < 3; ++c) positions_[static_cast<size_t>(3 * i + c)] = static_cast<float>(shape_(i, c));
+  }
+  void updateGravity() {
+    sim_->setGravity(1.0);
+    sim_->setHeadPose(gravityOn_ ? headPoseRotation(Vec3(pitch_, 0.0, 0.0)) : Eigen::Quaterniond::Identity());
+    settled_ = false;
+  }
+  std::shared_ptr<const AnatomicalFace> face_;
+  std::unique_ptr<AnatomicalSimulator> sim_;
+  VecX activations_;
+  MatX3 shape_;
+  std::vector<float> positions_;
+  std::vector<uint32_t> triangles_;
+  double buildSeconds_ = 0.0;
+  bool settled_ = false;
+  bool gravityOn_ = true;
+  double pitch_ = 0.0;
+};
+
+// The message of the exception at `address` (a C++ exception caught in JavaScript is a number).
+std::string exceptionMessage(uintptr_t address) {
+  return reinterpret_cast<const std::exception*>(address)->what();
+}
+
+}  // namespace myo::web
+
+EMSCRIPTEN_BINDINGS(myoshell) {
+  using namespace emscripten;
+  using myo::web::Page;
+  register_vector<std::string>("StringList");
+  register_vector<double>("DoubleList");
+  class_<Page>("Page")
+      .constructor<const std::string&>()
+      .function("buildSeconds", &Page::buildSeconds)
+      .function("vertexCount", &Page::vertexCount)
+      .function("triangleCount", &Page::triangleCount)
+      .function("modeCount", &Page::modeCount)
+      .function("dt", &Page::dt)
+      .function("muscleNames", &Page::muscleNames)
+      .function("setActivation", &Page::setActivation)
+      .function("activation", &Page::activation)
+      .function("setGravity", &Page::setGravity)
+      .function("setJaw", &Page::setJaw)
+      .function("setHeadPitch", &Page::setHeadPitch)
+      .function("step", &Page::step)
+      .function("settle", &Page::settle)
+      .function("settled", &Page::settled)
+      .function("vertex", &Page::vertex)
+      .function("restVertex", &Page::restVertex)
+      .function("positionsAddress", &Page::positionsAddress)
+      .function("trianglesAddress", &Page::trianglesAddress)
+      .function("stepCount", &Page::stepCount)
+      .function("landmarkVertex", &Page::landmarkVertex);
+  function("exceptionMessage", &myo::web::exceptionMessage);
+}
