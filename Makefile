@@ -9,7 +9,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup setup-test setup-web web configure configure-test build build-test python blender-addon test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
+.PHONY: all setup setup-test setup-web web web-page configure configure-test build build-test python blender-addon test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
 
 all: build
 
@@ -45,6 +45,11 @@ build-test: configure-test
 WEB_BUILD_DIR ?= build-web
 WEB_ENV = NODE_PATH=$${NODE_PATH:-/usr/share/nodejs}
 web: setup-web configure
+	@$(MAKE) --no-print-directory web-page
+
+# The page from $(BUILD_DIR) as it is configured (`make test` builds it after the tests' build, so
+# its browser test has the page: the README's test command passes alone on a fresh machine).
+web-page:
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target myoshell-web-data
 	@$(WEB_ENV) emcmake cmake -S web/wasm -B $(WEB_BUILD_DIR) -DCMAKE_BUILD_TYPE=Release > /dev/null
 	@$(WEB_ENV) cmake --build $(WEB_BUILD_DIR) -j $(JOBS)
@@ -62,6 +67,7 @@ blender-addon: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target blender-addon
 
 test: build-test
+	@$(MAKE) --no-print-directory web-page
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # Every test under AddressSanitizer and UndefinedBehaviorSanitizer, in its own build folder, but
