@@ -158,7 +158,7 @@ TEST_F(SetupScript, AnUnknownOptionFailsWithTheUsageAndInstallsNothing) {
   const ScriptRun r = setup("--tests");
   EXPECT_EQ(r.exitCode, 2) << r.out << r.err;
   EXPECT_THAT(r.err, HasSubstr("unknown option '--tests'"));
-  EXPECT_THAT(r.err, HasSubstr("usage: scripts/setup [--test] [--list]"));
+  EXPECT_THAT(r.err, HasSubstr("usage: scripts/setup [--test] [--web] [--list]"));
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(calls(), "");
   const ScriptRun help = setup("--help");
