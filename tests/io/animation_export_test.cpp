@@ -18,6 +18,7 @@
 #include "myoshell/io/animation_exporter.h"
 #include "myoshell/io/morph_compression.h"
 #include "myoshell/mesh/obj_reader.h"
+#include "support/grid_animation.h"
 #include "support/scratch_folder.h"
 #include "support/uv_seam_mesh.h"
 
@@ -154,33 +155,20 @@ double maxErrorMm(const PlayedGlb& g, const std::vector<MatX3>& frames) {
 // A 12×10 grid (120 vertices) moved by three fixed fields with their own time curves: 120 frames
 // of rank 3.
 AnimationFrames lowRankAnimation(int frameCount) {
-  AnimationFrames a;
-  a.name = "lowrank";
-  a.fps = 30.0;
   const int nx = 12, ny = 10;
-  a.rest.resize(nx * ny, 3);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) a.rest.row(j * nx + i) << 0.5 * i, 0.5 * j, 0.05 * i * j;
-  a.triangles.resize(2 * (nx - 1) * (ny - 1), 3);
-  int t = 0;
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int v = j * nx + i;
-      a.triangles.row(t++) << v, v + 1, v + nx + 1;
-      a.triangles.row(t++) << v, v + nx + 1, v + nx;
-    }
   std::vector<MatX3> fields(3, MatX3(nx * ny, 3));
   for (int v = 0; v < nx * ny; ++v) {
     fields[0].row(v) << 0, 0, std::sin(0.3 * v);
     fields[1].row(v) << 0.2 * std::cos(0.1 * v), 0, 0;
     fields[2].row(v) << 0, 0.1 * (v % 7), 0.05 * (v % 5);
   }
-  for (int f = 0; f < frameCount; ++f) {
-    const double time = f / a.fps;
-    a.positions.push_back(a.rest + std::sin(3 * time) * fields[0] + (1 - std::cos(2 * time)) * fields[1] +
-                          time * time * fields[2]);
-  }
-  return a;
+  const double fps = 30.0;
+  return test::gridAnimation(
+      "lowrank", fps, nx, ny, frameCount, [](int i, int j) { return Vec3(0.5 * i, 0.5 * j, 0.05 * i * j); },
+      [&](int f, MatX3& P) {
+        const double time = f / fps;
+        P += std::sin(3 * time) * fields[0] + (1 - std::cos(2 * time)) * fields[1] + time * time * fields[2];
+      });
 }
 
 // Every frame, exact: a key at every frame, f / fps; base + Σ s T within 0.05 mm (the tolerance) of
