@@ -79,6 +79,13 @@ LiveTakeRecorder::LiveTakeRecorder(const std::string& path, bool eyes, double fp
     : path_(path), out_(path), eyes_(eyes), fps_(fps) {
   MYO_CHECK(fps > 0.0 && std::isfinite(fps), "LiveTakeRecorder: the timecode's rate is positive");
   if (!out_) throw IoError("cannot write the live take", path);
+  // Live Link's order (JawRight before JawLeft, …) to ARKit's, once: write() runs every live frame.
+  const auto& arkit = arkitNames();
+  for (int i = 0; i < kArkitWeightCount; ++i) {
+    std::string camel = liveLinkValueNames()[i];
+    camel[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(camel[0])));
+    arkitOfColumn_[i] = static_cast<size_t>(std::find(arkit.begin(), arkit.end(), camel) - arkit.begin());
+  }
   out_ << "Timecode,BlendShapeCount";
   const auto& names = liveLinkValueNames();
   const int columns = eyes_ ? kLiveLinkValueCount : kArkitWeightCount + 3;
@@ -95,7 +102,6 @@ LiveFrame LiveTakeRecorder::write(double t, const LiveFrame& f) {
   const long s = static_cast<long>(seconds);
   out_ << fmt::format("{:02d}:{:02d}:{:02d}:{:09.6f},{}", s / 3600, s / 60 % 60, s % 60, ff, kLiveLinkValueCount);
   const auto& names = liveLinkValueNames();
-  const auto& arkit = arkitNames();
   const Vec3 head = f.headPose.value_or(Vec3::Zero());
   const EyeGaze gaze = f.gaze.value_or(EyeGaze{});
   // What the file holds, read back as the Live Link reader reads it (anim/performance_livelink.cpp):
@@ -109,9 +115,7 @@ LiveFrame LiveTakeRecorder::write(double t, const LiveFrame& f) {
     double v = 0.0;
     size_t weight = kArkitWeightCount;
     if (i < kArkitWeightCount) {
-      std::string camel = n;
-      camel[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(camel[0])));
-      weight = static_cast<size_t>(std::find(arkit.begin(), arkit.end(), camel) - arkit.begin());
+      weight = arkitOfColumn_[i];
       v = f.weights[weight];
     } else if (n == "HeadYaw") v = head.y() / 180.0;
     else if (n == "HeadPitch") v = head.x() / 180.0;

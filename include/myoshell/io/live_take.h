@@ -66,6 +66,7 @@ class LiveTakeRecorder {
   std::ofstream out_;
   bool eyes_;
   double fps_;
+  std::array<size_t, kArkitWeightCount> arkitOfColumn_{};  // Live Link's weight column → ARKit index
   int rows_ = 0;
 };
 
