@@ -21,6 +21,7 @@
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/performance_scene.h"
 #include "myoshell/io/scene_face.h"
+#include "myoshell/muscles/muscle_def.h"
 
 namespace myo::python {
 namespace {
@@ -161,7 +162,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
 void bindDrive(py::module_& m) {
   m.def("drive", &drive, py::arg("performance"), py::kw_only(), py::arg("out") = py::none(),
         py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("head") = "default",
-        py::arg("landmarks") = py::none(), py::arg("units") = py::none(), py::arg("library") = "face",
+        py::arg("landmarks") = py::none(), py::arg("units") = py::none(), py::arg("library") = defaultMuscleLibrary(),
         py::arg("map") = py::none(), py::arg("input") = py::none(), py::arg("au_scale") = py::none(),
         py::arg("face") = py::none(), py::arg("min_confidence") = 0.7, py::arg("input_fps") = py::none(),
         py::arg("filter") = true, py::arg("min_cutoff") = py::none(), py::arg("beta") = py::none(),
