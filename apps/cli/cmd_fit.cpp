@@ -4,8 +4,8 @@
 // (fit/activation_fit.h; docs/fitting.md). TARGET is
 // - an OBJ of the head's topology, in the head's units (an expression shape of that head);
 // - `RIG.glb#shape`, a morph target of a glTF rig (io/rig_file.h): its delta from the rig's base is
-//   the target. Without a head option the head is the rig's base mesh, and --landmarks is required
-//   (a glTF file carries none);
+//   the target. Without a head option the head is the rig's base mesh (a glTF file carries no
+//   landmarks: found automatically without --landmarks);
 // - a marker file (fit/marker_target.h): where a few vertices should be, e.g. tracked landmarks;
 //   --align rigid or similarity removes the head's motion first.
 // Every argument, the head and the target are read and checked before the model is built.
@@ -95,7 +95,7 @@ bool isMarkerFile(const std::string& path) {
   return ext == ".json" || ext == ".yaml" || ext == ".yml";
 }
 
-int runFit(const FitArgs& a) {
+int runFit(FitArgs& a) {
   const Stopwatch total;
   const FitAlignment alignment = parseAlignment(a.align);
   FitSettings settings;
@@ -118,6 +118,7 @@ int runFit(const FitArgs& a) {
     rig = readRig(ref.path);
     rigShapeName = ref.shape;
     rig.shape(rigShapeName);  // InputError listing the rig's shapes when it has no such one
+    resolveRigBaseLandmarks(a.head, rig, a.cacheDir);
   }
   const FitHeadOptions headOptions = fitHeadOptions(a.head, a.library);
   const RigFile* rigOrNull = kind == TargetKind::Rig ? &rig : nullptr;
@@ -225,7 +226,7 @@ static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
              "shape or markers (docs/fitting.md)");
   sub->add_option("target", args->target, "an OBJ of the head, RIG.glb#shape, or a marker file (.json/.yaml)")->required();
   HeadHelp help;
-  help.headDefault = "default, or a RIG.glb#shape target's base mesh (with --landmarks)";
+  help.headDefault = "default, or a RIG.glb#shape target's base mesh (its landmarks found automatically without --landmarks)";
   help.landmarks = " or of a rig's base";
   help.units = "; an OBJ target is in the head's unit";
   addHeadOptions(*sub, args->head, help);

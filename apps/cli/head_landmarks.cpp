@@ -59,6 +59,14 @@ void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, con
   say(f, program);
 }
 
+void resolveRigBaseLandmarks(HeadOptions& head, const RigFile& rig, const std::string& cacheOption,
+                             const std::string& program) {
+  if (head.headGiven() || !head.landmarks.empty() || head.unitsGiven()) return;  // --units: fitHeadInputs refuses it
+  const FoundLandmarkFile f = findRigBaseLandmarkFile(rig, cacheDir(cacheOption).dir);
+  head.landmarks = f.path;
+  say(f, program);
+}
+
 void resolveSceneLandmarks(SceneDesc& scene, const std::string& cacheOption, const std::string& program) {
   std::vector<std::string> warnings;
   if (const std::optional<FoundLandmarkFile> f = completeSceneHead(scene, cacheDir(cacheOption).dir, &warnings))

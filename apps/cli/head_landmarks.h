@@ -9,12 +9,18 @@
 
 #include "common_options.h"
 #include "myoshell/anim/scene.h"
+#include "myoshell/io/rig_file.h"
 
 namespace myo::cli {
 
 // Fills head.landmarks (and head.units, unless --units was given) for an OBJ head without
 // --landmarks, or checks the given file; `cacheOption` is --cache ("" when not given).
 void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, const std::string& program = "myoshell");
+
+// The same for a glTF rig's base mesh as the head (`fit`, `fit-rig` without --head): without
+// --landmarks, its automatic landmark file (io/auto_landmark_file.h's findRigBaseLandmarkFile).
+void resolveRigBaseLandmarks(HeadOptions& head, const RigFile& rig, const std::string& cacheOption,
+                             const std::string& program = "myoshell");
 
 // The same for a scene's head (head.landmarks and head.units).
 void resolveSceneLandmarks(SceneDesc& scene, const std::string& cacheOption, const std::string& program = "myoshell");

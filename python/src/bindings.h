@@ -14,6 +14,8 @@
 #include "myoshell/core/types.h"
 #include "myoshell/head/head.h"
 #include "myoshell/io/animation_export.h"
+#include "myoshell/io/fit_head.h"
+#include "myoshell/io/rig_file.h"
 #include "myoshell/reduce/basis_cache.h"
 
 namespace myo::python {
@@ -50,6 +52,11 @@ struct PlayerHandle {
   std::shared_ptr<BasisCache> cache;
   std::unique_ptr<ScenePlayer> player;
 };
+
+// The fitting functions' head (rig, fit_rig) without a landmark file: an OBJ head's, or a rig's base
+// mesh's when no head is given, found automatically as load_head finds them (the same UserWarning),
+// into options.landmarks (and options.units when none was given). Needs the GIL.
+void completeFitHeadLandmarks(FitHeadOptions& options, const RigFile* rig, const py::object& cache);
 
 // NumPy copies of the library's n×3 arrays: float64 (n, 3) and int32 (m, 3).
 py::array_t<double> toNumpy(const MatX3& m);

@@ -25,8 +25,9 @@ std::string text(const py::object& o) { return o.is_none() ? std::string() : py:
 FoundLandmarkFile findLandmarks(const std::string& obj, const py::object& units, const py::object& cache) {
   std::optional<LengthUnit> unit;
   if (!units.is_none()) unit = parseLengthUnit(text(units));
+  const fs::path cacheFolder = cache.is_none() ? fs::path() : fs::path(text(cache));  // with the GIL
   py::gil_scoped_release unlocked;  // a second or two of search
-  return findLandmarkFile(obj, cache.is_none() ? fs::path() : fs::path(text(cache)), unit);
+  return findLandmarkFile(obj, cacheFolder, unit);
 }
 
 py::dict foundDict(const FoundLandmarkFile& f) {
@@ -42,6 +43,15 @@ py::dict foundDict(const FoundLandmarkFile& f) {
   return d;
 }
 
+// The command line's line on automatic landmarks, as a UserWarning.
+void warnFound(const FoundLandmarkFile& f) {
+  std::string line = (f.reused ? "using the landmarks of " + f.obj + " found automatically before (" + f.path
+                               : "found the landmarks of " + f.obj + " automatically (written to " + f.path) +
+                     "; units " + lengthUnitName(f.unit) + (f.unitInferred ? ", inferred from its size" : "") + ")";
+  for (const std::string& w : f.warnings) line += "; " + w;
+  if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 std::shared_ptr<HeadHandle> loadHeadHandle(const std::string& head, std::string landmarks, const std::string& pins,
                                            const py::object& units, const py::object& cache) {
   std::string unitName = units.is_none() ? "cm" : text(units);
@@ -50,11 +60,7 @@ std::shared_ptr<HeadHandle> loadHeadHandle(const std::string& head, std::string 
     const FoundLandmarkFile f = findLandmarks(head, units, cache);
     landmarks = f.path;
     unitName = lengthUnitName(f.unit);
-    std::string line = (f.reused ? "using the landmarks of " + head + " found automatically before (" + f.path
-                                 : "found the landmarks of " + head + " automatically (written to " + f.path) +
-                       "; units " + unitName + (f.unitInferred ? ", inferred from its size" : "") + ")";
-    for (const std::string& w : f.warnings) line += "; " + w;
-    if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+    warnFound(f);
   }
   const HeadFiles files = resolveHeadArgument(head, landmarks, pins, unitName);
   auto handle = std::make_shared<HeadHandle>();
@@ -86,6 +92,23 @@ void writeHeadObj(const HeadHandle& h, const std::string& path, const MatX3& pos
   // of that file with new positions (UV seams, quads, groups kept), the built-in head as its mesh.
   const MatX3 shape = positions / centimetresPer(h.unit);
   if (h.obj.empty() || !writeObjLikeFile(path, h.head.mesh.sourcePath, shape)) writeObj(path, h.head.mesh, &shape);
+}
+
+void completeFitHeadLandmarks(FitHeadOptions& o, const RigFile* rig, const py::object& cache) {
+  if (!o.landmarks.empty()) return;
+  const fs::path cacheFolder = cache.is_none() ? fs::path() : fs::path(text(cache));
+  FoundLandmarkFile f;
+  if (usesRigBase(o, rig)) {
+    py::gil_scoped_release unlocked;
+    f = findRigBaseLandmarkFile(*rig, cacheFolder);
+  } else if (o.head != "default" && fs::is_regular_file(o.head)) {
+    f = findLandmarks(o.head, o.unitsGiven ? py::object(py::str(o.units)) : py::object(py::none()), cache);
+    o.units = lengthUnitName(f.unit);
+  } else {
+    return;  // the built-in head, a head folder, or a file error the head's reader names
+  }
+  o.landmarks = f.path;
+  warnFound(f);
 }
 
 void bindHeads(py::module_& m) {

@@ -48,9 +48,13 @@ py::dict fitRigShapesPy(const py::object& rigOrPath, const py::object& head, con
   const std::string cacheFolder = text(cacheDir);
   std::unique_ptr<BasisCache> cache;
   FittedRig fitted;
+  if (!rig) {
+    py::gil_scoped_release unlocked;
+    rig = std::make_shared<const RigFile>(readRig(rigFile));
+  }
+  completeFitHeadLandmarks(options, rig.get(), cacheDir);
   {
     py::gil_scoped_release unlocked;  // the build and one fit per shape: seconds
-    if (!rig) rig = std::make_shared<const RigFile>(readRig(rigFile));
     const SceneInputs inputs = rigFitInputs(*rig, options);
     if (!cacheFolder.empty()) cache = std::make_unique<FileBasisCache>(cacheFolder);
     fitted = fitRigShapes(*rig, inputs, options.library, settings, cache.get());

@@ -31,6 +31,7 @@ py::dict makeRig(const py::object& mapPath, const py::object& head, const py::ob
   options.headGiven = true;
   options.unitsGiven = !units.is_none();
   const std::string mapFile = text(mapPath), cacheFolder = text(cacheDir);  // Python objects: read with the GIL
+  completeFitHeadLandmarks(options, nullptr, cacheDir);
   std::unique_ptr<BasisCache> cache;
   MadeRig made;
   {

@@ -1,6 +1,7 @@
 #include "myoshell/io/auto_landmark_file.h"
 
 #include <chrono>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "myoshell/core/atomic_file.h"
@@ -72,6 +73,45 @@ int objVertexCount(const std::string& text) {
   return n;
 }
 
+// Writes the landmark file of `found` (the search on `source`) at `path`, making its folder.
+std::string storeAt(const fs::path& path, const AutoLandmarks& found, const std::string& source) {
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec) throw InputError("cannot make the landmark folder " + path.parent_path().string() + ": " + ec.message());
+  writeFileAtomically(path.string(), autoLandmarkFileText(found, source), "cannot write landmark file");
+  return path.string();
+}
+
+// The search kept for `key` (a head's bytes) in the cache folder, else findLandmarks(mesh()) kept
+// there (in the temporary folder when the cache folder cannot be written). `unit` given wins.
+FoundLandmarkFile findOrReuse(const std::string& key, int vertexCount, const std::function<TriMesh()>& mesh,
+                              const std::string& source, const fs::path& cacheDir, std::optional<LengthUnit> unit) {
+  const fs::path path = landmarkFilePath(key, cacheDir);
+  if (std::optional<KeptSearch> kept = readKept(path, vertexCount)) {
+    FoundLandmarkFile f = describe(source, path, kept->found);
+    f.reused = true;
+    if (unit) {  // the unit given wins; loadHead checks it against the head's size
+      f.unit = *unit;
+      f.unitInferred = false;
+    }
+    return f;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  AutoLandmarkOptions options;
+  options.unit = unit;
+  const AutoLandmarks found = findLandmarks(mesh(), options);
+  std::string written;
+  try {
+    written = storeAt(path, found, source);
+  } catch (const InputError&) {  // a read-only (shared) cache folder: the temporary folder keeps it
+    if (cacheDir.empty()) throw;
+    written = storeAt(landmarkFilePath(key, {}), found, source);
+  }
+  FoundLandmarkFile f = describe(source, written, found);
+  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return f;
+}
+
 }  // namespace
 
 fs::path landmarkFileFolder(const fs::path& cacheDir) {
@@ -104,41 +144,22 @@ std::string autoLandmarkFileText(const AutoLandmarks& a, const std::string& sour
 }
 
 std::string storeAutoLandmarks(const std::string& obj, const AutoLandmarks& found, const fs::path& cacheDir) {
-  const fs::path path = landmarkFilePath(readWholeFile(obj, "cannot open head OBJ"), cacheDir);
-  std::error_code ec;
-  fs::create_directories(path.parent_path(), ec);
-  if (ec) throw InputError("cannot make the landmark folder " + path.parent_path().string() + ": " + ec.message());
-  writeFileAtomically(path.string(), autoLandmarkFileText(found, obj), "cannot write landmark file");
-  return path.string();
+  return storeAt(landmarkFilePath(readWholeFile(obj, "cannot open head OBJ"), cacheDir), found, obj);
 }
 
 FoundLandmarkFile findLandmarkFile(const std::string& obj, const fs::path& cacheDir, std::optional<LengthUnit> unit) {
   const std::string bytes = readWholeFile(obj, "cannot open head OBJ");
-  const fs::path path = landmarkFilePath(bytes, cacheDir);
-  if (std::optional<KeptSearch> kept = readKept(path, objVertexCount(bytes))) {
-    FoundLandmarkFile f = describe(obj, path, kept->found);
-    f.reused = true;
-    if (unit) {  // the unit given wins; loadHead checks it against the head's size
-      f.unit = *unit;
-      f.unitInferred = false;
-    }
-    return f;
-  }
-  const auto t0 = std::chrono::steady_clock::now();
-  TriMesh mesh = readObjFromString(bytes, obj);
-  AutoLandmarkOptions options;
-  options.unit = unit;
-  const AutoLandmarks found = findLandmarks(mesh, options);
-  std::string written;
-  try {
-    written = storeAutoLandmarks(obj, found, cacheDir);
-  } catch (const InputError&) {  // a read-only (shared) cache folder: the temporary folder keeps it
-    if (cacheDir.empty()) throw;
-    written = storeAutoLandmarks(obj, found, {});
-  }
-  FoundLandmarkFile f = describe(obj, written, found);
-  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return f;
+  return findOrReuse(bytes, objVertexCount(bytes), [&] { return readObjFromString(bytes, obj); }, obj, cacheDir, unit);
+}
+
+FoundLandmarkFile findRigBaseLandmarkFile(const RigFile& rig, const fs::path& cacheDir) {
+  const TriMesh& base = rig.base;
+  // The key is the base's geometry as read (in cm), not the file's bytes: a rig re-exported with
+  // other shapes or names keeps its head's landmarks.
+  std::string key = "rig base\n";
+  key.append(reinterpret_cast<const char*>(base.V.data()), sizeof(double) * base.V.size());
+  key.append(reinterpret_cast<const char*>(base.F.data()), sizeof(int) * base.F.size());
+  return findOrReuse(key, base.vertexCount(), [&] { return base; }, rig.path + "'s base mesh", cacheDir, LengthUnit::cm);
 }
 
 std::vector<std::string> checkLandmarkFile(const std::string& obj, const std::string& landmarks, const fs::path& cacheDir) {

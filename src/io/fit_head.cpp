@@ -33,11 +33,11 @@ SceneInputs fitHeadInputs(const FitHeadOptions& o, const RigFile* rig, const std
   scene.name = "fit";
   scene.muscleLibrary = o.library;
   if (usesRigBase(o, rig)) {
-    if (o.landmarks.empty())
-      throw InputError(what + ": the head is the rig's base mesh, which carries no landmarks: give --landmarks FILE (or "
-                              "the head with --head)");
     if (o.unitsGiven)
       throw InputError("--units: a glTF rig is in metres by specification and read in cm; --units applies to an OBJ head");
+    if (o.landmarks.empty())  // the commands find them first (findRigBaseLandmarkFile)
+      throw InputError(what + ": the head is the rig's base mesh, which carries no landmarks: give --landmarks FILE (or "
+                              "the head with --head)");
     SceneInputs inputs = readSceneInputs(scene);
     inputs.head = rigBaseHead(*rig, o.landmarks);
     return inputs;

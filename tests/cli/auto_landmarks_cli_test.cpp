@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "myoshell/io/head_files.h"
 #include "support/cli_runner.h"
+#include "support/ict.h"
 
 namespace myo {
 namespace {
@@ -89,6 +91,39 @@ TEST(AutoLandmarksCli, ASceneWithoutHeadLandmarksFindsThem) {
   const std::string file = j["scene"]["head"]["landmarks"];
   EXPECT_EQ(fs::path(file).parent_path(), dir / "cache" / "landmarks");
   EXPECT_TRUE(fs::is_regular_file(file));
+}
+
+// A glTF rig's base mesh as the head (`fit-rig RIG.glb` without --head): its landmarks are found,
+// kept keyed on the base's geometry, said and reused, and lie where ICT's given points are (the
+// rig's base is ICT's skin, same vertex order). The missing library file stops the command right
+// after the landmarks, before the face's build.
+TEST(AutoLandmarksCli, AGltfRigsBaseWithoutLandmarksIsFoundKeptAndReused) {
+  MYO_REQUIRE_SHARED_DATA();
+  const fs::path dir = scratch("rig_base");
+  const std::string rig = (test::sharedDataDir() / "ict" / "ict_arkit_rig.glb").string();
+  const std::string args = "fit-rig '" + rig + "' --library missing.json --cache cache";
+  const test::CliResult first = test::runCli(args, dir);
+  EXPECT_EQ(first.exitCode, 2) << first.merged;
+  EXPECT_THAT(first.err, HasSubstr("myoshell: found the landmarks of " + rig + "'s base mesh automatically"));
+  EXPECT_THAT(first.err, HasSubstr("units cm;"));
+  EXPECT_THAT(first.err, HasSubstr("missing.json"));
+  std::vector<fs::path> kept;
+  for (const auto& e : fs::directory_iterator(dir / "cache" / "landmarks")) kept.push_back(e.path());
+  ASSERT_EQ(kept.size(), 1u);
+
+  const test::CliResult second = test::runCli(args, dir);
+  EXPECT_EQ(second.exitCode, 2) << second.merged;
+  EXPECT_THAT(second.err, HasSubstr("using the landmarks of " + rig + "'s base mesh found automatically before ("));
+  EXPECT_THAT(second.err, HasSubstr(kept[0].filename().string()));
+
+  // Off the jaw line (Multi-PIE 17-67; docs/heads.md gives the jaw's own figure), within 4 mm of
+  // ICT's given points on average.
+  const Head ict = test::ictHead();
+  const Landmarks found = readLandmarks(kept[0].string(), ict.mesh.vertexCount());
+  double sum = 0.0;
+  for (int i = 17; i < 68; ++i)
+    sum += (ict.mesh.V.row(found.multipie68[i]) - ict.mesh.V.row(ict.landmarks.multipie68[i])).norm();
+  EXPECT_LT(sum / 51.0, 0.4) << "mean distance (cm) of Multi-PIE 17-67 from ICT's given points";
 }
 
 }  // namespace

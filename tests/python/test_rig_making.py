@@ -96,8 +96,8 @@ def test_bad_arguments_as_the_cli(made, cli, tmp_path):
          ("fit-rig", folder / "cli.glb", "--head", "default", "--lambda", "-1"), "--lambda: '-1' is not a number ≥ 0"),
         (lambda: myoshell.fit_rig(tmp_path / "missing.glb", head="default"),
          ("fit-rig", tmp_path / "missing.glb", "--head", "default"), "missing.glb"),
-        (lambda: myoshell.fit_rig(folder / "cli.glb"),
-         ("fit-rig", folder / "cli.glb"), "the head is the rig's base mesh, which carries no landmarks"),
+        (lambda: myoshell.fit_rig(folder / "cli.glb", units="mm"),
+         ("fit-rig", folder / "cli.glb", "--units", "mm"), "--units: a glTF rig is in metres by specification"),
     ]
     for call, args, expected in cases:
         with pytest.raises(myoshell.InputError) as python:
@@ -130,3 +130,18 @@ def test_threads_change_nothing(made, cache_dir):
     assert [s["rms_mm"] for s in one["shapes"]] == [s["rms_mm"] for s in two["shapes"]]
     with pytest.raises(myoshell.InputError):
         myoshell.set_threads(-1)
+
+
+def test_heads_without_landmarks_get_them_found(made, cli, tmp_path):
+    """rig on an OBJ and fit_rig on a rig's own base, both without landmarks: found automatically and
+    said as load_head says it (the missing library then stops each before the face's build)."""
+    folder, _, _ = made
+    cli("head", "--write-obj", tmp_path / "h.obj")
+    with pytest.warns(UserWarning, match=r"found the landmarks of .*h\.obj automatically"), \
+            pytest.raises(myoshell.InputError, match="missing.json"):
+        myoshell.rig(folder / "map.json", head=tmp_path / "h.obj", library=str(tmp_path / "missing.json"),
+                     cache=tmp_path / "cache")
+    with pytest.warns(UserWarning, match=r"found the landmarks of .*cli\.glb's base mesh automatically"), \
+            pytest.raises(myoshell.InputError, match="missing.json"):
+        myoshell.fit_rig(folder / "cli.glb", library=str(tmp_path / "missing.json"), cache=tmp_path / "cache")
+    assert len(list((tmp_path / "cache" / "landmarks").iterdir())) == 2

@@ -13,6 +13,7 @@
 #include "myoshell/anim/scene.h"
 #include "myoshell/head/auto_landmarks.h"
 #include "myoshell/head/head_checks.h"
+#include "myoshell/io/rig_file.h"
 
 namespace myo {
 
@@ -52,6 +53,10 @@ std::string storeAutoLandmarks(const std::string& obj, const AutoLandmarks& foun
 // by loadHead as for any OBJ. InputError from the OBJ reader or the search ("not a head: ...").
 FoundLandmarkFile findLandmarkFile(const std::string& obj, const std::filesystem::path& cacheDir,
                                    std::optional<LengthUnit> unit = std::nullopt);
+
+// The landmarks of a glTF rig's base mesh (read in cm) used as the head without a landmark file
+// (`fit`, `fit-rig`): as findLandmarkFile, keyed on the base's positions and triangles.
+FoundLandmarkFile findRigBaseLandmarkFile(const RigFile& rig, const std::filesystem::path& cacheDir);
 
 // Checks a landmark file given for `obj` against the automatic landmarks of the same bytes when
 // the cache folder already holds them (no search is run: docs/heads.md says why), by
