@@ -39,10 +39,19 @@ void warn(const std::vector<std::string>& warnings, const std::string& program) 
 
 void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, const std::string& program) {
   namespace fs = std::filesystem;
-  if (head.head == "default" || !fs::is_regular_file(head.head)) return;  // the built-in head, a folder, an error
+  if (head.head == "default") return;
+  // A folder laid out like ../shared/data/ict: its head_skin.obj, with the folder's landmark file
+  // unless --landmarks gives one; without either, found as for an OBJ.
+  std::string obj = head.head, landmarks = head.landmarks;
+  if (fs::is_directory(head.head)) {
+    obj = (fs::path(head.head) / "head_skin.obj").string();
+    const fs::path folderFile = fs::path(head.head) / "landmarks_multipie68.json";
+    if (landmarks.empty() && fs::exists(folderFile)) landmarks = folderFile.string();
+  }
+  if (!fs::is_regular_file(obj)) return;  // the head's reader names the fault
   const fs::path cache = cacheDir(cacheOption).dir;
-  if (!head.landmarks.empty()) {
-    warn(checkLandmarkFile(head.head, head.landmarks, cache), program);
+  if (!landmarks.empty()) {
+    warn(checkLandmarkFile(obj, landmarks, cache), program);
     return;
   }
   std::optional<LengthUnit> unit;
@@ -53,7 +62,7 @@ void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, con
       throw InputError("--units: " + e.message());
     }
   }
-  const FoundLandmarkFile f = findLandmarkFile(head.head, cache, unit);
+  const FoundLandmarkFile f = findLandmarkFile(obj, cache, unit);
   head.landmarks = f.path;
   head.units = lengthUnitName(f.unit);
   say(f, program);

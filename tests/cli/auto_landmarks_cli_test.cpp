@@ -126,5 +126,25 @@ TEST(AutoLandmarksCli, AGltfRigsBaseWithoutLandmarksIsFoundKeptAndReused) {
   EXPECT_LT(sum / 51.0, 0.4) << "mean distance (cm) of Multi-PIE 17-67 from ICT's given points";
 }
 
+// A head folder (head_skin.obj beside landmarks_multipie68.json, as ../shared/data/ict) without its
+// landmark file gets them found; with a file, the file is checked as a given one.
+TEST(AutoLandmarksCli, AHeadFolderWithoutItsLandmarkFileFindsThemAndAGivenOneIsChecked) {
+  const fs::path dir = scratch("folder");
+  fs::create_directories(dir / "h");
+  ASSERT_EQ(test::runCli("head --write-obj h/head_skin.obj", dir).exitCode, 0);
+  const test::CliResult found = test::runCli("head h --json --cache cache", dir);
+  ASSERT_EQ(found.exitCode, 0) << found.merged;
+  EXPECT_THAT(found.err, HasSubstr("found the landmarks of h/head_skin.obj automatically"));
+  const std::string file = nlohmann::json::parse(found.out)["auto_landmarks"];
+
+  nlohmann::json lm = nlohmann::json::parse(std::ifstream(dir / file));
+  for (auto& v : lm["multipie68"]) v = v.get<int>() + 1;
+  for (auto& [name, e] : lm["named"].items()) e["vertex"] = e["vertex"].get<int>() + 1;
+  std::ofstream(dir / "h" / "landmarks_multipie68.json") << lm.dump();
+  const test::CliResult checked = test::runCli("head h --cache cache", dir);
+  EXPECT_EQ(checked.exitCode, 2) << checked.merged;
+  EXPECT_THAT(checked.err, HasSubstr("landmarks_multipie68.json: the landmark ids look 1-based"));
+}
+
 }  // namespace
 }  // namespace myo

@@ -34,8 +34,8 @@ struct HeadFiles {
 // --pins and --units apply to an OBJ head, not the default head", "OBJ: no such head: give
 // 'default', an OBJ file or a folder with head_skin.obj", "OBJ: an OBJ head needs --landmarks FILE
 // (layout of docs/heads.md); `myoshell landmarks OBJ` finds them automatically". The command line
-// never meets the last: it gives an OBJ without landmarks its automatic file first
-// (findLandmarkFile, io/auto_landmark_file.h); Python's load_head still needs one.
+// and Python's load_head never meet the last: they give an OBJ without landmarks its automatic file
+// first (findLandmarkFile, io/auto_landmark_file.h).
 HeadFiles resolveHeadArgument(const std::string& head, const std::string& landmarks, const std::string& pins,
                               const std::string& units);
 
