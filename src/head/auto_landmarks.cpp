@@ -658,6 +658,9 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   };
   out.confidence68.resize(68);
   for (int k = 0; k < 68; ++k) out.confidence68[k] = confidence(tl.multipie68[static_cast<size_t>(k)], snapCm[k]);
+  // The jaw line is the least certain part (see the warning below): its confidence at most 0.45
+  // (drawn yellow), before the named points on it (chin_menton) take theirs.
+  for (int k = 0; k <= 16; ++k) out.confidence68[k] = std::min(out.confidence68[k], jawOnOutline ? 0.45 : 0.3);
 
   // Named points: a template name on one of its Multi-PIE vertices takes that point's result.
   out.landmarks.multipie68 = lm68;
@@ -690,8 +693,7 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
                            "the inner lip points come from the fit alone");
   // The jaw line: on the frontal outline it lies a mean 5.9 mm (max 10 mm) from ICT's given points,
   // on the template's rim (the fallback when no outline is found) 15 mm (docs/heads.md). Either way
-  // it is the least certain part: said, and its confidence at most 0.45 (drawn yellow).
-  for (int k = 0; k <= 16; ++k) out.confidence68[k] = std::min(out.confidence68[k], jawOnOutline ? 0.45 : 0.3);
+  // it is the least certain part: said, and its confidence capped above.
   out.warnings.push_back(jawOnOutline
                              ? "the jaw line (Multi-PIE points 0-16) is placed on the face's frontal outline (6 mm "
                                "from the given points on ICT, mean): check it before rig, drive or pose, which build "
