@@ -4,8 +4,8 @@
 // (fit/activation_fit.h; docs/fitting.md). TARGET is
 // - an OBJ of the head's topology, in the head's units (an expression shape of that head);
 // - `RIG.glb#shape`, a morph target of a glTF rig (io/rig_file.h): its delta from the rig's base is
-//   the target. Without a head option the head is the rig's base mesh, and --landmarks is required
-//   (a glTF file carries none);
+//   the target. Without a head option the head is the rig's base mesh; a glTF file carries no
+//   landmarks, so without --landmarks they are found automatically (head_landmarks.h);
 // - a marker file (fit/marker_target.h): where a few vertices should be, e.g. tracked landmarks;
 //   --align rigid or similarity removes the head's motion first.
 // Every argument, the head and the target are read and checked before the model is built.
@@ -119,8 +119,9 @@ int runFit(const FitArgs& a) {
     rigShapeName = ref.shape;
     rig.shape(rigShapeName);  // InputError listing the rig's shapes when it has no such one
   }
-  const FitHeadOptions headOptions = fitHeadOptions(a.head, a.library);
+  FitHeadOptions headOptions = fitHeadOptions(a.head, a.library);
   const RigFile* rigOrNull = kind == TargetKind::Rig ? &rig : nullptr;
+  if (rigOrNull) resolveRigBaseLandmarks(headOptions, rig, a.cacheDir);
   const SceneInputs inputs = fitHeadInputs(headOptions, rigOrNull, "fit " + a.target);
   const Head& head = inputs.head;
   const int n = head.mesh.vertexCount();
@@ -225,7 +226,7 @@ static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
              "shape or markers (docs/fitting.md)");
   sub->add_option("target", args->target, "an OBJ of the head, RIG.glb#shape, or a marker file (.json/.yaml)")->required();
   HeadHelp help;
-  help.headDefault = "default, or a RIG.glb#shape target's base mesh (with --landmarks)";
+  help.headDefault = "default, or a RIG.glb#shape target's base mesh (its landmarks found automatically without --landmarks)";
   help.landmarks = " or of a rig's base";
   help.units = "; an OBJ target is in the head's unit";
   addHeadOptions(*sub, args->head, help);

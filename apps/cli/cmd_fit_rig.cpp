@@ -125,7 +125,9 @@ int runFitRig(FitRigArgs& a) {
   if (!a.report.empty()) checkOutputFolder(a.report, "--report");
 
   const RigFile rig = readRig(a.rig);
-  const SceneInputs inputs = rigFitInputs(rig, fitHeadOptions(a.head, a.library));
+  FitHeadOptions headOptions = fitHeadOptions(a.head, a.library);
+  resolveRigBaseLandmarks(headOptions, rig, a.cacheDir);
+  const SceneInputs inputs = rigFitInputs(rig, headOptions);
   const auto cache = openBasisCache(a.cacheDir);
   const FittedRig fitted = fitRigShapes(rig, inputs, a.library, settings, cache.get());
   const RigFit& fit = fitted.fit;
@@ -203,7 +205,7 @@ static CommandRegistrar reg("fit-rig", [](CLI::App& app) -> std::function<int()>
                  "`myoshell rig` plays on any head (docs/fitting.md)");
   sub->add_option("rig", args->rig, "a glTF 2.0 rig (.glb or .gltf) with named morph targets")->required();
   HeadHelp help;
-  help.headDefault = "the rig's base mesh (with --landmarks)";
+  help.headDefault = "the rig's base mesh (its landmarks found automatically without --landmarks)";
   help.landmarks = " or of the rig's base";
   addHeadOptions(*sub, args->head, help);
   sub->add_option("--lambda", args->lambda, "sparsity weight ≥ 0 (default 0.02; 0 = plain bounded least squares)");

@@ -66,6 +66,14 @@ void resolveSceneLandmarks(SceneDesc& scene, const std::string& cacheOption, con
   warn(warnings, program);
 }
 
+void resolveRigBaseLandmarks(FitHeadOptions& options, const RigFile& rig, const std::string& cacheOption,
+                             const std::string& program) {
+  if (!usesRigBase(options, &rig) || !options.landmarks.empty()) return;
+  const FoundLandmarkFile f = findRigBaseLandmarkFile(rig.path, rig.base, cacheDir(cacheOption).dir);
+  options.landmarks = f.path;
+  say(f, program);
+}
+
 const std::string& autoLandmarkFileUsed() { return usedFile(); }
 
 }  // namespace myo::cli

@@ -9,6 +9,8 @@
 
 #include "common_options.h"
 #include "myoshell/anim/scene.h"
+#include "myoshell/io/fit_head.h"
+#include "myoshell/io/rig_file.h"
 
 namespace myo::cli {
 
@@ -18,6 +20,11 @@ void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, con
 
 // The same for a scene's head (head.landmarks and head.units).
 void resolveSceneLandmarks(SceneDesc& scene, const std::string& cacheOption, const std::string& program = "myoshell");
+
+// For a fitting command on a glTF rig's own base mesh (no --head) without --landmarks: the base's
+// landmarks found (or reused) as for an OBJ, said on stderr, and set as the options' landmarks.
+void resolveRigBaseLandmarks(FitHeadOptions& options, const RigFile& rig, const std::string& cacheOption,
+                             const std::string& program = "myoshell");
 
 // The automatic landmark file this process used ("" when none): job_report.h adds it to --json.
 const std::string& autoLandmarkFileUsed();

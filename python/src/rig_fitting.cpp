@@ -10,6 +10,7 @@
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/output_paths.h"
 #include "myoshell/io/retarget_map_file.h"
+#include "myoshell/io/auto_landmark_file.h"
 #include "myoshell/io/rig_fitting.h"
 #include "myoshell/muscles/muscle_def.h"
 
@@ -48,13 +49,23 @@ py::dict fitRigShapesPy(const py::object& rigOrPath, const py::object& head, con
   const std::string cacheFolder = text(cacheDir);
   std::unique_ptr<BasisCache> cache;
   FittedRig fitted;
+  std::optional<FoundLandmarkFile> found;
   {
     py::gil_scoped_release unlocked;  // the build and one fit per shape: seconds
     if (!rig) rig = std::make_shared<const RigFile>(readRig(rigFile));
+    if (usesRigBase(options, rig.get()) && options.landmarks.empty()) {  // as the command line: found automatically
+      found = findRigBaseLandmarkFile(rig->path, rig->base, cacheFolder);
+      options.landmarks = found->path;
+    }
     const SceneInputs inputs = rigFitInputs(*rig, options);
     if (!cacheFolder.empty()) cache = std::make_unique<FileBasisCache>(cacheFolder);
     fitted = fitRigShapes(*rig, inputs, options.library, settings, cache.get());
   }
+  if (found)  // the command line's line, as a warning
+    if (PyErr_WarnEx(PyExc_UserWarning,
+                     (rig->path + ": the rig's base carries no landmarks; found automatically (" + found->path +
+                      "; pass it as landmarks to edit)").c_str(), 1) != 0)
+      throw py::error_already_set();
   const RigFit& fit = fitted.fit;
   for (const std::string& n : fit.skipped)  // the command line's warning, without its program name
     if (PyErr_WarnEx(PyExc_UserWarning, (rig->path + ": shape '" + n + "' is no ARKit name; not fitted").c_str(), 1) != 0)
@@ -115,7 +126,7 @@ Fits every ARKit-named shape of a glTF rig to activations of the anatomical face
 fit-rig` does (docs/fitting.md, "Fitting a rig"), and gathers them into a retargeting map that rig()
 plays on any head.
 rig: a Rig (read_rig) or the path of a .glb/.gltf file.
-head: None (the rig's base mesh; give its landmarks file), or as load_head() names a head ('default',
+head: None (the rig's base mesh; its landmarks file, else found automatically and kept in cache), or as load_head() names a head ('default',
   a head folder, an OBJ file with landmarks and units); its vertices must be the rig's.
 library: the muscles ('face', the default, 'builtin' or a library file); sparsity: the weight λ ≥ 0 (--lambda);
 cache: a basis cache folder or None; out: the map's JSON file to write (the command line's bytes).

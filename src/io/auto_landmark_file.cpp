@@ -141,6 +141,31 @@ FoundLandmarkFile findLandmarkFile(const std::string& obj, const fs::path& cache
   return f;
 }
 
+FoundLandmarkFile findRigBaseLandmarkFile(const std::string& glb, const TriMesh& base, const fs::path& cacheDir) {
+  const fs::path path = landmarkFilePath(readWholeFile(glb, "cannot open rig"), cacheDir);
+  if (std::optional<KeptSearch> kept = readKept(path, base.vertexCount())) {
+    FoundLandmarkFile f = describe(glb, path, kept->found);
+    f.reused = true;
+    return f;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  TriMesh mesh = base;
+  mesh.sourcePath = glb;
+  AutoLandmarkOptions options;
+  options.unit = LengthUnit::cm;
+  const AutoLandmarks found = findLandmarks(mesh, options);
+  std::string written;
+  try {
+    written = storeAutoLandmarks(glb, found, cacheDir);
+  } catch (const InputError&) {  // a read-only (shared) cache folder: the temporary folder keeps it
+    if (cacheDir.empty()) throw;
+    written = storeAutoLandmarks(glb, found, {});
+  }
+  FoundLandmarkFile f = describe(glb, written, found);
+  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return f;
+}
+
 std::vector<std::string> checkLandmarkFile(const std::string& obj, const std::string& landmarks, const fs::path& cacheDir) {
   const std::optional<std::string> bytes = tryReadWholeFile(obj);
   if (!bytes) return {};  // the head's reader names the fault

@@ -53,6 +53,12 @@ std::string storeAutoLandmarks(const std::string& obj, const AutoLandmarks& foun
 FoundLandmarkFile findLandmarkFile(const std::string& obj, const std::filesystem::path& cacheDir,
                                    std::optional<LengthUnit> unit = std::nullopt);
 
+// The landmarks of a glTF rig's base mesh (`base`, read in cm from the file `glb`) without a
+// landmark file, as findLandmarkFile does for an OBJ: kept in the cache folder keyed on the GLB's
+// bytes, reused when kept, else findLandmarks(base) with the unit cm (a glTF file is in metres by
+// specification, read in cm). InputError as findLandmarkFile.
+FoundLandmarkFile findRigBaseLandmarkFile(const std::string& glb, const TriMesh& base, const std::filesystem::path& cacheDir);
+
 // Checks a landmark file given for `obj` against the automatic landmarks of the same bytes when
 // the cache folder already holds them (no search is run: docs/heads.md says why), by
 // checkGivenLandmarks: ids that look 1-based and swapped sides throw InputError naming the
