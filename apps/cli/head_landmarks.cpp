@@ -39,8 +39,16 @@ void warn(const std::vector<std::string>& warnings, const std::string& program) 
 
 void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, const std::string& program) {
   namespace fs = std::filesystem;
-  if (head.head == "default" || !fs::is_regular_file(head.head)) return;  // the built-in head, a folder, an error
+  if (head.head == "default") return;
   const fs::path cache = cacheDir(cacheOption).dir;
+  if (fs::is_directory(head.head)) {  // a head folder: its file (or --landmarks) checked as an OBJ's
+    const fs::path obj = fs::path(head.head) / "head_skin.obj";
+    const std::string landmarks =
+        head.landmarks.empty() ? (fs::path(head.head) / "landmarks_multipie68.json").string() : head.landmarks;
+    if (fs::is_regular_file(obj) && fs::is_regular_file(landmarks)) warn(checkLandmarkFile(obj.string(), landmarks, cache), program);
+    return;
+  }
+  if (!fs::is_regular_file(head.head)) return;  // the head's reader names the fault
   if (!head.landmarks.empty()) {
     warn(checkLandmarkFile(head.head, head.landmarks, cache), program);
     return;

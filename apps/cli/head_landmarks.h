@@ -15,7 +15,8 @@
 namespace myo::cli {
 
 // Fills head.landmarks (and head.units, unless --units was given) for an OBJ head without
-// --landmarks, or checks the given file; `cacheOption` is --cache ("" when not given).
+// --landmarks, or checks the given file; a head folder's landmark file (or --landmarks) is checked
+// against its head_skin.obj's kept automatic landmarks; `cacheOption` is --cache ("" when not given).
 void resolveHeadLandmarks(HeadOptions& head, const std::string& cacheOption, const std::string& program = "myoshell");
 
 // The same for a scene's head (head.landmarks and head.units).

@@ -91,5 +91,27 @@ TEST(AutoLandmarksCli, ASceneWithoutHeadLandmarksFindsThem) {
   EXPECT_TRUE(fs::is_regular_file(file));
 }
 
+// A head folder (head_skin.obj + landmarks_multipie68.json) gets its file checked like an OBJ's
+// --landmarks once the automatic landmarks of its OBJ are kept: its ids shifted to 1-based exit 2.
+TEST(AutoLandmarksCli, AHeadFoldersFileIsCheckedAgainstTheKeptSearch) {
+  const fs::path dir = scratch("folder");
+  fs::create_directories(dir / "h");
+  ASSERT_EQ(test::runCli("head --write-obj h/head_skin.obj --write-landmarks own.json", dir).exitCode, 0);
+  nlohmann::json lm = nlohmann::json::parse(std::ifstream(dir / "own.json"));
+  for (auto& v : lm["multipie68"]) v = v.get<int>() + 1;
+  for (auto& [name, e] : lm["named"].items())
+    if (e.is_object()) e["vertex"] = e["vertex"].get<int>() + 1;
+    else e = e.get<int>() + 1;
+  std::ofstream(dir / "h" / "landmarks_multipie68.json") << lm.dump(1);
+  const std::string cache = (dir / "cache").string();
+
+  // Nothing kept yet: no check (whatever the head's own checks then say of the shifted points).
+  EXPECT_THAT(test::runCli("head h --cache '" + cache + "'", dir).err, Not(HasSubstr("look 1-based")));
+  ASSERT_EQ(test::runCli("landmarks h/head_skin.obj --out found.json --cache '" + cache + "'", dir).exitCode, 0);
+  const test::CliResult r = test::runCli("head h --cache '" + cache + "'", dir);
+  EXPECT_EQ(r.exitCode, 2) << r.merged;
+  EXPECT_THAT(r.err, HasSubstr("the landmark ids look 1-based"));
+}
+
 }  // namespace
 }  // namespace myo
