@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bump when findLandmarks changes what it finds: kept files of older searches are then not reused.
-constexpr int kSearchVersion = 1;
+constexpr int kSearchVersion = 2;  // 2: the jaw line on the frontal outline
 
 // A kept search: its landmarks and the "automatic" object.
 struct KeptSearch {

@@ -9,6 +9,7 @@
 #include "myoshell/head/head_checks.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/primitives.h"
+#include "myoshell/mesh/subdivision.h"
 #include "support/ict.h"
 
 namespace myo {
@@ -17,7 +18,7 @@ namespace {
 // Distances (mm, on the untransformed mesh V in cm) between the found and the given points: over
 // all 68, and over the 51 off the jaw line (Multi-PIE 17–67).
 struct Errors {
-  double meanMm = 0.0, maxMm = 0.0, faceMeanMm = 0.0, faceMaxMm = 0.0;
+  double meanMm = 0.0, maxMm = 0.0, faceMeanMm = 0.0, faceMaxMm = 0.0, jawMeanMm = 0.0;
   int faceWorst = -1;
 };
 Errors landmarkErrors(const MatX3& V, const Landmarks& given, const Landmarks& found) {
@@ -26,6 +27,7 @@ Errors landmarkErrors(const MatX3& V, const Landmarks& given, const Landmarks& f
     const double d = 10.0 * (V.row(given.multipie68[k]) - V.row(found.multipie68[k])).norm();
     e.meanMm += d / 68.0;
     e.maxMm = std::max(e.maxMm, d);
+    if (k < 17) e.jawMeanMm += d / 17.0;
     if (k >= 17) {
       e.faceMeanMm += d / 51.0;
       if (d > e.faceMaxMm) e.faceWorst = k;
@@ -43,17 +45,19 @@ TriMesh transformed(const TriMesh& m, const Mat3& R, double s, const Vec3& t) {
 
 // ICT found with the built-in head as the only template. The 51 points off the jaw line meet the
 // issue's mean (≤ 3 mm; measured 2.7–2.9 mm) but not quite its 8 mm maximum (the brow ends, 7.3–9.2
-// mm depending on the pose); the jaw line does not: the built-in head's jaw points are its rim,
-// which lands 1–3 cm behind ICT's frontal jaw line (docs/heads.md, "Automatic landmarks"). The
-// bounds hold what is measured, with a small margin.
+// mm depending on the pose). The jaw line, placed on the frontal outline (frontalJawLine), measures
+// a mean 5.6-5.8 mm, max 11.4 mm in every pose (on the template's rim it was 15 mm, max 30 mm), so all 68
+// a mean 3.3-3.6 mm (docs/heads.md, "Automatic landmarks"). The bounds hold what is measured, with a
+// small margin.
 void expectIctBounds(const Head& ict, const AutoLandmarks& a) {
   const Errors e = landmarkErrors(ict.mesh.V, ict.landmarks, a.landmarks);
   EXPECT_LT(e.faceMeanMm, 3.0);
   EXPECT_LT(e.faceMaxMm, 10.0) << "Multi-PIE point " << e.faceWorst;
-  EXPECT_LT(e.meanMm, 6.5);
-  std::printf("errors: all 68 mean %.2f max %.2f mm; 17-67 mean %.2f max %.2f mm (point %d)\n", e.meanMm, e.maxMm,
-              e.faceMeanMm, e.faceMaxMm, e.faceWorst);
-  EXPECT_LT(e.maxMm, 31.0);
+  EXPECT_LT(e.jawMeanMm, 7.0);
+  EXPECT_LT(e.meanMm, 4.0);
+  std::printf("errors: all 68 mean %.2f max %.2f mm; 17-67 mean %.2f max %.2f mm (point %d); jaw mean %.2f mm\n",
+              e.meanMm, e.maxMm, e.faceMeanMm, e.faceMaxMm, e.faceWorst, e.jawMeanMm);
+  EXPECT_LT(e.maxMm, 12.0);
   EXPECT_TRUE(a.eyesOpen);
   EXPECT_TRUE(a.mouthOpen);
   EXPECT_EQ(a.otherPieces, 0);
@@ -151,6 +155,60 @@ TEST(AutoLandmarks, EyeballsAreLeftOutAndTheVertexOrderKept) {
 // The checks of a given file against the automatic landmarks: ICT's own file passes without a
 // warning; shifted to 1-based ids, or with left and right swapped, it is refused naming the
 // mistake; with one point moved 2 cm it warns naming the point and the distance.
+// Appends `part` to `m` as a separate piece.
+void appendPiece(TriMesh& m, const TriMesh& part) {
+  const int n0 = m.vertexCount(), f0 = m.triangleCount();
+  m.V.conservativeResize(n0 + part.vertexCount(), 3);
+  m.F.conservativeResize(f0 + part.triangleCount(), 3);
+  m.V.bottomRows(part.vertexCount()) = part.V;
+  m.F.bottomRows(part.triangleCount()) = part.F.array() + n0;
+}
+
+// Remeshed: ICT after one Loop step (44,786 vertices; its vertices keep their ids, moved by the
+// smoothing), with two sphere eyeballs and a tooth arch (a strip bent along an arc behind the lips)
+// as separate pieces. Errors from the original mesh's given points: measured 3.5 mm mean over the
+// 68 (jaw 6.2, off the jaw 2.6; docs/heads.md's remeshed rows).
+TEST(AutoLandmarks, LoopSubdividedWithEyeballsAndAToothArch) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head ict = test::ictHead();
+  TriMesh m = loopSubdivide(ict.mesh);
+  const int skin = m.vertexCount();
+  const auto at = [&](const char* name) { return Vec3(ict.mesh.V.row(ict.landmarks.vertex(name))); };
+  for (int e = 0; e < 2; ++e) {
+    TriMesh ball = icosphere(1.2, 2);
+    const Vec3 c = 0.5 * (at(e ? "left_eye_outer" : "right_eye_outer") + at(e ? "left_eye_inner" : "right_eye_inner")) -
+                   Vec3(0, 0, 1.1);
+    ball.V.rowwise() += c.transpose();
+    appendPiece(m, ball);
+  }
+  TriMesh arch = gridMesh(1.0, 1.0, 24, 3);  // u along the arch (150°, radius 2.4 cm), v its height (0.8 cm)
+  const Vec3 centre = 0.5 * (at("upper_lip_inner") + at("lower_lip_inner")) - Vec3(0, 0, 2.6);
+  for (int i = 0; i < arch.vertexCount(); ++i) {
+    const double a = (-75.0 + 150.0 * arch.V(i, 0)) * std::numbers::pi / 180.0;
+    arch.V.row(i) = (centre + Vec3(2.4 * std::sin(a), 0.8 * (arch.V(i, 1) - 0.5), 2.4 * std::cos(a))).transpose();
+  }
+  appendPiece(m, arch);
+  const AutoLandmarks a = findLandmarks(m);
+  EXPECT_EQ(a.otherPieces, 3);
+  EXPECT_EQ(a.skinVertices, skin);
+  double mean = 0.0, faceMean = 0.0, maxMm = 0.0;
+  for (int k = 0; k < 68; ++k) {
+    const int v = a.landmarks.multipie68[static_cast<size_t>(k)];
+    ASSERT_LT(v, skin) << "Multi-PIE point " << k << " on a piece beside the skin";
+    const double d = 10.0 * (Vec3(m.V.row(v)) - Vec3(ict.mesh.V.row(ict.landmarks.multipie68[static_cast<size_t>(k)]))).norm();
+    mean += d / 68.0;
+    if (k >= 17) faceMean += d / 51.0;
+    maxMm = std::max(maxMm, d);
+  }
+  std::printf("Loop-subdivided ICT with eyeballs and a tooth arch: 68 mean %.2f max %.2f mm, 17-67 mean %.2f mm\n", mean,
+              maxMm, faceMean);
+  EXPECT_LT(faceMean, 3.0);
+  EXPECT_LT(mean, 4.0);
+  EXPECT_LT(maxMm, 13.0);
+  EXPECT_TRUE(a.eyesOpen);
+  EXPECT_TRUE(a.mouthOpen);
+}
+
 TEST(AutoLandmarks, GivenFileChecksCatchTheCommonMistakes) {
   MYO_REQUIRE_SHARED_DATA();
   const Head ict = test::ictHead();

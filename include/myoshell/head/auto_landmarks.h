@@ -32,6 +32,9 @@ struct AutoLandmarkOptions {
   // lid and lip lines, not on its loops (which turn into the sockets); on ICT snapping raised the
   // inner lip errors from 1.1–2.5 mm to 3.4–7.0 mm.
   bool snapToOpenings = false;
+  // The jaw line (Multi-PIE 0-16) placed on the head's frontal outline (frontalJawLine in
+  // auto_landmarks.cpp) instead of the template's jaw labels, which are its rim.
+  bool jawOnOutline = true;
   // The non-rigid ICP's stiffness schedule α (Amberg et al. 2007), decreasing.
   std::vector<double> stiffness = {50, 20, 10, 5, 2, 1};
 };
