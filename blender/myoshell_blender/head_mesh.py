@@ -140,6 +140,40 @@ def landmark_file(obj, settings):
     return None
 
 
+_builtin = {}
+
+
+def is_builtin_head(m, obj, placement, rest_local, landmarks):
+    """Whether the mesh is the module's built-in head unedited: its triangles, its positions to
+    float32's rounding (1e-5 cm), placed as Add the Built-in Head places it, and no landmark file
+    other than the built-in head's own."""
+    if landmarks and os.path.realpath(landmarks) != os.path.realpath(DEFAULT_LANDMARKS()):
+        try:
+            with open(landmarks, "rb") as a, open(DEFAULT_LANDMARKS(), "rb") as b:
+                if a.read() != b.read():
+                    return False
+        except OSError:
+            return False
+    if "rest" not in _builtin:
+        head = m.load_head()
+        _builtin["rest"], _builtin["triangles"] = head.rest_positions(), head.triangles()
+    rest, tri = _builtin["rest"], _builtin["triangles"]
+    mesh = obj.data
+    if len(mesh.vertices) != len(rest) or len(mesh.polygons) != len(tri):
+        return False
+    if np.abs(placement.to_head(rest_local) - rest).max() > 1e-5:
+        return False
+    faces = polygons(mesh)
+    if any(len(f) != 3 for f in faces):
+        return False
+    return np.array_equal(np.array(faces), tri)
+
+
+def DEFAULT_LANDMARKS():
+    from . import module
+    return module.DEFAULT_LANDMARKS
+
+
 def automatic_landmarks(m, obj_path, cache):
     """The landmarks of the head written to obj_path found by the module, as every command finds
     them for an OBJ without --landmarks (docs/heads.md): kept in the cache folder, keyed on the

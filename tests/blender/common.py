@@ -75,7 +75,7 @@ def install_addon(tmp):
     addon_utils.modules_refresh()
     bpy.ops.preferences.addon_enable(module="myoshell_blender")
     check("myoshell_blender" in bpy.context.preferences.addons, "the add-on is enabled")
-    check(all(hasattr(bpy.ops.myoshell, op) for op in ("make_shape_keys", "import_performance")),
+    check(all(hasattr(bpy.ops.myoshell, op) for op in ("make_shape_keys", "import_performance", "show_muscles")),
           "its operators are registered")
     check(np.__dict__.get("bool") is bool, "numpy's np.bool alias is back for Blender 3.4's glTF importer")
 

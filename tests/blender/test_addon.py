@@ -8,7 +8,8 @@ zip unpacked into a temporary folder), makes the 52 ARKit shape keys on the buil
 compares them with the module's rig, imports a Live Link take and compares Blender's evaluated
 vertices with the module's drive frames.
 
-test_addon_ict.py makes the same checks on ICT's head (ctest blender.ict). Units: common.py.
+The muscles overlay (show_muscles) is checked here too. test_addon_ict.py makes the same checks on
+ICT's head (ctest blender.ict). Units: common.py.
 """
 import os
 import pathlib
@@ -25,6 +26,43 @@ from common import (FRAME_TOLERANCE_M, ROOT, SHAPE_TOLERANCE_M, check, coordinat
 
 TAKE = ROOT / "tests" / "anim" / "performances" / "livelink_take.csv"
 LANDMARKS = ROOT / "assets" / "default_head" / "landmarks_multipie68.json"
+# A muscle lies under the skin: every node of its shell within this of the skin's nearest vertex
+# (the deepest, the buccinators, 12.2 mm; tests/python/test_muscles.py asks the same).
+MUSCLE_SKIN_DISTANCE_M = 0.015
+
+
+def check_muscles(myoshell, head, obj, n):
+    """(4) The muscles overlay: the library's muscles as the module places them, parented to the
+    head, under its skin; the operator toggles it."""
+    import mathutils
+    check(bpy.ops.myoshell.show_muscles() == {'FINISHED'}, "show_muscles finished")
+    collection = bpy.data.collections.get("Myoshell muscles (%s)" % obj.name)
+    check(collection is not None, "the overlay is a collection of its own")
+    names = myoshell.muscle_names("face")
+    shown = {o["myoshell_muscle"]: o for o in collection.objects}
+    check(sorted(shown) == sorted(names), "one object per muscle of the library: %d" % len(names))
+    check(all(o.parent is obj for o in shown.values()), "every muscle is parented to the head")
+    reference = {s["name"]: s for s in myoshell.muscle_meshes(head)}
+    skin = mathutils.kdtree.KDTree(n)
+    for i, p in enumerate(to_blender_m(head.rest_positions())):
+        skin.insert(p, i)
+    skin.balance()
+    worst_place, farthest = 0.0, 0.0
+    for name, o in shown.items():
+        m = len(o.data.vertices)
+        got = coordinates(o.data.vertices, m, o)
+        worst_place = max(worst_place, np.abs(got - to_blender_m(reference[name]["vertices"])).max())
+        farthest = max(farthest, max(skin.find(p)[2] for p in got))
+    check(worst_place < 1e-6, "the muscles are where the module places them (largest %.1e m)" % worst_place)
+    check(farthest < MUSCLE_SKIN_DISTANCE_M, "every muscle node lies within %.0f mm of the skin (farthest %.1f mm)"
+          % (MUSCLE_SKIN_DISTANCE_M * 1e3, farthest * 1e3))
+    overlay = collection.name
+    bpy.context.view_layer.objects.active = next(iter(shown.values()))  # a muscle picked: its head's overlay
+    check(bpy.ops.myoshell.show_muscles() == {'FINISHED'} and bpy.data.collections.get(overlay) is None
+          and not any(o.get("myoshell_muscle") for o in bpy.data.objects), "show_muscles again hides them")
+    bpy.context.view_layer.objects.active = obj
+
+
 def main():
     tmp = tempfile.mkdtemp(prefix="myoshell_blender_test_")
     install_addon(tmp)
@@ -90,6 +128,8 @@ def main():
         check(err < FRAME_TOLERANCE_M, "frame %d: Blender's vertices equal drive's within 0.1 mm (largest %.2e m; "
               "the frame is %.2f mm from rest)" % (k, err, away * 1e3))
 
+    # (4) The muscles overlay.
+    check_muscles(myoshell, head, obj, n)
     print("test_addon: all checks passed")
 
 
