@@ -9,7 +9,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup setup-test setup-web web web-page configure configure-test build build-test python blender-addon test asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
+.PHONY: all setup setup-test setup-web web web-page configure configure-test build build-test python blender-addon test test-fast asan-build test-asan test-asan-ci fuzz-build fuzz fuzz-replay demo bench clean
 
 all: build
 
@@ -69,6 +69,11 @@ blender-addon: configure
 test: build-test
 	@$(MAKE) --no-print-directory web-page
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# The tests but those labelled slow (ctest -L slow: blender.ict, the Blender add-on on ICT, about
+# 50 s): for a quick run while working. `make test`, which CI runs (.ci/run), runs them all once.
+test-fast: build-test
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
 
 # Every test under AddressSanitizer and UndefinedBehaviorSanitizer, in its own build folder, but
 # the GL and viewer tests (ctest labels gl, viewer): Mesa's llvmpipe/EGL and GLFW leak inside the

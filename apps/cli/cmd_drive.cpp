@@ -1,7 +1,7 @@
 // `myoshell drive PERFORMANCE [--head default|DIR|OBJ --landmarks F --units U] [--library face]
 // [--map MAP] [--input openface|livelink|mediapipe] [--au-scale X] [--face N] [--min-confidence C]
 // [--input-fps F] [--filter on|off] [--min-cutoff HZ] [--beta B] [--response dynamic|follow] [--start S] [--end S]
-// [--format glb,pc2,obj] [--video] [--head-motion] --out DIR [--cache DIR] [--json]`: plays a
+// [--format glb,pc2,obj] [--glb-tolerance MM] [--video] [--head-motion] --out DIR [--cache DIR] [--json]`: plays a
 // recorded performance (OpenFace action units, Live Link Face or MediaPipe ARKit weights) on a head
 // and writes the animation as `run` does (DIR/NAME.glb, NAME the file's stem). It is a scene with a
 // head and a `performance` key (docs/performance_input.md), so `run` on such a scene gives the same
@@ -99,6 +99,7 @@ static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--format", a->run.formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')
       ->capture_default_str();
+  addGlbToleranceOption(*sub, a->run.glbToleranceMm);
   sub->add_flag("--video", a->run.video, "Write DIR/<name>.mp4 and .gif: the face beside the active input curves");
   sub->add_option("--framing", a->run.framing, "--video frames the face (its landmarks), head (crown to chin) or all")
       ->default_val("face");

@@ -1,5 +1,5 @@
 // `myoshell live --input vmc|livelink [--port P] [--listen ADDRESS] [--head …] --out DIR
-// [--format glb,pc2,obj] [--duration S] [--fps 60] [--calibrate S] [--timeout S] [--response follow|dynamic] [--lockstep] [--json]`:
+// [--format glb,pc2,obj] [--glb-tolerance MM] [--duration S] [--fps 60] [--calibrate S] [--timeout S] [--response follow|dynamic] [--lockstep] [--json]`:
 // a tracker's stream (docs/live.md) drives the face in real time through the one frame loop
 // (ScenePlayer), mapped as `drive` maps a take (io/live_take.h). The frames received are written as
 // the face plays them to DIR/live.csv (a Live Link Face CSV) and DIR/replay.json (the scene `run`
@@ -50,6 +50,7 @@ struct LiveArgs {
   std::string map;
   std::string outDir;
   std::vector<std::string> formats = {"glb"};
+  double glbToleranceMm = kDefaultGlbToleranceMm;
   double duration = 10.0;
   double fps = 60.0;
   double calibrate = 0.0;
@@ -111,7 +112,8 @@ int runLive(const LiveArgs& a) {
   const auto model = buildSceneFace(scene, cache.get());
   const fs::path out(a.outDir);
   const int frames = ScenePlayer::frameCount(scene.duration, scene.fps);
-  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames, scene.head.units);
+  AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps, frames, scene.head.units,
+                             glbOptionsForTolerance(a.glbToleranceMm));
   LiveTakeRecorder recorder((out / "live.csv").string(), protocol == LiveProtocol::LiveLink, scene.fps);
   const SceneDesc replay = liveReplayScene(scene, "live.csv", scene.fps, filter);
   writeFileAtomically((out / "replay.json").string(), sceneToJson(replay), "cannot write the replay scene");
@@ -230,6 +232,7 @@ static CommandRegistrar reg("live", [](CLI::App& app) -> std::function<int()> {
   sub->add_option("--format", a->formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')
       ->capture_default_str();
+  addGlbToleranceOption(*sub, a->glbToleranceMm);
   sub->add_option("--duration", a->duration, "seconds to run")->check(numberAbove(0))->capture_default_str();
   sub->add_option("--fps", a->fps, "output frames per second")->check(numberAbove(0))->capture_default_str();
   sub->add_option("--calibrate", a->calibrate, "seconds of the performer's resting face to subtract (default 0: none)")

@@ -28,6 +28,7 @@ const CommandRegistrar runRegistrar("run", [](CLI::App& app) {
   sub->add_option("--format", opt->formats, "Animation exports, comma-separated: glb, pc2, obj")
       ->delimiter(',')
       ->capture_default_str();
+  addGlbToleranceOption(*sub, opt->glbToleranceMm);
   sub->add_flag("--render", opt->render, "Write PNG frames (DIR/png/) and a contact sheet");
   sub->add_option("--render-every", opt->renderEvery, "Render every N-th frame")->check(wholeAtLeast(1))->capture_default_str();
   sub->add_option("--size", opt->size, "Picture size, pixels")->check(wholeIn(64, 4096))->capture_default_str();

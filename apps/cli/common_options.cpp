@@ -82,4 +82,12 @@ void addJsonFlag(CLI::App& sub, bool& json) {
   sub.add_flag("--json", json, "Print the result as JSON instead of text (its keys: docs/cli.md)");
 }
 
+void addGlbToleranceOption(CLI::App& sub, double& toleranceMm) {
+  sub.add_option("--glb-tolerance", toleranceMm,
+                 "the GLB's largest vertex error in any frame, mm: fewer morph targets (a smaller file) for a larger "
+                 "one (docs/exports.md)")
+      ->check(numberAbove(0))
+      ->capture_default_str();
+}
+
 }  // namespace myo::cli

@@ -68,4 +68,7 @@ void addThreadsOption(CLI::App& sub, int& threads, const std::string& help);
 // --json.
 void addJsonFlag(CLI::App& sub, bool& json);
 
+// --glb-tolerance MM: the animation GLB's largest vertex error in any frame (> 0; default 0.05 mm).
+void addGlbToleranceOption(CLI::App& sub, double& toleranceMm);
+
 }  // namespace myo::cli

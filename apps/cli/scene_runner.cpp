@@ -49,8 +49,8 @@ void warnIfGlbInexact(const GlbReport& report) {
   if (!report.withinTolerance)
     fmt::print(stderr,
                "myoshell: warning: the GLB's {} morph targets (the cap) leave a frame {:.3f} mm from the simulation, "
-               "more than the GLB's tolerance; the PC2 and OBJ frames are exact\n",
-               report.targets, 10.0 * report.maxErrorCm);
+               "more than the GLB's tolerance ({:g} mm); the PC2 and OBJ frames are exact\n",
+               report.targets, 10.0 * report.maxErrorCm, report.toleranceMm);
 }
 
 int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
@@ -77,7 +77,8 @@ int runScene(const SceneDesc& sceneIn, const RunOptions& opt) {
                "its eye corners: no lids, so nothing follows the gaze\n");
   // Folders only once the scene has built: a bad scene leaves nothing behind.
   AnimationExporter exporter(out, formats, scene.name, model->head().mesh, scene.fps,
-                             ScenePlayer::frameCount(scene.duration, scene.fps), scene.head.units);
+                             ScenePlayer::frameCount(scene.duration, scene.fps), scene.head.units,
+                             glbOptionsForTolerance(opt.glbToleranceMm));
   // What the last run here wrote: whatever of it this run does not rewrite goes at the end.
   const std::vector<std::string> previous = readOutputManifest(out);
   std::vector<std::string> written;  // relative to out

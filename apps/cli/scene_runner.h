@@ -22,6 +22,8 @@ struct RunOptions {
   // Animation exports, any subset of "obj" (DIR/obj/<name>_NNNN.obj), "glb" (DIR/<name>.glb) and
   // "pc2" (DIR/<name>.pc2); see io/animation_export.h. An unknown name is an InputError.
   std::vector<std::string> formats = {"obj"};
+  // --glb-tolerance: the GLB's largest vertex error in any frame, mm (io/animation_export.h GlbOptions).
+  double glbToleranceMm = kDefaultGlbToleranceMm;
   // Pictures: every `renderEvery`-th frame to DIR/png/, and a contact sheet of a few frames.
   bool render = false;
   int renderEvery = 1;
@@ -50,12 +52,14 @@ struct RunOptions {
 // Simulates `scene` and writes its outputs under options.outDir; returns the exit code.
 int runScene(const SceneDesc& scene, const RunOptions& options);
 
-// The animation GLB's report for --json: {"targets", "max_error_mm", "within_tolerance", "fps",
-// "frames", "vertices"}; and, when the cap left frames beyond the tolerance, a warning on stderr.
+// The animation GLB's report for --json: {"targets", "tolerance_mm", "max_error_mm",
+// "within_tolerance", "fps", "frames", "vertices"}; and, when the cap left frames beyond the
+// tolerance, a warning on stderr.
 template <typename Json = nlohmann::json>
 Json glbJson(const GlbReport& report) {
   Json j;
   j["targets"] = report.targets;
+  j["tolerance_mm"] = report.toleranceMm;
   j["max_error_mm"] = 10.0 * report.maxErrorCm;
   j["within_tolerance"] = report.withinTolerance;
   j["fps"] = report.fps;

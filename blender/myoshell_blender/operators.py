@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
-from . import head_mesh, jobs, module
+from . import head_mesh, jobs, module, muscles
 
 INPUTS = [
     ('AUTO', "From the file", "OpenFace CSV, Live Link Face CSV or MediaPipe JSON Lines, told by the file's header"),
@@ -39,9 +39,10 @@ def cache_folder(context):
 
 
 class HeadInput:
-    """The selected mesh written for the module: a temporary OBJ in cm and its landmark file."""
+    """The selected mesh written for the module: a temporary OBJ in cm and its landmark file; or,
+    when the mesh is the built-in head as the module has it, that head itself (builtin)."""
 
-    def __init__(self, context):
+    def __init__(self, context, m):
         obj = context.active_object
         if obj is None or obj.type != 'MESH':
             raise head_mesh.HeadError("select a mesh object as the head")
@@ -50,6 +51,16 @@ class HeadInput:
         self.folder = tempfile.TemporaryDirectory(prefix="myoshell_blender_")
         self.obj_path = os.path.join(self.folder.name, re.sub(r"[^A-Za-z0-9_.-]", "_", obj.name) + ".obj")
         self.placement, self.rest_local = head_mesh.write_obj(self.obj_path, obj, context.scene)
+        self.builtin = head_mesh.is_builtin_head(m, obj, self.placement, self.rest_local, self.landmarks)
+
+    def module_head(self, m, cache):
+        """The keywords naming this head to the module (head, units, landmarks). The built-in head,
+        unedited, is given as the module's own ("default"): its doubles, not their float32 copies in
+        Blender, whose rounding the settle answers by up to 2e-6 m."""
+        if self.builtin:
+            return {"head": "default"}
+        return {"head": self.obj_path, "units": "cm",
+                "landmarks": self.landmarks or head_mesh.automatic_landmarks(m, self.obj_path, cache)}
 
     def close(self):
         self.folder.cleanup()
@@ -95,10 +106,9 @@ class MYOSHELL_OT_make_shape_keys(jobs.ModuleJobOperator, bpy.types.Operator):
 
     def prepare(self, context):
         m = myoshell(context)
-        self.head = HeadInput(context)
+        self.head = HeadInput(context, m)
         head, cache = self.head, cache_folder(context)
-        return lambda: m.rig(head=head.obj_path, units="cm", cache=cache,
-                             landmarks=head.landmarks or head_mesh.automatic_landmarks(m, head.obj_path, cache))
+        return lambda: m.rig(cache=cache, **head.module_head(m, cache))
 
     def finish(self, context, result):
         head = self.head
@@ -124,6 +134,46 @@ class MYOSHELL_OT_make_shape_keys(jobs.ModuleJobOperator, bpy.types.Operator):
         made = result.get("shapes_made", len(names))
         return "%d ARKit shape keys on %s (%d moved by the physics; settled in %.1f s)" % (
             len(names), obj.name, made, result.get("settle_seconds", 0.0))
+
+
+class MYOSHELL_OT_show_muscles(bpy.types.Operator):
+    """Show or hide the muscles on the selected head: the library's muscles as the simulator places
+    them, an overlay parented to the head"""
+    bl_idname = "myoshell.show_muscles"
+    bl_label = "Show Muscles"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    action: EnumProperty(name="Action", default='TOGGLE', items=[
+        ('TOGGLE', "Toggle", "Show the muscles, or hide them when shown"),
+        ('SHOW', "Show", "Show the muscles (placed again when shown)"),
+        ('HIDE', "Hide", "Remove the overlay")])
+
+    def execute(self, context):
+        try:
+            obj = muscles.head_of(context.active_object)
+            if obj is None or obj.type != 'MESH':
+                raise head_mesh.HeadError("select a mesh object as the head")
+            shown = muscles.overlay_of(obj)
+            if shown is not None:
+                muscles.remove(shown)
+            if self.action == 'HIDE' or (self.action == 'TOGGLE' and shown is not None):
+                if "myoshell_muscles" in obj:
+                    del obj["myoshell_muscles"]
+                self.report({'INFO'}, "muscles of %s hidden" % obj.name)
+                return {'FINISHED'}
+            m = myoshell(context)
+            context.view_layer.objects.active = obj
+            head = HeadInput(context, m)
+            try:
+                shells = m.muscle_meshes(m.load_head(**head.module_head(m, cache_folder(context))))
+                collection = muscles.add(context, obj, shells, head.placement)
+            finally:
+                head.close()
+        except Exception as e:
+            self.report({'ERROR'}, jobs.message(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, "%d muscles on %s (collection %s)" % (len(shells), obj.name, collection.name))
+        return {'FINISHED'}
 
 
 def frame_rate(fps):
@@ -164,11 +214,10 @@ class MYOSHELL_OT_import_performance(jobs.ModuleJobOperator, bpy.types.Operator)
         if not os.path.isfile(path):
             raise head_mesh.HeadError("performance %s: no such file" % path)
         m = myoshell(context)
-        self.head = HeadInput(context)
+        self.head = HeadInput(context, m)
         head, cache = self.head, cache_folder(context)
         kind = None if self.input == 'AUTO' else self.input
-        return lambda: m.drive(path, head=head.obj_path, units="cm", input=kind, cache=cache,
-                               landmarks=head.landmarks or head_mesh.automatic_landmarks(m, head.obj_path, cache))
+        return lambda: m.drive(path, input=kind, cache=cache, **head.module_head(m, cache))
 
     def finish(self, context, result):
         try:
@@ -223,4 +272,4 @@ class MYOSHELL_OT_import_performance(jobs.ModuleJobOperator, bpy.types.Operator)
             name, count, fps, count / fps, obj.name, count - 1)
 
 
-CLASSES = (MYOSHELL_OT_add_head, MYOSHELL_OT_make_shape_keys, MYOSHELL_OT_import_performance)
+CLASSES = (MYOSHELL_OT_add_head, MYOSHELL_OT_make_shape_keys, MYOSHELL_OT_import_performance, MYOSHELL_OT_show_muscles)

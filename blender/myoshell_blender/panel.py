@@ -76,8 +76,11 @@ class VIEW3D_PT_myoshell(bpy.types.Panel):
 
         box = layout.box()
         box.label(text="Muscles", icon='HIDE_OFF')
-        box.label(text="No overlay yet: the module")
-        box.label(text="gives no muscle meshes")
+        from . import muscles
+        head = muscles.head_of(obj)
+        shown = head is not None and muscles.overlay_of(head) is not None
+        box.operator("myoshell.show_muscles", text="Hide Muscles" if shown else "Show Muscles",
+                     icon='HIDE_ON' if shown else 'HIDE_OFF')
 
         if module.error():
             layout.label(text="Module not loaded (see the preferences)", icon='ERROR')

@@ -51,7 +51,8 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
                const py::object& head, const py::object& landmarks, const py::object& units, const std::string& library,
                const py::object& map, const py::object& input, const py::object& auScale, const py::object& face,
                double minConfidence, const py::object& inputFps, const py::object& filter, const py::object& minCutoff,
-               const py::object& beta, double start, const py::object& end, bool headMotion, const py::object& cacheDir) {
+               const py::object& beta, double start, const py::object& end, bool headMotion, const py::object& cacheDir,
+               double glbToleranceMm) {
   PerformanceSceneDef def;
   def.performance = text(performance);
   def.head = head.is_none() ? "default" : text(head);
@@ -82,6 +83,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   if (!out.is_none() && fs::exists(outDir) && !fs::is_directory(outDir))
     throw InputError("output path exists and is not a folder", outDir.string());
   const ExportFormats formats = parseExportFormats(formatNames);
+  const GlbOptions glbOptions = glbOptionsForTolerance(glbToleranceMm, "glb_tolerance");
   std::unique_ptr<BasisCache> cache;
   if (!cacheDir.is_none()) cache = std::make_unique<FileBasisCache>(text(cacheDir));
   std::shared_ptr<const FaceSystem> model;
@@ -95,7 +97,7 @@ py::dict drive(const py::object& performance, const py::object& out, const std::
   std::optional<AnimationExporter> exporter;
   ScenePlayer player(scene, model);
   const int frameCount = player.frameCount();
-  if (!out.is_none()) exporter.emplace(outDir, formats, scene.name, model->head().mesh, scene.fps, frameCount, scene.head.units);
+  if (!out.is_none()) exporter.emplace(outDir, formats, scene.name, model->head().mesh, scene.fps, frameCount, scene.head.units, glbOptions);
   const Eigen::Index n = model->head().mesh.vertexCount();
   py::array_t<double> frames({static_cast<py::ssize_t>(frameCount), static_cast<py::ssize_t>(n), py::ssize_t{3}});
   py::array_t<double> times(frameCount);
@@ -167,7 +169,7 @@ void bindDrive(py::module_& m) {
         py::arg("face") = py::none(), py::arg("min_confidence") = 0.7, py::arg("input_fps") = py::none(),
         py::arg("filter") = true, py::arg("min_cutoff") = py::none(), py::arg("beta") = py::none(),
         py::arg("start") = 0.0, py::arg("end") = py::none(), py::arg("head_motion") = false,
-        py::arg("cache") = py::none(), R"doc(
+        py::arg("cache") = py::none(), py::arg("glb_tolerance") = kDefaultGlbToleranceMm, R"doc(
 Plays a recorded performance (OpenFace action units, Live Link Face or MediaPipe blendshape weights;
 docs/performance_input.md) on a head, as `myoshell drive` plays it: the frames come at the
 performance's rate over its duration, simulated by the frame loop every app uses.
@@ -181,11 +183,12 @@ map: ARKit input's retargeting map (default the shipped one); input: 'openface',
 [0, 1], input_fps (> 0, Hz): as drive's options; filter: the One-Euro filter, True/False (or
 'on'/'off'), min_cutoff (Hz) and beta its settings; start, end: the window played, s after the
 first frame; head_motion: turn the frames with the performance's head rotation; cache: a basis
-cache folder or None. The GIL is released while it plays (Ctrl-C is seen between frames).
+cache folder or None; glb_tolerance: the GLB's largest vertex error in any frame, mm (> 0; default
+0.05, as --glb-tolerance). The GIL is released while it plays (Ctrl-C is seen between frames).
 Returns a dict: frames float64 (F, n, 3) cm (frame k at times[k] = k / fps s), times (F,), fps,
 name, rest (n, 3), triangles int32 (m, 3), muscle_names, steps, written (files relative to out),
 performance (file, input, au_scale, frames, fps, duration, dropped_frames, warnings, unmapped; each
-warning is also a UserWarning), and with a GLB written glb (targets, max_error_mm, within_tolerance,
+warning is also a UserWarning), and with a GLB written glb (targets, tolerance_mm, max_error_mm, within_tolerance,
 fps, frames, vertices; docs/exports.md). The OBJ frames and the PC2 are in the head's units, the GLB
 in metres; frames, rest and times stay in cm. InputError with drive's messages; SimulationError; IoError.)doc");
 }

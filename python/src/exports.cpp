@@ -49,6 +49,7 @@ AnimationFrames animationOf(const py::handle& head, const py::handle& frames, do
 py::dict glbDict(const GlbReport& report) {
   py::dict d;
   d["targets"] = report.targets;
+  d["tolerance_mm"] = report.toleranceMm;
   d["max_error_mm"] = 10.0 * report.maxErrorCm;
   d["within_tolerance"] = report.withinTolerance;
   d["fps"] = report.fps;
@@ -59,23 +60,24 @@ py::dict glbDict(const GlbReport& report) {
 
 void bindExports(py::module_& m) {
   m.def("write_glb", [](const fs::path& path, const py::object& head, const py::object& frames, double fps,
-                        const std::string& name) {
+                        const std::string& name, double toleranceMm) {
+          const GlbOptions options = glbOptionsForTolerance(toleranceMm, "glb_tolerance");
           checkFilePath(path, "GLB file");
           const AnimationFrames a = animationOf(head, frames, fps, name);
           GlbReport report;
           {
             py::gil_scoped_release unlocked;
-            report = writeGlb(path, a);
+            report = writeGlb(path, a, options);
           }
           return glbDict(report);
         },
         py::arg("path"), py::arg("head"), py::arg("frames"), py::kw_only(), py::arg("fps") = 30.0,
-        py::arg("name") = "animation", R"doc(
+        py::arg("name") = "animation", py::arg("glb_tolerance") = kDefaultGlbToleranceMm, R"doc(
 Writes frames (float (F, n, 3) cm, n the head's vertex count) as a glTF binary in metres: every frame,
-exact to 0.05 mm, as the head's mesh (a Head or a Face; UV seams split) plus a few morph targets with
+exact to glb_tolerance mm (> 0; default 0.05, as the command line's --glb-tolerance), as the head's mesh (a Head or a Face; UV seams split) plus a few morph targets with
 a weight key at every frame, k / fps s (docs/exports.md "The animation GLB"). name: the mesh's and
 animation's (drive names them after the performance file's stem). With drive's frames, fps and name
-the file is drive's. Returns {targets, max_error_mm, within_tolerance, fps, frames, vertices}.)doc");
+the file is drive's. Returns {targets, tolerance_mm, max_error_mm, within_tolerance, fps, frames, vertices}.)doc");
 
   m.def("write_pc2", [](const fs::path& path, const py::object& frames) {
           checkFilePath(path, "PC2 file");

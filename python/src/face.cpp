@@ -19,6 +19,10 @@
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/muscle_library_file.h"
 #include "myoshell/io/scene_face.h"
+#include "myoshell/head/head_checks.h"
+#include "myoshell/mesh/closest_point.h"
+#include "myoshell/mesh/geometry.h"
+#include "myoshell/muscles/muscle.h"
 
 namespace myo::python {
 namespace {
@@ -197,9 +201,74 @@ py::dict fit(const FaceHandle& f, const py::object& positions, const py::object&
   return out;
 }
 
+// Positions in cm to the unit asked: 'cm', 'm', 'mm', or 'head' (the unit the head's OBJ is in).
+double perCentimetre(const std::string& units, const HeadHandle& head) {
+  if (units == "head") return 1.0 / centimetresPer(head.unit);
+  if (units != "cm" && units != "m" && units != "mm")
+    throw InputError("units: '" + units + "' is not one of cm, m, mm, head");
+  return 1.0 / centimetresPer(parseLengthUnit(units));
+}
+
+// One muscle's rest shell for an overlay: its name, side, kind, vertices and triangles, and the
+// centres of its origin and insertion rings, in `scale` × cm (the head's frame).
+py::dict muscleDict(const Muscle& mu, double scale) {
+  py::dict d;
+  d["name"] = mu.def.name;
+  d["side"] = mu.def.side;
+  d["kind"] = toString(mu.def.kind);
+  d["vertices"] = toNumpy(MatX3(mu.mesh.V * scale));
+  d["triangles"] = toNumpy(mu.mesh.F);
+  d["origin"] = std::vector<double>{scale * mu.originPoint.x(), scale * mu.originPoint.y(), scale * mu.originPoint.z()};
+  d["insertion"] = std::vector<double>{scale * mu.insertionPoint.x(), scale * mu.insertionPoint.y(),
+                                       scale * mu.insertionPoint.z()};
+  d["rest_length"] = scale * mu.restLength;
+  return d;
+}
+
+// The library's muscles placed on a head as the anatomical face places them (AnatomicalSkin:
+// coupleMuscle → buildMuscle, the right side mirrored, one closest-point locator over the skin), without
+// building the face (no basis): the same shells Face.muscle_meshes() gives.
+py::list placeMuscles(std::shared_ptr<const HeadHandle> head, const std::string& library,
+                      const std::vector<std::string>& use, const std::string& units) {
+  if (!head) {
+    auto builtIn = std::make_shared<HeadHandle>();
+    builtIn->head = loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical));
+    head = builtIn;
+  }
+  const double scale = perCentimetre(units, *head);
+  const std::vector<MuscleDef> defs = libraryMuscles(library, use);
+  std::vector<Muscle> placed;
+  {
+    py::gil_scoped_release unlocked;
+    const MatX3& V = head->head.mesh.V;
+    const MatX3i& F = head->head.mesh.F;
+    const SurfaceLocator skin(V, F, vertexNormals(V, F));
+    for (const MuscleDef& def : defs) placed.push_back(buildMuscle(def, head->head, TubeOrientation::MirrorRightSide, &skin));
+  }
+  py::list out;
+  for (const Muscle& mu : placed) out.append(muscleDict(mu, scale));
+  return out;
+}
+
 }  // namespace
 
 void bindFace(py::module_& m) {
+  m.def("muscle_meshes",
+        [](const std::shared_ptr<HeadHandle>& head, const std::string& library,
+           const std::optional<std::vector<std::string>>& muscles, const std::string& units) {
+          return placeMuscles(head, library, muscles.value_or(std::vector<std::string>{}), units);
+        },
+        py::arg("head") = py::none(), py::kw_only(), py::arg("library") = defaultMuscleLibrary(),
+        py::arg("muscles") = py::none(), py::arg("units") = "cm", R"doc(
+The muscles of a library placed on a head (a Head from load_head(); default the built-in head), as
+the anatomical face places them, without building the face (no basis: a fraction of a second):
+the same shells Face(head, library).muscle_meshes() gives. library, muscles: as Face().
+units: 'cm' (default, as every array of the module), 'm', 'mm', or 'head' (the head's OBJ's unit).
+Returns a list, in the model's order, of dicts: name, side, kind ('linear' or 'ring'), vertices
+(float64 (k, 3): the muscle's closed shell at rest, in the head's frame: +y up, +z out of the face),
+triangles (int32 (t, 3)), origin and insertion (the centres of its end rings), rest_length.
+InputError for an unknown library or muscle, or a head whose landmarks do not fit the library.)doc");
+
   py::class_<FaceHandle, std::shared_ptr<FaceHandle>>(m, "Face", R"doc(
 The anatomical face (docs/anatomical_model.md) on a head: the skin held by the skull, the muscles of
 a library, gravity; the face `myoshell pose` and `myoshell fit` build.)doc")
@@ -235,6 +304,16 @@ gravity: False builds the face without any gravity load.)doc")
       .def_property_readonly("build_seconds", [](const FaceHandle& f) { return f.face->buildSeconds(); })
       .def("rest_positions", [](const FaceHandle& f) { return toNumpy(f.face->head().mesh.V); },
            "The rest positions: float64 array (n, 3), cm.")
+      .def("muscle_meshes", [](const FaceHandle& f, const std::string& units) {
+            const double scale = perCentimetre(units, *f.head);
+            py::list out;
+            for (const CoupledMuscle& m : f.face->skin().muscles()) out.append(muscleDict(m.muscle, scale));
+            return out;
+          }, py::kw_only(), py::arg("units") = "cm", R"doc(
+The face's muscles at rest, as the simulator placed them on its head (the viewer draws these
+shells): a list in muscle_names' order of dicts name, side, kind, vertices (float64 (k, 3)),
+triangles (int32 (t, 3)), origin, insertion, rest_length; units 'cm' (default), 'm', 'mm' or 'head'
+(the head's OBJ's unit). As myoshell.muscle_meshes(head, library).)doc")
       .def("triangles", [](const FaceHandle& f) { return toNumpy(f.face->head().mesh.F); },
            "The triangles: int32 array (m, 3) of vertex indices.")
       .def("pose", &pose, py::arg("activations") = py::none(), py::arg("gravity") = py::none(),

@@ -27,8 +27,8 @@ ExportFormats parseExportFormats(const std::vector<std::string>& names) {
 }
 
 AnimationExporter::AnimationExporter(fs::path out, ExportFormats formats, std::string name, const TriMesh& mesh,
-                                     double fps, int frames, LengthUnit units)
-    : out_(std::move(out)), formats_(formats), mesh_(mesh), perCm_(1.0 / centimetresPer(units)) {
+                                     double fps, int frames, LengthUnit units, GlbOptions glb)
+    : out_(std::move(out)), formats_(formats), mesh_(mesh), perCm_(1.0 / centimetresPer(units)), glbOptions_(glb) {
   std::error_code ec;
   fs::create_directories(formats_.obj ? out_ / "obj" : out_, ec);
   if (ec && isRunTimeIoFailure(ec.value())) throw IoError("cannot create the output folder (" + ec.message() + ")", out_.string());
@@ -62,7 +62,7 @@ std::string AnimationExporter::addFrame(int f, const MatX3& positions) {
 std::vector<std::string> AnimationExporter::finish() {
   std::vector<std::string> written;
   if (formats_.glb) {
-    glb_ = writeGlb(out_ / (animation_.name + ".glb"), animation_);
+    glb_ = writeGlb(out_ / (animation_.name + ".glb"), animation_, glbOptions_);
     written.push_back(animation_.name + ".glb");
   }
   if (formats_.pc2) {

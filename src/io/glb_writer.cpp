@@ -218,7 +218,17 @@ void writeModel(const std::filesystem::path& path, tinygltf::Model& model) {
 
 }  // namespace
 
+GlbOptions glbOptionsForTolerance(double toleranceMm, const std::string& what) {
+  if (!(std::isfinite(toleranceMm) && toleranceMm > 0.0))
+    throw InputError(fmt::format("{}: must be a number > 0 (mm), got {}", what, toleranceMm));
+  GlbOptions options;
+  options.toleranceMm = toleranceMm;
+  return options;
+}
+
 GlbReport writeGlb(const std::filesystem::path& path, const AnimationFrames& frames, const GlbOptions& options) {
+  MYO_CHECK(std::isfinite(options.toleranceMm) && options.toleranceMm > 0.0,
+            "the GLB's tolerance must be finite and > 0 mm, got " << options.toleranceMm);
   detail::checkFrames(frames);
   MYO_CHECK(frames.fps > 0.0 && std::isfinite(frames.fps), "fps must be finite and > 0, got " << frames.fps);
   checkMesh(frames.rest, frames.triangles, frames.uv, frames.cornerUV);
@@ -226,7 +236,7 @@ GlbReport writeGlb(const std::filesystem::path& path, const AnimationFrames& fra
 
   // Every frame, exact to the tolerance, as base + Σ s_k T_k, in metres (glTF's unit).
   const MorphAnimation morph =
-      compressToMorphTargets(frames.rest, frames.positions, options.toleranceCm, options.maxTargets, 0.01);
+      compressToMorphTargets(frames.rest, frames.positions, options.toleranceMm / 10.0, options.maxTargets, 0.01);
   const auto T = static_cast<int>(morph.targets.size());
   std::vector<std::string> names;
   for (int k = 0; k < T; ++k) names.push_back(fmt::format("mode_{:02d}", k));
@@ -273,6 +283,7 @@ GlbReport writeGlb(const std::filesystem::path& path, const AnimationFrames& fra
 
   writeModel(path, model);
   report.targets = T;
+  report.toleranceMm = options.toleranceMm;
   report.maxErrorCm = morph.maxError;
   report.withinTolerance = morph.withinTolerance;
   report.frames = F;

@@ -8,68 +8,59 @@ zip unpacked into a temporary folder), makes the 52 ARKit shape keys on the buil
 compares them with the module's rig, imports a Live Link take and compares Blender's evaluated
 vertices with the module's drive frames.
 
-Units: the head's OBJ is in cm and is imported with global_scale 0.01 and Blender's default axes:
-Blender 3.4's importer keeps the file's cm in the mesh and puts the scale and the turn to z up on the
-object, so in the world the head is in metres, (x, y, z) = 0.01 · (x, −z, y) of the module's cm. The
-comparisons are of world positions (the object's matrix applied to the mesh's or shape key's
-coordinates) in metres.
+The muscles overlay (show_muscles) is checked here too. test_addon_ict.py makes the same checks on
+ICT's head (ctest blender.ict). Units: common.py.
 """
 import os
 import pathlib
 import sys
 import tempfile
-import zipfile
 
-import addon_utils
 import bpy
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-ARGS = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-ZIP = pathlib.Path(ARGS[0] if ARGS else os.environ.get("MYO_BLENDER_ADDON_ZIP", ROOT / "build" / "myoshell-blender.zip"))
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import (FRAME_TOLERANCE_M, ROOT, SHAPE_TOLERANCE_M, check, coordinates,  # noqa: E402
+                    evaluated_coordinates, import_obj, install_addon, to_blender_m)
+
 TAKE = ROOT / "tests" / "anim" / "performances" / "livelink_take.csv"
 LANDMARKS = ROOT / "assets" / "default_head" / "landmarks_multipie68.json"
-SHAPE_TOLERANCE_M = 1e-6
-FRAME_TOLERANCE_M = 1e-4  # 0.1 mm
+# A muscle lies under the skin: every node of its shell within this of the skin's nearest vertex
+# (the deepest, the buccinators, 12.2 mm; tests/python/test_muscles.py asks the same).
+MUSCLE_SKIN_DISTANCE_M = 0.015
 
 
-def check(condition, what):
-    if not condition:
-        raise AssertionError(what)
-    print("ok:", what)
-
-
-def to_blender_m(cm):
-    """The module's cm to Blender's metres as the OBJ importer (global_scale 0.01) places them."""
-    cm = np.asarray(cm, dtype=np.float64)
-    return np.stack([cm[..., 0], -cm[..., 2], cm[..., 1]], axis=-1) * 0.01
-
-
-def coordinates(collection, n, obj):
-    """World positions in metres of a mesh's vertices or a shape key's points."""
-    co = np.empty(n * 3, dtype=np.float32)
-    collection.foreach_get("co", co)
-    world = np.array(obj.matrix_world, dtype=np.float64)
-    return co.reshape(n, 3).astype(np.float64) @ world[:3, :3].T + world[:3, 3]
-
-
-def install_addon(tmp):
-    if not ZIP.is_file():
-        raise AssertionError("%s is missing: build it with `make blender-addon`" % ZIP)
-    if os.environ.get("BLENDER_USER_SCRIPTS"):
-        bpy.ops.preferences.addon_install(filepath=str(ZIP), overwrite=True)
-        print("installed from", ZIP, "into", os.environ["BLENDER_USER_SCRIPTS"])
-    else:  # no user folder of ours to install into: the zip's folder, unpacked
-        with zipfile.ZipFile(ZIP) as z:
-            z.extractall(tmp)
-        sys.path.insert(0, tmp)
-        print("unpacked", ZIP, "into", tmp)
-    addon_utils.modules_refresh()
-    bpy.ops.preferences.addon_enable(module="myoshell_blender")
-    check("myoshell_blender" in bpy.context.preferences.addons, "the add-on is enabled")
-    check(hasattr(bpy.ops.myoshell, "make_shape_keys") and hasattr(bpy.ops.myoshell, "import_performance"),
-          "its operators are registered")
-    check(np.__dict__.get("bool") is bool, "numpy's np.bool alias is back for Blender 3.4's glTF importer")
+def check_muscles(myoshell, head, obj, n):
+    """(4) The muscles overlay: the library's muscles as the module places them, parented to the
+    head, under its skin; the operator toggles it."""
+    import mathutils
+    check(bpy.ops.myoshell.show_muscles() == {'FINISHED'}, "show_muscles finished")
+    collection = bpy.data.collections.get("Myoshell muscles (%s)" % obj.name)
+    check(collection is not None, "the overlay is a collection of its own")
+    names = myoshell.muscle_names("face")
+    shown = {o["myoshell_muscle"]: o for o in collection.objects}
+    check(sorted(shown) == sorted(names), "one object per muscle of the library: %d" % len(names))
+    check(all(o.parent is obj for o in shown.values()), "every muscle is parented to the head")
+    reference = {s["name"]: s for s in myoshell.muscle_meshes(head)}
+    skin = mathutils.kdtree.KDTree(n)
+    for i, p in enumerate(to_blender_m(head.rest_positions())):
+        skin.insert(p, i)
+    skin.balance()
+    worst_place, farthest = 0.0, 0.0
+    for name, o in shown.items():
+        m = len(o.data.vertices)
+        got = coordinates(o.data.vertices, m, o)
+        worst_place = max(worst_place, np.abs(got - to_blender_m(reference[name]["vertices"])).max())
+        farthest = max(farthest, max(skin.find(p)[2] for p in got))
+    check(worst_place < 1e-6, "the muscles are where the module places them (largest %.1e m)" % worst_place)
+    check(farthest < MUSCLE_SKIN_DISTANCE_M, "every muscle node lies within %.0f mm of the skin (farthest %.1f mm)"
+          % (MUSCLE_SKIN_DISTANCE_M * 1e3, farthest * 1e3))
+    overlay = collection.name
+    bpy.context.view_layer.objects.active = next(iter(shown.values()))  # a muscle picked: its head's overlay
+    check(bpy.ops.myoshell.show_muscles() == {'FINISHED'} and bpy.data.collections.get(overlay) is None
+          and not any(o.get("myoshell_muscle") for o in bpy.data.objects), "show_muscles again hides them")
+    bpy.context.view_layer.objects.active = obj
 
 
 def main():
@@ -84,10 +75,7 @@ def main():
     head = myoshell.load_head()
     obj_path = os.path.join(tmp, "head.obj")
     head.write_obj(obj_path)
-    for o in list(bpy.data.objects):
-        bpy.data.objects.remove(o)
-    bpy.ops.wm.obj_import(filepath=obj_path, global_scale=0.01)
-    obj = bpy.context.view_layer.objects.active
+    obj = import_obj(obj_path)
     n = head.vertex_count
     check(obj is not None and obj.type == 'MESH' and len(obj.data.vertices) == n, "the head imported: %d vertices" % n)
     rest_m = to_blender_m(head.rest_positions())
@@ -133,15 +121,15 @@ def main():
     check(len(frames) >= 3, "the take has %d frames" % len(frames))
     for k in range(3):
         scene.frame_set(k)
-        evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
-        mesh = evaluated.to_mesh()
-        got = coordinates(mesh.vertices, n, obj)
-        evaluated.to_mesh_clear()
+        got = evaluated_coordinates(obj, n)
         expected = to_blender_m(frames[k][:n])
         err = np.abs(got - expected).max()
         away = np.abs(expected - rest_m).max()
         check(err < FRAME_TOLERANCE_M, "frame %d: Blender's vertices equal drive's within 0.1 mm (largest %.2e m; "
               "the frame is %.2f mm from rest)" % (k, err, away * 1e3))
+
+    # (4) The muscles overlay.
+    check_muscles(myoshell, head, obj, n)
     print("test_addon: all checks passed")
 
 

@@ -70,6 +70,35 @@ TEST_F(ExportCommand, WritesGlbPc2AndObjThatAgree) {
   EXPECT_EQ(stats["units"], "cm");
 }
 
+// --glb-tolerance trades the GLB's morph targets for its error: a loose bound keeps fewer targets, every
+// frame still within it, and stats.json says which bound was asked for.
+TEST_F(ExportCommand, GlbToleranceTradesTargetsForTheLargestError) {
+  auto glb = [&](const std::string& out, const std::string& tolerance) {
+    const auto r = test::runCli(run(out, "--format glb --glb-tolerance " + tolerance));
+    EXPECT_EQ(r.exitCode, 0) << r.merged;
+    std::ifstream statsFile(dir_ / out / "stats.json");
+    return nlohmann::json::parse(statsFile)["glb"];
+  };
+  const nlohmann::json tight = glb("tight", "0.0001"), loose = glb("loose", "10");
+  EXPECT_EQ(tight["tolerance_mm"].get<double>(), 0.0001);
+  EXPECT_EQ(loose["tolerance_mm"].get<double>(), 10.0);
+  EXPECT_LE(tight["max_error_mm"].get<double>(), 0.0001);
+  EXPECT_LE(loose["max_error_mm"].get<double>(), 10.0);
+  EXPECT_TRUE(tight["within_tolerance"].get<bool>() && loose["within_tolerance"].get<bool>());
+  EXPECT_LT(loose["targets"].get<int>(), tight["targets"].get<int>()) << tight.dump() << loose.dump();
+  EXPECT_GT(loose["max_error_mm"].get<double>(), tight["max_error_mm"].get<double>());
+}
+
+TEST_F(ExportCommand, ABadGlbToleranceExitsTwoNamingTheOption) {
+  for (const std::string bad : {"0", "-1", "nan", "fine"}) {
+    const auto r = test::runCli(run("out", "--format glb --glb-tolerance " + bad));
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.merged;
+    EXPECT_NE(r.merged.find("--glb-tolerance"), std::string::npos) << r.merged;
+    EXPECT_NE(r.merged.find("> 0"), std::string::npos) << r.merged;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << bad;
+  }
+}
+
 TEST_F(ExportCommand, OnlyTheRequestedFormatsAreWritten) {
   const auto r = test::runCli(run("out", "--format pc2"));
   ASSERT_EQ(r.exitCode, 0) << r.merged;

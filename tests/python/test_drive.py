@@ -71,6 +71,17 @@ def test_exports_of_python_frames_equal_drives(driven, tmp_path):
     assert report == python["glb"]
     assert report["frames"] == len(frames) and report["fps"] == python["fps"]
     assert 1 <= report["targets"] <= len(frames) and report["max_error_mm"] <= 0.05 and report["within_tolerance"]
+    assert report["tolerance_mm"] == 0.05
+    # glb_tolerance (--glb-tolerance): a looser bound, fewer targets, every frame still within it.
+    loose = myoshell.write_glb(tmp_path / "loose.glb", head, frames, fps=python["fps"], glb_tolerance=2.0)
+    assert loose["tolerance_mm"] == 2.0 and loose["max_error_mm"] <= 2.0 and loose["within_tolerance"]
+    assert loose["targets"] < report["targets"]
+    for bad in (0, -1, float("nan")):
+        with pytest.raises(myoshell.InputError, match="glb_tolerance: must be a number > 0 \\(mm\\), got"):
+            myoshell.write_glb(tmp_path / "bad.glb", head, frames, glb_tolerance=bad)
+        with pytest.raises(myoshell.InputError, match="glb_tolerance: must be a number > 0"):
+            myoshell.drive(folder / "take.csv", library="builtin", out=tmp_path / "bad", glb_tolerance=bad)
+    assert not (tmp_path / "bad.glb").exists() and not (tmp_path / "bad").exists()
     myoshell.write_pc2(tmp_path / "take.pc2", frames)
     assert (tmp_path / "take.pc2").read_bytes() == (folder / "cli" / "take.pc2").read_bytes()
     written = myoshell.write_obj_sequence(tmp_path / "seq", head, list(frames), name="take")

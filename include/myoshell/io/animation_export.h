@@ -43,14 +43,24 @@ struct AnimationFrames {
 };
 
 // How exact the GLB's frames are, and how many targets that takes (io/morph_compression.h).
+// The GLB's default tolerance, mm: half of issue 44's 0.1 mm, the other half left to the player's sums.
+inline constexpr double kDefaultGlbToleranceMm = 0.05;
+
 struct GlbOptions {
-  double toleranceCm = 0.005;  // largest vertex error allowed in any frame: 0.05 mm
-  int maxTargets = 256;        // the cap; reached, the GLB keeps this many and reports its error
+  // Largest vertex error allowed in any frame, mm (--glb-tolerance; in mm, the unit users give it,
+  // so that the report repeats it exactly).
+  double toleranceMm = kDefaultGlbToleranceMm;
+  int maxTargets = 256;  // the cap; reached, the GLB keeps this many and reports its error
 };
+
+// The options for a tolerance given in mm (`--glb-tolerance`, Python's glb_tolerance): InputError
+// "`what`: must be a number > 0 (mm), got X" unless finite and > 0.
+GlbOptions glbOptionsForTolerance(double toleranceMm, const std::string& what = "--glb-tolerance");
 
 // What writeGlb wrote.
 struct GlbReport {
   int targets = 0;              // morph targets k
+  double toleranceMm = 0.0;     // the tolerance asked for (GlbOptions::toleranceMm), mm
   double maxErrorCm = 0.0;      // largest vertex distance over all frames between the played GLB and the frames
   bool withinTolerance = true;  // false when the cap was reached before the tolerance
   int frames = 0;               // keys (one per frame)

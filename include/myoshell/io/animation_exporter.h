@@ -30,9 +30,9 @@ class AnimationExporter {
   // Makes the folder `out` (and out/obj for OBJ frames): InputError "cannot create the output folder
   // (reason)" naming it (IoError for the system's failures: no space, I/O error). `mesh` (the skin,
   // in cm) must outlive the exporter; `frames` is how many will come (memory reserved for them);
-  // `units` is the head's own unit, the OBJ's and PC2's.
+  // `units` is the head's own unit, the OBJ's and PC2's; `glb` how exact the GLB's frames are.
   AnimationExporter(std::filesystem::path out, ExportFormats formats, std::string name, const TriMesh& mesh,
-                    double fps, int frames, LengthUnit units = LengthUnit::cm);
+                    double fps, int frames, LengthUnit units = LengthUnit::cm, GlbOptions glb = {});
 
   // Frame f's skin positions (n×3, cm): its OBJ written now (writeObj, in the head's unit), kept
   // for the GLB and PC2. Returns the OBJ's name relative to out, or "" when no OBJ is written.
@@ -53,6 +53,7 @@ class AnimationExporter {
   const TriMesh& mesh_;
   AnimationFrames animation_;
   double perCm_ = 1.0;  // the head's unit per cm
+  GlbOptions glbOptions_;
   std::optional<GlbReport> glb_;
 };
 
