@@ -125,6 +125,29 @@ MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePo
   return slid;
 }
 
+// A muscle bound to the dermis along its belly (`thickens`: the frontalis) bunches the skin out of
+// the face as it shortens (docs/muscles.md, "The compressed forehead thickens"). The column from the
+// skin down to the muscle's deep face, D thick, is squeezed along the fibres by the muscle's strain
+// ε = σ and held across them by the sheet beside it (plane strain); keeping its volume it grows to
+// D/(1 − ε), so every free node rises by D ε/(1 − ε) along the skin's outward normal at its foot.
+// D at a node is the muscle's depth there (its anchors' depths, origin to insertion by t) plus half
+// its thickness, in cm. The pinned origin (toFree < 0) stays.
+MatX3 thickeningOverBelly(const Muscle& mu, double strain, const std::vector<SurfacePoint>& restFoot,
+                          const std::vector<int>& toFree, double scaleCm) {
+  const MuscleDef& def = mu.def;
+  const Vec3 axis = (mu.originPoint - mu.insertionPoint).normalized();
+  const double grow = strain / (1.0 - strain);
+  MatX3 rise = MatX3::Zero(mu.mesh.vertexCount(), 3);
+  for (Eigen::Index v = 0; v < rise.rows(); ++v) {
+    if (toFree[static_cast<size_t>(v)] < 0) continue;
+    const Vec3 p = mu.mesh.V.row(v);
+    const double t = std::clamp((p - mu.originPoint).dot(-axis) / mu.restLength, 0.0, 1.0);
+    const double column = ((1.0 - t) * def.origin.depth + t * def.insertion.depth + 0.5 * def.thickness) * scaleCm;
+    rise.row(v) = (grow * column * restFoot[static_cast<size_t>(v)].normal).transpose();
+  }
+  return rise;
+}
+
 // A linear muscle's shape at a = 1: the static response of the pinned muscle to its activation load
 // (unit forces along the contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's
 // static-shape variant), scaled so that the insertion ring moves shortening × length along the
@@ -132,7 +155,7 @@ MatX3 slideOverBed(const Muscle& mu, const MatX3& U, const std::vector<SurfacePo
 // (slideOverBed above), and the scale is found so that the slid insertion moves shortening × length
 // along the fibres' direction at the insertion.
 void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCouplingSettings& settings,
-                 const std::vector<SurfacePoint>& restFoot, const ClosestOnSkin& onSkin) {
+                 const std::vector<SurfacePoint>& restFoot, const ClosestOnSkin& onSkin, double scaleCm) {
   const Muscle& mu = cm.muscle;
   const MuscleDef& def = mu.def;
   const int nm = mu.mesh.vertexCount();
@@ -153,12 +176,10 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
     const int r = toFree[static_cast<size_t>(v)];
     if (r >= 0) response.row(v) = x.segment<3>(3 * r).transpose();
   }
-  const double target = settings.shortening * mu.restLength;
-  auto checkedScale = [&](double along) {
-    if (!(along > 0.0))
-      throw NumericalError("muscle '" + def.name + "': its activation load does not move the insertion towards the origin");
-    return target / along;
-  };
+  // A thickening muscle's rise (above) is added to the shape; the fibres' shortening is σ × length
+  // with it, so the contraction makes up what the rise carries along the fibres.
+  const MatX3 rise = def.thickens ? thickeningOverBelly(mu, settings.shortening, restFoot, toFree, scaleCm)
+                                  : MatX3::Zero(nm, 3);
   // The pinned tube shortens along its chord. On the bed the fibres follow the skin, so their
   // shortening is measured along their own direction at the insertion (the contraction direction of
   // the insertion ring's central nodes: the centre line's tangent there, which follows the skin);
@@ -171,6 +192,12 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
         fibre += mu.contractDirection.row(static_cast<Eigen::Index>(c)).transpose();
     if (fibre.norm() > 0.0) axis = fibre.normalized();
   }
+  const double target = settings.shortening * mu.restLength - insertionShortening(mu, rise, axis);
+  auto checkedScale = [&](double along) {
+    if (!(along > 0.0) || !(target > 0.0))
+      throw NumericalError("muscle '" + def.name + "': its activation load does not move the insertion towards the origin");
+    return target / along;
+  };
   double scale = checkedScale(insertionShortening(mu, response, axis));
   cm.fullShape = scale * response;
   if (settings.slideOverBed) {
@@ -181,6 +208,7 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
       scale *= checkedScale(along);
     }
   }
+  if (def.thickens) cm.fullShape += rise;
   {
     const VecX& mass = shell.lumpedMass();
     double mm2 = 0.0;
@@ -268,7 +296,7 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   }
 
   if (mu.def.isRing()) ringShape(cm, shell, head.frame(), foot);
-  else linearShape(cm, shell, settings, foot, onSkin);
+  else linearShape(cm, shell, settings, foot, onSkin, head.frame().scale);
 
   // Springs from every skin vertex over the muscle to the muscle's surface point below it.
   const SurfaceLocator muscleSurface(mm.V, mm.F, vertexNormals(mm.V, mm.F));

@@ -139,6 +139,8 @@ MuscleDef readMuscleDef(DocReader& r) {
   d.roiAlpha = r.number("roi_alpha", d.roiAlpha);
   if (r.has("roi_alpha")) r.requireAbove("roi_alpha", d.roiAlpha, 1.0);
   if (r.has("coupling")) d.coupling = readCoupling(r.child("coupling"), d.name);
+  d.thickens = r.boolean("thickens", d.thickens);
+  if (d.thickens && d.isRing()) r.fail("thickens", "is for linear muscles (a ring's bulge is its protrusion)");
   r.finish();
   d.validate();
   return d;

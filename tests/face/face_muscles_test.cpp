@@ -369,5 +369,30 @@ TEST_F(FaceMusclesDefaultHead, TheEyesOrbitalArcDrawsTheCheekUpAndTowardsTheNose
   EXPECT_LT(brow.norm(), 0.3 * cheek.norm());
 }
 
+// The medial frontalis lifts the brow's head and draws it less into the head (docs/muscles.md,
+// "The compressed forehead thickens"). Sliding up the forehead as it curves back, the skin of the
+// brow sank into the face (ICT's artist brow keeps its depth); the column of skin and muscle the
+// frontalis compresses thickens and bunches out. The brow's head (left_brow_inner) and the forehead
+// 0.1 face-frame units (about 9 mm) above it, moved along the face frame's y and along the skin's
+// rest outward normal there: brow 5.4 mm up, 1.2 mm in (2.5 mm in without the thickening); the
+// forehead 0.7 mm out (1.0 mm in without).
+TEST_F(FaceMusclesDefaultHead, TheMedialFrontalisLiftsTheBrowsHeadAndTheForeheadDoesNotSink) {
+  const MatX3 u = settle({{"frontalis_medial_left", 1.0}});
+  const Head& head = skin_->head();
+  const FaceFrame f = head.frame();
+  const MatX3 normals = vertexNormals(head.mesh.V, head.mesh.F);
+  const int brow = head.landmarks.vertex("left_brow_inner");
+  const int above = nearestVertex(head.mesh.V, Vec3(head.mesh.V.row(brow)) + f.scale * f.directionFromFrame(Vec3(0, 0.1, 0)));
+  auto up = [&](int v) { return f.directionToFrame(Vec3(u.row(v))).y(); };
+  auto out = [&](int v) { return Vec3(u.row(v)).dot(Vec3(normals.row(v))); };
+  RecordProperty("brow_head_up_mm", std::to_string(10 * up(brow)));
+  RecordProperty("brow_head_out_mm", std::to_string(10 * out(brow)));
+  RecordProperty("forehead_up_mm", std::to_string(10 * up(above)));
+  RecordProperty("forehead_out_mm", std::to_string(10 * out(above)));
+  EXPECT_GT(up(brow), 0.3);      // at least 3 mm up
+  EXPECT_GT(out(brow), -0.2);    // sinks by less than 2 mm
+  EXPECT_GT(out(above), 0.0);    // the forehead over the belly comes out
+}
+
 }  // namespace
 }  // namespace myo

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
@@ -76,10 +78,14 @@ TEST(MuscleBed, EveryNodeKeepsItsDepthAndTheInsertionStillShortensBySigma) {
   pinned.slideOverBed = false;
   for (const MuscleDef& d : faceMuscleDefs()) {
     if (d.isRing()) continue;
+    // A thickening muscle (the frontalis) rises by its column's growth on top of the slide (the
+    // next test): its depths are checked without it.
+    MuscleDef flat = d;
+    flat.thickens = false;
     const CoupledMuscle m = coupleMuscle(d, head, settings);
     const double sigmaL = settings.shortening * m.muscle.restLength;
     const double scale = head.frame().scale * std::min(d.origin.depth, d.insertion.depth);
-    const VecX change = depthChange(m, head);
+    const VecX change = depthChange(d.thickens ? coupleMuscle(flat, head, settings) : m, head);
     double worst = 0.0;
     int counted = 0;
     for (double c : change)
@@ -93,6 +99,44 @@ TEST(MuscleBed, EveryNodeKeepsItsDepthAndTheInsertionStillShortensBySigma) {
     EXPECT_NEAR(insertionShortening(m, true), sigmaL, 1e-6 * sigmaL) << d.name;
     EXPECT_NEAR(insertionShortening(coupleMuscle(d, head, pinned), false), sigmaL, 1e-9 * sigmaL) << d.name;
   }
+}
+
+// A muscle bound to the dermis along its belly (`thickens`: the frontalis, docs/muscles.md "The
+// compressed forehead thickens") keeps the volume of the column from the skin to its deep face as
+// it shortens by σ: the column grows by σ/(1 − σ), so the muscle's nodes rise towards the skin by
+// that share of their depth plus half the muscle's thickness. Measured on the insertion ring (its
+// nodes lie straight under the brow's skin) against the same muscle without it, which keeps its
+// depth (above). The library marks both parts of the frontalis and nothing else.
+TEST(MuscleBed, AThickeningMuscleRisesByItsColumnsGrowth) {
+  const Head& head = builtInHead();
+  const MuscleCouplingSettings settings;
+  std::vector<std::string> thickening;
+  for (const MuscleDef& d : faceMuscleDefs())
+    if (d.thickens) thickening.push_back(d.name);
+  EXPECT_EQ(thickening, (std::vector<std::string>{"frontalis_medial_left", "frontalis_medial_right", "frontalis_lateral_left",
+                                                  "frontalis_lateral_right"}));
+  const MuscleDef& d = *std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(),
+                                     [&](const MuscleDef& m) { return m.name == "frontalis_medial_left"; });
+  MuscleDef flat = d;
+  flat.thickens = false;
+  const CoupledMuscle thick = coupleMuscle(d, head, settings), slid = coupleMuscle(flat, head, settings);
+  const VecX risen = depthChange(thick, head), kept = depthChange(slid, head);
+  const double sigma = settings.shortening;
+  const double expected = sigma / (1.0 - sigma) * (d.insertion.depth + 0.5 * d.thickness) * head.frame().scale;
+  double rise = 0.0, keep = 0.0;
+  int counted = 0;
+  for (int v : thick.muscle.insertionNodes)
+    if (std::isfinite(risen(v)) && std::isfinite(kept(v))) rise -= risen(v), keep -= kept(v), ++counted;
+  ASSERT_GE(counted, 0.5 * thick.muscle.insertionNodes.size());
+  rise /= counted;
+  keep /= counted;
+  RecordProperty("insertion_rise_mm", std::to_string(10 * rise));
+  RecordProperty("expected_mm", std::to_string(10 * expected));
+  RecordProperty("without_mm", std::to_string(10 * keep));
+  EXPECT_NEAR(rise, expected, 0.15 * expected);
+  EXPECT_LT(std::abs(keep), 0.1 * expected);
+  // The fibres still shorten by σ × length with the rise.
+  EXPECT_NEAR(insertionShortening(thick, true), sigma * thick.muscle.restLength, 1e-6 * thick.muscle.restLength);
 }
 
 // The slid shape stays a contraction: no node moves much farther than the insertion's σ × length,

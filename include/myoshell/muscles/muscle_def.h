@@ -63,6 +63,11 @@ struct MuscleDef {
   // written keep CouplingProfile's defaults); none = the model's profile (MuscleCouplingSettings).
   // The thesis model does not read it.
   std::optional<CouplingProfile> coupling;
+  // Anatomical model, linear muscles (key `thickens`): the muscle is bound to the dermis along its
+  // belly, so the column of skin and muscle over its deep face keeps its volume as it shortens and
+  // bunches out of the face (the frontalis, whose skin, dense connective layer and aponeurosis move
+  // as one over the loose areolar layer: docs/muscles.md, "The compressed forehead thickens").
+  bool thickens = false;
 
   // Ring muscles (kind Ring; key `ring`): the band's course through `path` (≥ 3 anchors, in order,
   // each placed as origin and insertion are), closed into a loop or open (an arc whose ends are the
