@@ -55,7 +55,7 @@ web-page:
 	@$(WEB_ENV) cmake --build $(WEB_BUILD_DIR) -j $(JOBS)
 	@mkdir -p web/dist
 	@cp web/index.html web/app.js web/favicon.svg $(WEB_BUILD_DIR)/myoshell_web.js $(WEB_BUILD_DIR)/myoshell_web.wasm web/dist/
-	@$(BUILD_DIR)/bin/myoshell-web-data web/dist/face.myoweb
+	@$(BUILD_DIR)/bin/myoshell-web-data web/dist/face.myoweb --take scenes/demo.json
 
 # The Python module alone, into $(BUILD_DIR)/python/myoshell (docs/python.md); `make test` runs its tests.
 python: configure

@@ -168,6 +168,27 @@ async function main() {
     document.getElementById('reset').addEventListener('click', () => {
       for (const name of names) { sliders[name].value = 0; page.setActivation(name, 0); }
     });
+    // The takes (scenes' timelines packed into face.myoweb), played by the library's ScenePlayer.
+    const takes = list(page.takeNames());
+    const takeBox = document.getElementById('take');
+    for (const name of takes) takeBox.appendChild(Object.assign(document.createElement('option'), { value: name, textContent: name }));
+    let playStart = 0, playSpeed = 1, wasPlaying = false;
+    const play = (name, speed = 1) => {
+      const duration = call(() => page.play(name));
+      playStart = performance.now();
+      playSpeed = speed;
+      wasPlaying = true;
+      return duration;
+    };
+    // The sliders show what the take left when it ends or is stopped.
+    const afterTake = () => {
+      for (const name of names) sliders[name].value = page.activation(name);
+      jaw.value = page.jawOpen();
+      pitch.value = 0;
+      gravity.checked = true;
+    };
+    document.getElementById('play').addEventListener('click', () => play(takeBox.value));
+    document.getElementById('stop').addEventListener('click', () => { page.stopPlaying(); });
     // Turn the head view with the mouse.
     const canvas = document.getElementById('canvas');
     let drag = null;
@@ -189,6 +210,10 @@ async function main() {
         call(() => page.setActivation(name, value));
         if (sliders[name]) sliders[name].value = value;
       },
+      takes,
+      // Plays a take from the neutral face (speed: take seconds per wall second); returns its duration (s).
+      play(name, speed = 1) { return play(name, speed); },
+      stop() { page.stopPlaying(); },
       setGravity(on) { gravity.checked = !!on; call(() => page.setGravity(!!on)); },
       setJaw(deg) { jaw.value = deg; call(() => page.setJaw(deg)); },
       setHeadPitch(deg) { pitch.value = deg; call(() => page.setHeadPitch(deg)); },
@@ -199,24 +224,38 @@ async function main() {
       // Steps `count` times as fast as it can (the settled hold released): steps/s of the whole face.
       benchmark(count) {
         if (page.settled()) call(() => page.setGravity(gravity.checked));  // releases the hold
-        const s = call(() => page.step(count));
+        const s = call(() => page.step(count, 0));
         return count / s;
       },
       stepsPerSecond: 0,
       framesPerSecond: 0,
     });
 
+    // Read live (Object.assign would copy a getter's value once).
+    Object.defineProperties(hook, {
+      playing: { get: () => page.playing() },
+      time: { get: () => page.time() },          // s, the player's clock
+      duration: { get: () => page.duration() },  // s, the take's (the last take's once it ended)
+    });
+
     // Real time: as many steps of dt as the wall clock advanced (at most 0.1 s of them a frame).
     const dt = page.dt();
     let last = performance.now(), owed = 0, frames = 0, steps = 0, stepSeconds = 0, windowStart = last;
     const stats = document.getElementById('stats');
+    const playClock = document.getElementById('playclock');
     function frame(now) {
       owed = Math.min(owed + (now - last) / 1000, 0.1);
       last = now;
       const k = Math.floor(owed / dt);
       owed -= k * dt;
       try {
-        if (k > 0 && !page.settled()) { stepSeconds += page.step(k); steps += k; }
+        if (page.playing()) {
+          const before = page.stepCount();
+          stepSeconds += page.step(0, ((now - playStart) / 1000) * playSpeed);
+          steps += page.stepCount() - before;
+          playClock.textContent = `${page.time().toFixed(2)} / ${page.duration().toFixed(2)} s`;
+        } else if (k > 0 && !page.settled()) { stepSeconds += page.step(k, 0); steps += k; }
+        if (wasPlaying && !page.playing()) { wasPlaying = false; afterTake(); playClock.textContent += ' (ended)'; }
       } catch (e) {
         hook.error = message(Module, e);
         status.textContent = hook.error;

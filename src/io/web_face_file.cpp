@@ -11,7 +11,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: takes
 
 class Out {
  public:
@@ -33,6 +33,14 @@ class Out {
     str(a.landmark);
     vec3(a.offset);
     pod(a.depth);
+  }
+  void track(const ScalarTrack& t) {
+    pod(static_cast<uint32_t>(t.keys().size()));
+    for (const Keyframe<double>& k : t.keys()) {
+      pod(k.time);
+      pod(k.value);
+      pod(static_cast<uint8_t>(k.interpolation));
+    }
   }
   std::string s;
 };
@@ -72,7 +80,27 @@ class In {
     a.depth = pod<double>();
     return a;
   }
+  // A track of `what` (InputError naming it for keys out of order or an unknown interpolation).
+  ScalarTrack track(const std::string& what) {
+    const uint32_t n = pod<uint32_t>();
+    if (n > remaining() / 17) throw InputError("web face data: " + what + ": " + std::to_string(n) + " keys do not fit", name_);
+    std::vector<Keyframe<double>> keys(n);
+    for (Keyframe<double>& k : keys) {
+      k.time = pod<double>();
+      k.value = pod<double>();
+      const uint8_t i = pod<uint8_t>();
+      if (i > static_cast<uint8_t>(Interpolation::Smooth))
+        throw InputError("web face data: " + what + ": interpolation " + std::to_string(i) + " is not 0, 1 or 2", name_);
+      k.interpolation = static_cast<Interpolation>(i);
+    }
+    try {
+      return ScalarTrack(std::move(keys), what);
+    } catch (const InputError& e) {
+      throw InputError("web face data: " + e.message(), name_);
+    }
+  }
   size_t pos() const { return pos_; }
+  size_t remaining() const { return b_.size() - pos_; }
 
  private:
   std::string_view b_;
@@ -82,7 +110,8 @@ class In {
 
 }  // namespace
 
-std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& key, const ModalBasis& basis) {
+std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& key, const ModalBasis& basis,
+                         const std::vector<SceneDesc>& takes) {
   Out o;
   o.raw(kMagic, 8);
   o.pod(kVersion);
@@ -126,13 +155,34 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
   o.raw(basis.freeMass.data(), static_cast<size_t>(basis.freeMass.size()));
   const Eigen::MatrixXf phi = basis.Phi.cast<float>();
   o.raw(phi.data(), static_cast<size_t>(phi.size()));
+  o.pod(static_cast<uint32_t>(takes.size()));
+  for (const SceneDesc& t : takes) {
+    const auto refuse = [&](const std::string& what) {
+      throw InputError("web face data: take '" + t.name + "' has " + what +
+                       " on its timeline; a take carries activations and the jaw only");
+    };
+    if (!t.gravity.empty()) refuse("a gravity track");
+    if (!t.headPose.empty()) refuse("a head pose");
+    if (t.hasGaze()) refuse("the eyes' turn");
+    if (!t.drags.empty() || !t.dragForces.empty()) refuse("drags");
+    if (t.modelKind != FaceModelKind::Anatomical) refuse("the thesis's model");
+    o.str(t.name);
+    o.pod(t.duration);
+    o.pod(t.fps);
+    o.pod(static_cast<uint32_t>(t.activations.size()));
+    for (const auto& [muscle, track] : t.activations) {
+      o.str(muscle);
+      o.track(track);
+    }
+    for (const ScalarTrack* j : {&t.jawOpen, &t.jawForward, &t.jawLateral}) o.track(*j);
+  }
   o.pod(fnv1a64(o.s.data(), o.s.size()));
   return std::move(o.s);
 }
 
 void writeWebFaceFile(const std::string& path, const std::vector<MuscleDef>& muscles, const BasisKey& key,
-                      const ModalBasis& basis) {
-  writeFileAtomically(path, webFaceBytes(muscles, key, basis), "cannot write the web face data");
+                      const ModalBasis& basis, const std::vector<SceneDesc>& takes) {
+  writeFileAtomically(path, webFaceBytes(muscles, key, basis, takes), "cannot write the web face data");
 }
 
 WebFace readWebFace(std::string_view bytes, const std::string& name) {
@@ -149,6 +199,8 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     throw InputError("web face data: format version " + std::to_string(v) + " is not " + std::to_string(kVersion), name);
   WebFace w;
   const uint32_t count = in.pod<uint32_t>();
+  if (count > in.remaining() / 64)  // a muscle takes well over 64 bytes
+    throw InputError("web face data: " + std::to_string(count) + " muscles do not fit in the file", name);
   for (uint32_t m = 0; m < count; ++m) {
     MuscleDef d;
     d.name = in.str();
@@ -176,6 +228,8 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
       d.coupling = c;
     }
     const uint32_t path = in.pod<uint32_t>();
+    if (path > in.remaining() / 36)  // an anchor takes at least 36 bytes
+      throw InputError("web face data: muscle '" + d.name + "': a ring path of " + std::to_string(path) + " anchors does not fit", name);
     for (uint32_t k = 0; k < path; ++k) d.ring.path.push_back(in.anchor());
     d.ring.closed = in.pod<uint8_t>() != 0;
     for (MuscleAnchor& a : d.ring.anchors) a = in.anchor();
@@ -192,7 +246,9 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
   b.fullVertexCount = static_cast<int>(in.pod<uint32_t>());
   const uint32_t f = in.pod<uint32_t>();
   const uint32_t d = in.pod<uint32_t>();
-  if (f > static_cast<uint32_t>(b.fullVertexCount) || d > 100000)
+  // Each free vertex takes 4 + 8 + 12·d bytes and each mode 8: the sizes must fit in what is left.
+  if (f > static_cast<uint32_t>(b.fullVertexCount) || d > 100000 ||
+      static_cast<double>(f) * (12.0 + 12.0 * d) + 8.0 * d > static_cast<double>(in.remaining()))
     throw InputError("web face data: basis sizes " + std::to_string(f) + " free vertices, " + std::to_string(d) + " modes do not fit", name);
   b.freeVertices.resize(f);
   in.raw(b.freeVertices.data(), f);
@@ -205,8 +261,33 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
   b.Phi = phi.cast<double>();
   b.Psi = MatX::Zero(b.Phi.rows(), b.Phi.cols());
   b.solver = "web face data";
+  const uint32_t takes = in.pod<uint32_t>();
+  if (takes > in.remaining() / 48)  // a take takes at least 48 bytes
+    throw InputError("web face data: " + std::to_string(takes) + " takes do not fit in the file", name);
+  for (uint32_t k = 0; k < takes; ++k) {
+    SceneDesc t;
+    t.name = in.str();
+    t.duration = in.pod<double>();
+    t.fps = in.pod<double>();
+    if (!(t.duration > 0.0 && t.duration <= 3600.0) || !(t.fps > 0.0 && t.fps <= 1000.0))
+      throw InputError("web face data: take '" + t.name + "' lasts " + std::to_string(t.duration) + " s at " +
+                       std::to_string(t.fps) + " fps (want (0, 3600] s, (0, 1000] fps)", name);
+    const uint32_t tracks = in.pod<uint32_t>();
+    if (tracks > in.remaining() / 8)
+      throw InputError("web face data: take '" + t.name + "': " + std::to_string(tracks) + " tracks do not fit", name);
+    for (uint32_t i = 0; i < tracks; ++i) {
+      std::string muscle = in.str();
+      ScalarTrack track = in.track("take '" + t.name + "', muscle '" + muscle + "'");
+      if (!t.activations.emplace(muscle, std::move(track)).second)
+        throw InputError("web face data: take '" + t.name + "' gives muscle '" + muscle + "' twice", name);
+    }
+    t.jawOpen = in.track("take '" + t.name + "', jaw open");
+    t.jawForward = in.track("take '" + t.name + "', jaw forward");
+    t.jawLateral = in.track("take '" + t.name + "', jaw lateral");
+    w.takes.push_back(std::move(t));
+  }
   if (in.pos() != bytes.size() - 8)
-    throw InputError("web face data: " + std::to_string(bytes.size() - 8 - in.pos()) + " bytes after the basis", name);
+    throw InputError("web face data: " + std::to_string(bytes.size() - 8 - in.pos()) + " bytes after the takes", name);
   return w;
 }
 

@@ -83,6 +83,43 @@ TEST(WebFaceFile, TruncatedDamagedAndForeignFilesAreRefusedWithTheReason) {
   EXPECT_EQ(messageOf(good), "");
 }
 
+// A take keeps its name, duration, fps and every key (time, value, interpolation) of its activation
+// and jaw tracks; a scene with more on its timeline (a head pose) is refused by the writer, naming it.
+TEST(WebFaceFile, TakesRoundTripAndATimelineBeyondActivationsAndJawIsRefused) {
+  SceneDesc take;
+  take.name = "smile";
+  take.duration = 1.5;
+  take.fps = 24.0;
+  take.activations["zygomaticus_major_left"] =
+      ScalarTrack({{0.0, 0.0, Interpolation::Smooth}, {0.5, 0.75, Interpolation::Step}, {1.0, 0.25}});
+  take.jawOpen = ScalarTrack({{0.2, 0.0}, {0.9, 12.5, Interpolation::Smooth}});
+  const WebFace w = readWebFace(webFaceBytes(faceMuscleDefs(), someKey(), smallBasis(), {take}), "face.myoweb");
+  ASSERT_EQ(w.takes.size(), 1u);
+  const SceneDesc& t = w.takes[0];
+  EXPECT_EQ(t.name, "smile");
+  EXPECT_EQ(t.duration, 1.5);
+  EXPECT_EQ(t.fps, 24.0);
+  ASSERT_EQ(t.activations.size(), 1u);
+  const auto& keys = t.activations.at("zygomaticus_major_left").keys();
+  ASSERT_EQ(keys.size(), 3u);
+  EXPECT_EQ(keys[1].time, 0.5);
+  EXPECT_EQ(keys[1].value, 0.75);
+  EXPECT_EQ(keys[1].interpolation, Interpolation::Step);
+  EXPECT_EQ(keys[0].interpolation, Interpolation::Smooth);
+  EXPECT_EQ(t.jawOpen.at(0.9), 12.5);
+  EXPECT_TRUE(t.jawForward.empty());
+  EXPECT_TRUE(t.jawLateral.empty());
+  for (double time : {0.1, 0.3, 0.6, 1.2}) EXPECT_EQ(t.activations.at("zygomaticus_major_left").at(time),
+                                                     take.activations.at("zygomaticus_major_left").at(time));
+  take.headPose = HeadPoseTrack({{0.0, Vec3(10.0, 0.0, 0.0), Interpolation::Linear}});
+  try {
+    webFaceBytes(faceMuscleDefs(), someKey(), smallBasis(), {take});
+    FAIL() << "a take with a head pose was written";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("take 'smile' has a head pose"), std::string::npos) << e.what();
+  }
+}
+
 TEST(WebFaceFile, ImportedMusclesAreRefusedByTheWriter) {
   std::vector<MuscleDef> muscles = {faceMuscleDefs().front()};
   muscles[0].obj = "muscle.obj";

@@ -2,9 +2,12 @@
 """The web page in a real browser (docs/web.md): headless chromium, driven by selenium, loads web/dist
 served by `python3 -m http.server` on a free loopback port; the page must load without console
 errors, and its settle() with zygomaticus_major_left at 1 and gravity off must move the left mouth
-corner as `myoshell pose --set zygomaticus_major_left=1 --gravity off` does (its OBJ), to 1e-3 cm.
+corner as `myoshell pose --set zygomaticus_major_left=1 --gravity off` does (its OBJ), to 1e-3 cm;
+the shipped take (scenes/demo.json, packed into face.myoweb) must play to its end (the clock reaches
+its duration) and its last frame must be `myoshell run scenes/demo.json`'s last frame, every vertex
+within 1e-4 cm (the same ScenePlayer, the same steps).
 
-usage: page_test.py DIST MYOSHELL [--screenshot PNG] [--measure]
+usage: page_test.py DIST MYOSHELL SCENES [--screenshot PNG] [--measure]
 Exit 77 (ctest's skip) with a message when chromium, chromedriver, selenium or emscripten are absent.
 """
 import argparse
@@ -40,10 +43,58 @@ def obj_vertices(path):
     return out
 
 
+def check_take(browser, native_end, speed=2.5):
+    """Plays the shipped take in the page (at `speed` take seconds per wall second) to its end and
+    compares its last frame with `myoshell run`'s."""
+    start = browser.execute_script(f"""
+        const m = window.myoshell;
+        return {{takes: m.takes, duration: m.play('demo', {speed}), dt: 1 / 240}};""")
+    t0 = time.time()
+    duration = start["duration"]
+    state = None
+    while time.time() - t0 < 5 + duration / speed * 4:
+        state = browser.execute_script("const m = window.myoshell; return {playing: m.playing, time: m.time, "
+                                       "error: m.error};")
+        if not state["playing"] or state["error"]:
+            break
+        time.sleep(0.05)
+    wall = time.time() - t0
+    ok = True
+    print(f"take 'demo' ({start['takes']}): {duration} s played in {wall:.2f} s wall, clock {state['time']:.5f} s")
+    if state["playing"] or state["error"]:
+        print(f"FAILED: the take did not play to its end: {state}")
+        return False
+    if not abs(state["time"] - duration) <= 0.5 * start["dt"] + 1e-9:
+        print(f"FAILED: the take stopped at {state['time']} s, not at its duration {duration} s")
+        ok = False
+    page_end = browser.execute_script("""
+        const m = window.myoshell, out = [];
+        for (let i = 0; i < m.vertexCount; ++i) out.push(m.vertex(i));
+        return out;""")
+    if len(page_end) != len(native_end):
+        print(f"FAILED: the page has {len(page_end)} vertices, run's last frame {len(native_end)}")
+        return False
+    error = max(abs(p[c] - n[c]) for p, n in zip(page_end, native_end) for c in range(3))
+    moved = max(sum((p[c] - r[c]) ** 2 for c in range(3)) ** 0.5
+                for p, r in zip(page_end, browser.execute_script(
+                    "const m = window.myoshell, out = []; for (let i = 0; i < m.vertexCount; ++i) "
+                    "out.push(m.restVertex(i)); return out;")))
+    print(f"take's last frame vs `myoshell run`'s: largest vertex difference {error:.2e} cm "
+          f"(the face moved up to {moved:.3f} cm from rest)")
+    if not (moved > 0.1):
+        print("FAILED: the take's last frame barely moves the face: the comparison would prove nothing")
+        ok = False
+    if not (error <= 1e-4):
+        print("FAILED: the take's last frame differs from run's by more than 1e-4 cm")
+        ok = False
+    return ok
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dist")
     ap.add_argument("myoshell")
+    ap.add_argument("scenes", help="the scenes folder (the shipped take, demo.json)")
     ap.add_argument("--screenshot", default="")
     ap.add_argument("--measure", action="store_true", help="print load time, steps/s, frame rate as JSON")
     a = ap.parse_args()
@@ -75,6 +126,12 @@ def main():
         subprocess.run([a.myoshell, "pose", "--gravity", "off", "--out", rest], check=True, stdout=subprocess.DEVNULL)
         native = obj_vertices(obj)
         native_rest = obj_vertices(rest)
+        # The take as `myoshell run` plays it: its last frame.
+        run = os.path.join(tmp, "run")
+        subprocess.run([a.myoshell, "run", os.path.join(a.scenes, "demo.json"), "--out", run, "--format", "obj"],
+                       check=True, stdout=subprocess.DEVNULL)
+        frames = sorted(os.listdir(os.path.join(run, "obj")))
+        native_take_end = obj_vertices(os.path.join(run, "obj", frames[-1]))
 
     port = free_port()
     server = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind", "127.0.0.1", "-d", a.dist],
@@ -133,6 +190,8 @@ def main():
         if not (error <= 1e-3):
             print("FAILED: the page's settled mouth corner differs from pose's by more than 1e-3 cm")
             ok = False
+
+        ok = check_take(browser, native_take_end) and ok
 
         measured = {"load_seconds_page": page["load"], "load_seconds_wall": wall_load,
                     "build_seconds": page["build"], "settle_seconds": page["seconds"]}

@@ -1,14 +1,18 @@
 // The page's bindings (docs/web.md): the anatomical face built in the browser from the same sources
 // as the native library (web/web_face.h), with its muscles and released basis read from the face
-// data the native build wrote (io/web_face_file.h), stepped by AnatomicalSimulator and settled by
-// AnatomicalSkin::settle as `myoshell pose` settles it. The page draws positions() each frame.
+// data the native build wrote (io/web_face_file.h), stepped through the one frame loop, ScenePlayer
+// (an empty scene under the sliders, a take's scene while it plays, as `myoshell run` plays it),
+// and settled by AnatomicalSkin::settle as `myoshell pose` settles it. The page draws positions()
+// each frame.
 #include <emscripten/bind.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "../web_face.h"
+#include "myoshell/anim/scene_player.h"
 #include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -26,7 +30,9 @@ class Page {
     WebFaceBasisCache cache(w.basisKey, std::move(w.basis));
     face_ = buildWebFace(w.muscles, &cache);
     if (face_->skin().settings().warping) throw InputError("the page steps linear modes: warping must be off");
-    sim_ = std::make_unique<AnatomicalSimulator>(face_);
+    takes_ = std::move(w.takes);
+    player_ = std::make_unique<ScenePlayer>(SceneDesc{}, face_);
+    sim_ = &dynamic_cast<AnatomicalSimulator&>(player_->simulator());
     activations_ = VecX::Zero(face_->muscleCount());
     buildSeconds_ = clock.seconds();
     const TriMesh& mesh = face_->head().mesh;
@@ -45,7 +51,9 @@ class Page {
   double dt() const { return face_->dt(); }
   std::vector<std::string> muscleNames() const { return face_->skin().muscleNames(); }
 
+  // Any load set by hand stops a take where it is.
   void setActivation(const std::string& name, double a) {
+    stopPlaying();
     const int m = face_->muscleIndex(name);
     sim_->setActivation(m, a);
     activations_(m) = a;
@@ -66,6 +74,7 @@ class Page {
     updateGravity();
   }
   void setJaw(double openDeg) {
+    stopPlaying();
     JawPose j;
     j.openDeg = openDeg;
     sim_->setJaw(j);
@@ -73,21 +82,64 @@ class Page {
   }
 
   // Steps `count` times (while not held on a settled shape), then places the skin; returns the
-  // stepping's wall time (s).
-  double step(int count) {
-    if (settled_) return 0.0;
+  // stepping's wall time (s). While a take plays, it plays on instead, to its clock time
+  // min(playTime, duration) (ScenePlayer::playTo: the steps `myoshell run` takes, however the page's
+  // frames cut them), and then holds its last frame until a load changes.
+  double step(int count, double playTime) {
+    if (settled_ && !playing_) return 0.0;
     Stopwatch clock;
-    for (int i = 0; i < count; ++i) sim_->step();
+    if (playing_) {
+      const double end = player_->scene().duration;
+      player_->playTo(std::min(playTime, end));
+      if (player_->time() >= end - 0.5 * face_->dt()) {
+        stopPlaying();
+        settled_ = true;  // the take's last frame is held, as a settled shape is, until a load changes
+      }
+    } else {
+      for (int i = 0; i < count; ++i) player_->step();
+    }
     const double s = clock.seconds();
     sim_->skinPositions(shape_);
     copyShape();
     return s;
   }
 
+  std::vector<std::string> takeNames() const {
+    std::vector<std::string> names;
+    for (const SceneDesc& t : takes_) names.push_back(t.name);
+    return names;
+  }
+  // Starts take `name` from the neutral face at rest, every load as a scene starts it (a fresh
+  // stepper: the sliders' activations, the jaw and the head's pitch are dropped), clock at 0.
+  double play(const std::string& name) {
+    const auto it = std::find_if(takes_.begin(), takes_.end(), [&](const SceneDesc& t) { return t.name == name; });
+    if (it == takes_.end()) throw InputError("no take '" + name + "' in the face data");
+    player_ = std::make_unique<ScenePlayer>(*it, face_);
+    sim_ = &dynamic_cast<AnatomicalSimulator&>(player_->simulator());
+    activations_.setZero();
+    pitch_ = 0.0;
+    gravityOn_ = true;
+    playing_ = true;
+    settled_ = false;
+    return it->duration;
+  }
+  // Stops the take where it is; the sliders take the face from there.
+  void stopPlaying() {
+    if (!playing_) return;
+    playing_ = false;
+    for (int m = 0; m < face_->muscleCount(); ++m) activations_(m) = sim_->activation(m);
+    player_->setScene(SceneDesc{});  // the clock and the stepper's state kept
+  }
+  bool playing() const { return playing_; }
+  double jawOpen() const { return sim_->jaw().openDeg; }
+  double time() const { return player_->time(); }
+  double duration() const { return player_->scene().duration; }
+
   // The static shape under the current loads, as `myoshell pose` computes it (AnatomicalSkin::settle
   // with the simulator's loads, linear modes, the contact penalty as the skin's settings say; placed
   // by the face's SkinPlacement). Held until a load changes. Returns the wall time (s).
   double settle() {
+    stopPlaying();
     Stopwatch clock;
     const AnatomicalSkin& skin = face_->skin();
     SkinLoads loads = sim_->loads();
@@ -124,12 +176,16 @@ class Page {
       for (int c = 0; c < 3; ++c) positions_[static_cast<size_t>(3 * i + c)] = static_cast<float>(shape_(i, c));
   }
   void updateGravity() {
+    stopPlaying();
     sim_->setGravity(1.0);
     sim_->setHeadPose(gravityOn_ ? headPoseRotation(Vec3(pitch_, 0.0, 0.0)) : Eigen::Quaterniond::Identity());
     settled_ = false;
   }
   std::shared_ptr<const AnatomicalFace> face_;
-  std::unique_ptr<AnatomicalSimulator> sim_;
+  std::vector<SceneDesc> takes_;
+  std::unique_ptr<ScenePlayer> player_;
+  AnatomicalSimulator* sim_ = nullptr;  // player_'s
+  bool playing_ = false;
   VecX activations_;
   MatX3 shape_;
   std::vector<float> positions_;
@@ -173,6 +229,13 @@ EMSCRIPTEN_BINDINGS(myoshell) {
       .function("positionsAddress", &Page::positionsAddress)
       .function("trianglesAddress", &Page::trianglesAddress)
       .function("stepCount", &Page::stepCount)
+      .function("takeNames", &Page::takeNames)
+      .function("play", &Page::play)
+      .function("stopPlaying", &Page::stopPlaying)
+      .function("playing", &Page::playing)
+      .function("jawOpen", &Page::jawOpen)
+      .function("time", &Page::time)
+      .function("duration", &Page::duration)
       .function("landmarkVertex", &Page::landmarkVertex);
   function("exceptionMessage", &myo::web::exceptionMessage);
 }
