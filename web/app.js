@@ -167,7 +167,32 @@ async function main() {
     document.getElementById('settle').addEventListener('click', () => page.settle());
     document.getElementById('reset').addEventListener('click', () => {
       for (const name of names) { sliders[name].value = 0; page.setActivation(name, 0); }
+      for (const { au } of actionUnits) setActionUnit(au, 0);
     });
+    // Action units through the FACS map (assets/facs/au_map.json, packed into face.myoweb): the page's
+    // C++ takes each AU to muscles, the jaw and the eyes by the path `myoshell drive` takes.
+    const actionUnits = list(page.actionUnits()).map((s) => ({ au: Number(s.split(':')[0]), name: s.split(': ')[1] }));
+    const auSliders = {};
+    const auBox = document.getElementById('aus');
+    for (const { au, name } of actionUnits) {
+      const label = document.createElement('label');
+      label.className = 'slider';
+      label.textContent = `AU${au} ${name}`;
+      const input = document.createElement('input');
+      Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, value: 0 });
+      input.addEventListener('input', () => page.setActionUnit(au, Number(input.value)));
+      label.appendChild(input);
+      auBox.appendChild(label);
+      auSliders[au] = input;
+    }
+    const setActionUnit = (au, x) => {
+      call(() => page.setActionUnit(au, x));
+      if (auSliders[au]) auSliders[au].value = x;
+    };
+    // A blink: AU45 (the palpebral orbicularis oculi) up and down over 0.3 s, a sine bump.
+    let blinkStart = null;
+    const blink = () => { blinkStart = performance.now(); };
+    document.getElementById('blink').addEventListener('click', blink);
     // The takes (scenes' timelines packed into face.myoweb), played by the library's ScenePlayer.
     const takes = list(page.takeNames());
     const takeBox = document.getElementById('take');
@@ -183,6 +208,7 @@ async function main() {
     // The sliders show what the take left when it ends or is stopped.
     const afterTake = () => {
       for (const name of names) sliders[name].value = page.activation(name);
+      for (const { au } of actionUnits) auSliders[au].value = 0;
       jaw.value = page.jawOpen();
       pitch.value = 0;
       gravity.checked = true;
@@ -211,6 +237,11 @@ async function main() {
         if (sliders[name]) sliders[name].value = value;
       },
       takes,
+      actionUnits,
+      setActionUnit,
+      actionUnit(au) { return page.actionUnit(au); },
+      activation(name) { return call(() => page.activation(name)); },  // slider + action units, clamped
+      blink,
       // Plays a take from the neutral face (speed: take seconds per wall second); returns its duration (s).
       play(name, speed = 1) { return play(name, speed); },
       stop() { page.stopPlaying(); },
@@ -248,6 +279,11 @@ async function main() {
       last = now;
       const k = Math.floor(owed / dt);
       owed -= k * dt;
+      if (blinkStart !== null) {
+        const s = (now - blinkStart) / 300;
+        if (s >= 1) blinkStart = null;
+        setActionUnit(45, s >= 1 ? 0 : Math.sin(Math.PI * s));
+      }
       try {
         if (page.playing()) {
           const before = page.stepCount();

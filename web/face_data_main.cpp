@@ -1,8 +1,9 @@
 // myoshell-web-data OUT [--cache DIR] [--take SCENE]...: writes the page's face data
 // (io/web_face_file.h): the whole face's muscles and the released basis of the built-in head's
-// anatomical face, the face the page builds (web/web_face.h), and the takes it plays (each SCENE's
-// timeline). The basis comes from the basis cache (DIR, else the CLI's default folder) or is
-// computed and stored there. Checks that the face is the one `myoshell pose` builds for the built-in
+// anatomical face, the face the page builds (web/web_face.h), the takes it plays (each SCENE's
+// timeline) and the FACS map (assets/facs/au_map.json) its action-unit sliders go through. The
+// basis comes from the basis cache (DIR, else the CLI's default folder) or is computed and stored
+// there. Checks that the face is the one `myoshell pose` builds for the built-in
 // head and the one `myoshell run` builds for each take (same basis key, dt and muscles), so the
 // page's shapes compare with theirs.
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include "myoshell/core/errors.h"
 #include "myoshell/io/basis_cache_file.h"
 #include "myoshell/io/scene_face.h"
+#include "myoshell/fit/facs_map.h"
 #include "myoshell/io/web_face_file.h"
 #include "myoshell/muscles/muscle_def.h"
 
@@ -94,7 +96,7 @@ int main(int argc, char** argv) {
 
     const std::string key = skin.releasedBasisKey().hex();
     if (!cache.kept.count(key)) throw myo::InputError("the released basis " + key + " was neither loaded nor built");
-    myo::writeWebFaceFile(out, muscles, skin.releasedBasisKey(), cache.kept.at(key), takes);
+    myo::writeWebFaceFile(out, muscles, skin.releasedBasisKey(), cache.kept.at(key), takes, myo::builtinFacsMap());
     std::printf("wrote %s: %zu muscles, basis %s (%d vertices, %d modes), %zu take(s)\n", out.c_str(), muscles.size(),
                 key.c_str(), skin.basis()->freeCount(), skin.basis()->modeCount(), takes.size());
     return 0;

@@ -1,5 +1,6 @@
 #include "myoshell/io/web_face_file.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -11,7 +12,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 2;  // 2: takes
+constexpr uint32_t kVersion = 3;  // 2: takes; 3: the FACS map
 
 class Out {
  public:
@@ -111,7 +112,7 @@ class In {
 }  // namespace
 
 std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& key, const ModalBasis& basis,
-                         const std::vector<SceneDesc>& takes) {
+                         const std::vector<SceneDesc>& takes, const FacsMap& facs) {
   Out o;
   o.raw(kMagic, 8);
   o.pod(kVersion);
@@ -176,13 +177,26 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
     }
     for (const ScalarTrack* j : {&t.jawOpen, &t.jawForward, &t.jawLateral}) o.track(*j);
   }
+  o.pod(static_cast<uint32_t>(facs.entries.size()));
+  for (const FacsEntry& e : facs.entries) {
+    o.pod(static_cast<int32_t>(e.au));
+    o.str(e.name);
+    o.pod(static_cast<uint8_t>(e.openface));
+    o.pod(static_cast<uint32_t>(e.muscles.size()));
+    for (const auto& [muscle, w] : e.muscles) {
+      o.str(muscle);
+      o.pod(w);
+    }
+    o.str(e.needs);
+    for (double v : {e.jawOpenDeg, e.jawForwardCm, e.jawLateralCm, e.gazePitchDeg, e.gazeYawDeg, e.mouthPressureKpa}) o.pod(v);
+  }
   o.pod(fnv1a64(o.s.data(), o.s.size()));
   return std::move(o.s);
 }
 
 void writeWebFaceFile(const std::string& path, const std::vector<MuscleDef>& muscles, const BasisKey& key,
-                      const ModalBasis& basis, const std::vector<SceneDesc>& takes) {
-  writeFileAtomically(path, webFaceBytes(muscles, key, basis, takes), "cannot write the web face data");
+                      const ModalBasis& basis, const std::vector<SceneDesc>& takes, const FacsMap& facs) {
+  writeFileAtomically(path, webFaceBytes(muscles, key, basis, takes, facs), "cannot write the web face data");
 }
 
 WebFace readWebFace(std::string_view bytes, const std::string& name) {
@@ -286,8 +300,35 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     t.jawLateral = in.track("take '" + t.name + "', jaw lateral");
     w.takes.push_back(std::move(t));
   }
+  const uint32_t aus = in.pod<uint32_t>();
+  if (aus > in.remaining() / 65)  // an entry takes at least 65 bytes
+    throw InputError("web face data: " + std::to_string(aus) + " action units do not fit in the file", name);
+  for (uint32_t k = 0; k < aus; ++k) {
+    FacsEntry e;
+    e.au = in.pod<int32_t>();
+    if (e.au < 1 || e.au > 999) throw InputError("web face data: action unit number " + std::to_string(e.au) + " is not in 1–999", name);
+    const std::string what = "web face data: AU" + std::to_string(e.au);
+    if (w.facs.find(e.au)) throw InputError(what + " is given twice", name);
+    e.name = in.str();
+    e.openface = in.pod<uint8_t>() != 0;
+    const uint32_t muscles = in.pod<uint32_t>();
+    if (muscles > in.remaining() / 12) throw InputError(what + ": " + std::to_string(muscles) + " muscles do not fit", name);
+    for (uint32_t m = 0; m < muscles; ++m) {
+      std::string muscle = in.str();
+      const double weight = in.pod<double>();
+      if (!(weight >= 0.0 && weight <= 1.0))
+        throw InputError(what + ": muscle '" + muscle + "' has weight " + std::to_string(weight) + " outside [0, 1]", name);
+      e.muscles.emplace_back(std::move(muscle), weight);
+    }
+    e.needs = in.str();
+    for (double* v : {&e.jawOpenDeg, &e.jawForwardCm, &e.jawLateralCm, &e.gazePitchDeg, &e.gazeYawDeg, &e.mouthPressureKpa}) {
+      *v = in.pod<double>();
+      if (!std::isfinite(*v)) throw InputError(what + ": a jaw, gaze or pressure value is not finite", name);
+    }
+    w.facs.entries.push_back(std::move(e));
+  }
   if (in.pos() != bytes.size() - 8)
-    throw InputError("web face data: " + std::to_string(bytes.size() - 8 - in.pos()) + " bytes after the takes", name);
+    throw InputError("web face data: " + std::to_string(bytes.size() - 8 - in.pos()) + " bytes after the FACS map", name);
   return w;
 }
 

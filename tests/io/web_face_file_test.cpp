@@ -120,6 +120,29 @@ TEST(WebFaceFile, TakesRoundTripAndATimelineBeyondActivationsAndJawIsRefused) {
   }
 }
 
+// The shipped FACS map round-trips entry for entry (muscles and weights, jaw, gaze, air, needs), so
+// the page's action units drive what drive's do.
+TEST(WebFaceFile, TheFacsMapRoundTrips) {
+  const FacsMap& map = builtinFacsMap();
+  const WebFace w = readWebFace(webFaceBytes(faceMuscleDefs(), someKey(), smallBasis(), {}, map), "face.myoweb");
+  ASSERT_EQ(w.facs.entries.size(), map.entries.size());
+  for (size_t k = 0; k < map.entries.size(); ++k) {
+    const FacsEntry &a = map.entries[k], &b = w.facs.entries[k];
+    EXPECT_EQ(a.au, b.au);
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.openface, b.openface);
+    EXPECT_EQ(a.muscles, b.muscles);
+    EXPECT_EQ(a.needs, b.needs);
+    EXPECT_EQ(a.jawOpenDeg, b.jawOpenDeg);
+    EXPECT_EQ(a.jawForwardCm, b.jawForwardCm);
+    EXPECT_EQ(a.jawLateralCm, b.jawLateralCm);
+    EXPECT_EQ(a.gazePitchDeg, b.gazePitchDeg);
+    EXPECT_EQ(a.gazeYawDeg, b.gazeYawDeg);
+    EXPECT_EQ(a.mouthPressureKpa, b.mouthPressureKpa);
+  }
+  EXPECT_NE(w.facs.find(12), nullptr);
+}
+
 TEST(WebFaceFile, ImportedMusclesAreRefusedByTheWriter) {
   std::vector<MuscleDef> muscles = {faceMuscleDefs().front()};
   muscles[0].obj = "muscle.obj";

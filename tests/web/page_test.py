@@ -5,7 +5,9 @@ errors, and its settle() with zygomaticus_major_left at 1 and gravity off must m
 corner as `myoshell pose --set zygomaticus_major_left=1 --gravity off` does (its OBJ), to 1e-3 cm;
 the shipped take (scenes/demo.json, packed into face.myoweb) must play to its end (the clock reaches
 its duration) and its last frame must be `myoshell run scenes/demo.json`'s last frame, every vertex
-within 1e-4 cm (the same ScenePlayer, the same steps).
+within 1e-4 cm (the same ScenePlayer, the same steps); AU12 at 0.8 through the page's FACS path must
+drive both zygomatici at 0.8 and settle to `pose --set zygomaticus_major_left=0.8 --set
+zygomaticus_major_right=0.8 --gravity off`'s shape, every vertex within 1e-3 cm.
 
 usage: page_test.py DIST MYOSHELL SCENES [--screenshot PNG] [--measure]
 Exit 77 (ctest's skip) with a message when chromium, chromedriver, selenium or emscripten are absent.
@@ -41,6 +43,39 @@ def obj_vertices(path):
             if line.startswith("v "):
                 out.append([float(x) for x in line.split()[1:4]])
     return out
+
+
+def all_vertices(browser, what="vertex"):
+    return browser.execute_script(f"const m = window.myoshell, out = []; for (let i = 0; i < m.vertexCount; ++i) "
+                                  f"out.push(m.{what}(i)); return out;")
+
+
+def check_action_unit(browser, native, native_rest):
+    """AU12 at 0.8 through the page's FACS path (the zygomaticus slider back at 0) against pose with both
+    zygomatici at 0.8, settled with gravity off."""
+    got = browser.execute_script("""
+        const m = window.myoshell;
+        m.setActivation('zygomaticus_major_left', 0);
+        m.setActionUnit(12, 0.8);
+        m.settle();
+        const a = {left: m.activation('zygomaticus_major_left'), right: m.activation('zygomaticus_major_right'),
+                   other: m.muscleNames.filter((n) => !n.startsWith('zygomaticus_major')).map((n) => m.activation(n))};
+        return {a, aus: m.actionUnits.length};""")
+    page = all_vertices(browser)
+    browser.execute_script("window.myoshell.setActionUnit(12, 0);")
+    ok = True
+    a = got["a"]
+    if not (a["left"] == 0.8 and a["right"] == 0.8 and max(a["other"]) == 0.0):
+        print(f"FAILED: AU12 at 0.8 drives {a}, not the two zygomatici at 0.8")
+        ok = False
+    error = max(abs(p[c] - n[c]) for p, n in zip(page, native) for c in range(3))
+    moved = max(sum((n[c] - r[c]) ** 2 for c in range(3)) ** 0.5 for n, r in zip(native, native_rest))
+    print(f"AU12 0.8 ({got['aus']} action units offered): page vs pose with both zygomatici at 0.8, largest vertex "
+          f"difference {error:.2e} cm (pose moves up to {moved:.3f} cm)")
+    if not (moved > 0.1 and error <= 1e-3):
+        print("FAILED: the AU's settled shape differs from pose's by more than 1e-3 cm (or pose barely moves)")
+        ok = False
+    return ok
 
 
 def check_take(browser, native_end, speed=2.5):
@@ -126,6 +161,10 @@ def main():
         subprocess.run([a.myoshell, "pose", "--gravity", "off", "--out", rest], check=True, stdout=subprocess.DEVNULL)
         native = obj_vertices(obj)
         native_rest = obj_vertices(rest)
+        au12 = os.path.join(tmp, "au12.obj")
+        subprocess.run([a.myoshell, "pose", "--set", "zygomaticus_major_left=0.8", "--set", "zygomaticus_major_right=0.8",
+                        "--gravity", "off", "--out", au12], check=True, stdout=subprocess.DEVNULL)
+        native_au12 = obj_vertices(au12)
         # The take as `myoshell run` plays it: its last frame.
         run = os.path.join(tmp, "run")
         subprocess.run([a.myoshell, "run", os.path.join(a.scenes, "demo.json"), "--out", run, "--format", "obj"],
@@ -191,6 +230,7 @@ def main():
             print("FAILED: the page's settled mouth corner differs from pose's by more than 1e-3 cm")
             ok = False
 
+        ok = check_action_unit(browser, native_au12, native_rest) and ok
         ok = check_take(browser, native_take_end) and ok
 
         measured = {"load_seconds_page": page["load"], "load_seconds_wall": wall_load,

@@ -7,12 +7,15 @@
 #include <emscripten/bind.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "../web_face.h"
 #include "myoshell/anim/scene_player.h"
+#include "myoshell/fit/facs_route.h"
 #include "myoshell/anatomy/anatomical_skin.h"
 #include "myoshell/core/errors.h"
 #include "myoshell/core/timer.h"
@@ -31,6 +34,7 @@ class Page {
     face_ = buildWebFace(w.muscles, &cache);
     if (face_->skin().settings().warping) throw InputError("the page steps linear modes: warping must be off");
     takes_ = std::move(w.takes);
+    facs_ = std::move(w.facs);
     player_ = std::make_unique<ScenePlayer>(SceneDesc{}, face_);
     sim_ = &dynamic_cast<AnatomicalSimulator&>(player_->simulator());
     activations_ = VecX::Zero(face_->muscleCount());
@@ -55,11 +59,35 @@ class Page {
   void setActivation(const std::string& name, double a) {
     stopPlaying();
     const int m = face_->muscleIndex(name);
-    sim_->setActivation(m, a);
+    if (!(a >= 0.0 && a <= 1.0)) sim_->setActivation(m, a);  // the library's message
     activations_(m) = a;
-    settled_ = false;
+    applyDrives();
   }
-  double activation(const std::string& name) const { return activations_(face_->muscleIndex(name)); }
+  // The activation the face has: the muscle's slider plus what the action units drive, clamped.
+  double activation(const std::string& name) const { return sim_->activation(face_->muscleIndex(name)); }
+
+  // The action units the page offers: those of the FACS map that drive a muscle, the jaw or the
+  // eyes (AU34's air in the mouth is not a load the simulator takes; AUs that `need` something drive
+  // nothing), as "AU: name".
+  std::vector<std::string> actionUnits() const {
+    std::vector<std::string> out;
+    for (const FacsEntry& e : facs_.entries)
+      if (!e.muscles.empty() || e.movesJaw() || e.turnsEyes()) out.push_back(std::to_string(e.au) + ": " + e.name);
+    return out;
+  }
+  // An action unit's intensity in [0, 1]. Each AU goes to muscles, the jaw and the eyes through
+  // facsDriveOfAu (fit/facs_route.h), the path `myoshell drive` takes from an OpenFace curve; the
+  // drives add to the muscle sliders and the jaw slider and are clamped to the muscles' [0, 1], the
+  // jaw's and the eyes' ranges as drive clamps them (anim/performance_map.cpp).
+  void setActionUnit(int au, double x) {
+    if (!(x >= 0.0 && x <= 1.0)) throw InputError("AU" + std::to_string(au) + ": intensity outside [0, 1]");
+    if (!facsDriveOfAu(facs_, au, "")) throw InputError("AU" + std::to_string(au) + " drives nothing in the FACS map");
+    stopPlaying();
+    if (x == 0.0) aus_.erase(au);
+    else aus_[au] = x;
+    applyDrives();
+  }
+  double actionUnit(int au) const { return aus_.count(au) ? aus_.at(au) : 0.0; }
   // Gravity as `myoshell pose --gravity on|off` reads it: the rest shape already hangs under upright
   // gravity, so only its turn with the head loads the skin (reading (b)); off, gravity stays the rest
   // gravity whatever the head's tilt (no load at all). Not weightlessness (a gravity scale of 0).
@@ -75,10 +103,8 @@ class Page {
   }
   void setJaw(double openDeg) {
     stopPlaying();
-    JawPose j;
-    j.openDeg = openDeg;
-    sim_->setJaw(j);
-    settled_ = false;
+    jawOpen_ = openDeg;
+    applyDrives();
   }
 
   // Steps `count` times (while not held on a settled shape), then places the skin; returns the
@@ -117,6 +143,8 @@ class Page {
     player_ = std::make_unique<ScenePlayer>(*it, face_);
     sim_ = &dynamic_cast<AnatomicalSimulator&>(player_->simulator());
     activations_.setZero();
+    aus_.clear();
+    jawOpen_ = 0.0;
     pitch_ = 0.0;
     gravityOn_ = true;
     playing_ = true;
@@ -128,6 +156,8 @@ class Page {
     if (!playing_) return;
     playing_ = false;
     for (int m = 0; m < face_->muscleCount(); ++m) activations_(m) = sim_->activation(m);
+    jawOpen_ = sim_->jaw().openDeg;
+    aus_.clear();
     player_->setScene(SceneDesc{});  // the clock and the stepper's state kept
   }
   bool playing() const { return playing_; }
@@ -175,6 +205,35 @@ class Page {
     for (Eigen::Index i = 0; i < shape_.rows(); ++i)
       for (int c = 0; c < 3; ++c) positions_[static_cast<size_t>(3 * i + c)] = static_cast<float>(shape_(i, c));
   }
+  // The sliders' loads on the simulator: activations = the muscle sliders + Σ AU intensity · weight,
+  // the jaw = its slider + Σ AU intensity · the AU's jaw, the eyes Σ AU intensity · turn, each
+  // clamped to its range.
+  void applyDrives() {
+    VecX a = activations_;
+    Vec3 jaw(jawOpen_, 0.0, 0.0);
+    EyeGaze gaze;
+    for (const auto& [au, x] : aus_) {
+      const std::optional<FacsDrive> d = facsDriveOfAu(facs_, au, "");
+      for (const auto& [muscle, w] : d->muscles) a(face_->muscleIndex(muscle)) += x * w;
+      jaw += x * d->jaw;
+      for (size_t e = 0; e < 2; ++e) {
+        gaze.pitchDeg[e] += x * d->gaze[e].x();
+        gaze.yawDeg[e] += x * d->gaze[e].y();
+      }
+    }
+    for (Eigen::Index m = 0; m < a.size(); ++m) sim_->setActivation(static_cast<int>(m), std::clamp(a(m), 0.0, 1.0));
+    JawPose j;
+    j.openDeg = std::clamp(jaw.x(), kJawOpenMinDeg, kJawOpenMaxDeg);
+    j.forwardCm = std::clamp(jaw.y(), kJawForwardMinCm, kJawForwardMaxCm);
+    j.lateralCm = std::clamp(jaw.z(), -kJawLateralMaxCm, kJawLateralMaxCm);
+    sim_->setJaw(j);
+    for (size_t e = 0; e < 2; ++e) {
+      gaze.pitchDeg[e] = std::clamp(gaze.pitchDeg[e], -kGazeMaxDeg, kGazeMaxDeg);
+      gaze.yawDeg[e] = std::clamp(gaze.yawDeg[e], -kGazeMaxDeg, kGazeMaxDeg);
+    }
+    sim_->setGaze(gaze);
+    settled_ = false;
+  }
   void updateGravity() {
     stopPlaying();
     sim_->setGravity(1.0);
@@ -183,6 +242,9 @@ class Page {
   }
   std::shared_ptr<const AnatomicalFace> face_;
   std::vector<SceneDesc> takes_;
+  FacsMap facs_;
+  std::map<int, double> aus_;  // AU → intensity (> 0)
+  double jawOpen_ = 0.0;       // the jaw slider (degrees)
   std::unique_ptr<ScenePlayer> player_;
   AnatomicalSimulator* sim_ = nullptr;  // player_'s
   bool playing_ = false;
@@ -218,6 +280,9 @@ EMSCRIPTEN_BINDINGS(myoshell) {
       .function("muscleNames", &Page::muscleNames)
       .function("setActivation", &Page::setActivation)
       .function("activation", &Page::activation)
+      .function("actionUnits", &Page::actionUnits)
+      .function("setActionUnit", &Page::setActionUnit)
+      .function("actionUnit", &Page::actionUnit)
       .function("setGravity", &Page::setGravity)
       .function("setJaw", &Page::setJaw)
       .function("setHeadPitch", &Page::setHeadPitch)
