@@ -96,6 +96,24 @@ class Drawing {
     this.pitch = 0.05;
   }
 
+  // The vertex under the pixel (x, y) (CSS pixels from the canvas's corner): the nearest to the eye
+  // of those drawn within 10 pixels, and its eye depth; null when none.
+  pick(x, y) {
+    const m = this.viewProjection, p = this.shape(), canvas = this.gl.canvas;
+    if (!m) return null;
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    let best = null;
+    for (let i = 0; i < this.n; ++i) {
+      const X = p[3 * i], Y = p[3 * i + 1], Z = p[3 * i + 2];
+      const cw = m[3] * X + m[7] * Y + m[11] * Z + m[15];
+      const sx = ((m[0] * X + m[4] * Y + m[8] * Z + m[12]) / cw * 0.5 + 0.5) * w;
+      const sy = (0.5 - (m[1] * X + m[5] * Y + m[9] * Z + m[13]) / cw * 0.5) * h;
+      if ((sx - x) ** 2 + (sy - y) ** 2 > 100) continue;
+      if (!best || cw < best.depth) best = { vertex: i, depth: cw };
+    }
+    return best;
+  }
+
   shape() {  // the module's float32 positions (the view is remade: memory may have grown)
     return new Float32Array(this.Module.HEAPF32.buffer, this.page.positionsAddress(), 3 * this.n);
   }
@@ -122,7 +140,13 @@ class Drawing {
     const back = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -dist, 1];
     const view = multiply(back, multiply(rx, multiply(ry, t)));
     const proj = perspective(0.7, canvas.width / canvas.height, dist / 10, dist * 10);
-    gl.uniformMatrix4fv(gl.getUniformLocation(this.prog, 'viewProjection'), false, multiply(proj, view));
+    this.viewProjection = multiply(proj, view);
+    // The camera's right and up axes in head space (rows of the view's rotation) and the focal scale:
+    // a pixel at eye depth w spans 2 w tan(fovy/2) / height cm.
+    this.right = [cyw, 0, -syw];
+    this.up = [-sp * syw, cp, -sp * cyw];
+    this.pixelScale = (2 * Math.tan(0.35)) / canvas.height;
+    gl.uniformMatrix4fv(gl.getUniformLocation(this.prog, 'viewProjection'), false, this.viewProjection);
     gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
   }
 }
@@ -215,12 +239,37 @@ async function main() {
     };
     document.getElementById('play').addEventListener('click', () => play(takeBox.value));
     document.getElementById('stop').addEventListener('click', () => { page.stopPlaying(); });
-    // Turn the head view with the mouse.
+    // The mouse: a drag that starts on the skin pulls it (Page::grab: a force at the vertex, projected
+    // on the basis, that moves it by the mouse's motion in the screen's plane); elsewhere, or with
+    // shift, it turns the view.
     const canvas = document.getElementById('canvas');
-    let drag = null;
-    canvas.addEventListener('pointerdown', (e) => { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
-    canvas.addEventListener('pointerup', () => { drag = null; });
+    let drag = null, pull = null;
+    const grabInfo = document.getElementById('grabinfo');
+    canvas.addEventListener('pointerdown', (e) => {
+      canvas.setPointerCapture(e.pointerId);
+      const r = canvas.getBoundingClientRect();
+      const hit = e.shiftKey ? null : drawing.pick(e.clientX - r.left, e.clientY - r.top);
+      const seconds = hit ? call(() => page.grab(hit.vertex)) : -1;
+      if (seconds >= 0) {
+        pull = { x: e.clientX, y: e.clientY, scale: hit.depth * drawing.pixelScale * devicePixelRatio };
+        hook.grabSeconds = seconds;
+        grabInfo.textContent = `grabbed vertex ${hit.vertex} in ${(seconds * 1000).toFixed(3)} ms`;
+      } else {
+        drag = [e.clientX, e.clientY];
+      }
+    });
+    canvas.addEventListener('pointerup', () => {
+      drag = null;
+      if (pull) { page.release(); pull = null; }
+    });
     canvas.addEventListener('pointermove', (e) => {
+      if (pull) {
+        const dx = (e.clientX - pull.x) * pull.scale, dy = -(e.clientY - pull.y) * pull.scale;
+        const d = [0, 1, 2].map((c) => dx * drawing.right[c] + dy * drawing.up[c]);
+        const f = call(() => page.moveGrab(d[0], d[1], d[2]));
+        grabInfo.textContent = `pulling vertex ${page.grabbed()}: ${Math.hypot(...d).toFixed(2)} cm, |f| ${f.toFixed(0)} dyn`;
+        return;
+      }
       if (!drag) return;
       drawing.yaw += (e.clientX - drag[0]) * 0.01;
       drawing.pitch = Math.max(-1.2, Math.min(1.2, drawing.pitch + (e.clientY - drag[1]) * 0.01));
@@ -245,6 +294,11 @@ async function main() {
       // Plays a take from the neutral face (speed: take seconds per wall second); returns its duration (s).
       play(name, speed = 1) { return play(name, speed); },
       stop() { page.stopPlaying(); },
+      // The mouse grab by hand: grab(i) returns its seconds (−1 for a vertex held fixed); move(δ) in cm.
+      grab(i) { return (hook.grabSeconds = call(() => page.grab(i))); },
+      moveGrab(dx, dy, dz) { return call(() => page.moveGrab(dx, dy, dz)); },
+      release() { page.release(); },
+      grabSeconds: 0,
       setGravity(on) { gravity.checked = !!on; call(() => page.setGravity(!!on)); },
       setJaw(deg) { jaw.value = deg; call(() => page.setJaw(deg)); },
       setHeadPitch(deg) { pitch.value = deg; call(() => page.setHeadPitch(deg)); },

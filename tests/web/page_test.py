@@ -7,7 +7,9 @@ the shipped take (scenes/demo.json, packed into face.myoweb) must play to its en
 its duration) and its last frame must be `myoshell run scenes/demo.json`'s last frame, every vertex
 within 1e-4 cm (the same ScenePlayer, the same steps); AU12 at 0.8 through the page's FACS path must
 drive both zygomatici at 0.8 and settle to `pose --set zygomaticus_major_left=0.8 --set
-zygomaticus_major_right=0.8 --gravity off`'s shape, every vertex within 1e-3 cm.
+zygomaticus_major_right=0.8 --gravity off`'s shape, every vertex within 1e-3 cm; a mouse grab of a
+cheek vertex moved by δ must settle with that vertex moved by δ (the force is sized on the basis's
+compliance, along the pull within 20 %), and the release must bring the face back.
 
 usage: page_test.py DIST MYOSHELL SCENES [--screenshot PNG] [--measure]
 Exit 77 (ctest's skip) with a message when chromium, chromedriver, selenium or emscripten are absent.
@@ -75,6 +77,43 @@ def check_action_unit(browser, native, native_rest):
     if not (moved > 0.1 and error <= 1e-3):
         print("FAILED: the AU's settled shape differs from pose's by more than 1e-3 cm (or pose barely moves)")
         ok = False
+    return ok
+
+
+def check_grab(browser, vertex=205, delta=(0.3, 0.2, 0.4)):
+    """Grabs a cheek vertex, pulls it by delta (cm), settles (gravity off, nothing else on)."""
+    got = browser.execute_script(f"""
+        const m = window.myoshell;
+        m.settle();
+        const before = m.vertex({vertex});
+        const seconds = m.grab({vertex});
+        const force = m.moveGrab({delta[0]}, {delta[1]}, {delta[2]});
+        m.settle();
+        const after = m.vertex({vertex});
+        return {{seconds, force, before, after}};""")
+    pulled = all_vertices(browser)
+    browser.execute_script("const m = window.myoshell; m.release(); m.settle();")
+    unpulled = all_vertices(browser)
+    released = browser.execute_script(f"return window.myoshell.vertex({vertex});")
+    moved = [got["after"][c] - got["before"][c] for c in range(3)]
+    length = sum(d * d for d in delta) ** 0.5
+    size = sum(m * m for m in moved) ** 0.5
+    cosine = sum(m * d for m, d in zip(moved, delta)) / (size * length)
+    # What moved beyond the grip (1 cm at rest from the grabbed vertex): reported, not asserted (the
+    # basis's response to a local force is not local: docs/web.md, "Mouse drag").
+    rest = all_vertices(browser, "restVertex")
+    settled = unpulled
+    r0 = rest[vertex]
+    far = max(sum((p[c] - q[c]) ** 2 for c in range(3)) ** 0.5 - 0.0
+              for p, q, r in zip(pulled, settled, rest) if sum((r[c] - r0[c]) ** 2 for c in range(3)) > 1.0)
+    back = max(abs(released[c] - got["before"][c]) for c in range(3))
+    print(f"grab of vertex {vertex}: {got['seconds'] * 1000:.3f} ms, |f| {got['force']:.0f} dyn; pulled by {length:.3f} cm, "
+          f"it moved {size:.3f} cm (cosine {cosine:.4f} with the pull); beyond the 1 cm grip the most any vertex moved "
+          f"{far:.3f} cm; after the release {back:.1e} cm from where it was")
+    ok = got["seconds"] >= 0 and cosine >= 0.95 and 0.8 * length <= size <= 1.2 * length and back <= 1e-9
+    if not ok:
+        print("FAILED: the grabbed vertex did not follow the pull (cosine 0.95, length within 20 %), or the release "
+              "did not bring it back")
     return ok
 
 
@@ -231,6 +270,7 @@ def main():
             ok = False
 
         ok = check_action_unit(browser, native_au12, native_rest) and ok
+        ok = check_grab(browser) and ok
         ok = check_take(browser, native_take_end) and ok
 
         measured = {"load_seconds_page": page["load"], "load_seconds_wall": wall_load,

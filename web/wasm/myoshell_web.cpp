@@ -146,6 +146,7 @@ class Page {
     aus_.clear();
     jawOpen_ = 0.0;
     pitch_ = 0.0;
+    grabbed_ = -1;
     gravityOn_ = true;
     playing_ = true;
     settled_ = false;
@@ -181,6 +182,64 @@ class Page {
     return clock.seconds();
   }
   bool settled() const { return settled_; }
+
+  // The mouse grab (docs/web.md, "Mouse drag"): a force f spread over a grip around vertex i,
+  // projected on the basis the face steps in (SkinLoads::modalForce = Gᵀf), sized so that the
+  // reduced static response moves the grip by δ (the mouse's motion since the grab): the grip's
+  // reduced compliance C = G Λ⁻¹ Gᵀ (3×3, cm/dyn; G its weighted rows of Φ) gives f = C⁻¹δ. No
+  // factorisation and no data beyond Φ: a grab is a read of the grip's rows and a 3×3 inverse. The response is the basis's (its
+  // low modes and static responses), smoother than a point load's K⁻¹f, which the native viewer's
+  // grab adds to the basis (AnatomicalStepper::grab: K̂'s factorisation and the held basis).
+  // Returns the grab's wall time (s), or −1 for a vertex the basis holds fixed.
+  double grab(int vertex) {
+    Stopwatch clock;
+    if (vertex < 0 || vertex >= vertexCount()) throw InputError("grab: vertex " + std::to_string(vertex) + " is outside the head");
+    const ModalBasis& B = *face_->skin().basis();
+    if (freeRow_.empty()) {  // full vertex → its first row of Φ, or −1 where the basis holds it fixed
+      freeRow_.assign(static_cast<size_t>(vertexCount()), -1);
+      for (size_t k = 0; k < B.freeVertices.size(); ++k) freeRow_[static_cast<size_t>(B.freeVertices[k])] = static_cast<int>(3 * k);
+    }
+    if (freeRow_[static_cast<size_t>(vertex)] < 0) return -1.0;
+    stopPlaying();
+    // The grip: the free vertices within kGripRadiusCm of the grabbed one at rest, weighted
+    // (1 − (r/R)²)², Σw = 1; its rows G = Σ w_j Φ_j (3×d). A force f spread as w_j f loads the modes by
+    // Gᵀf, and moves the grip's weighted mean by C f, C = G Λ⁻¹ Gᵀ.
+    const MatX3& V = face_->head().mesh.V;
+    grabRows_ = MatX::Zero(3, B.modeCount());
+    double total = 0.0;
+    for (Eigen::Index j = 0; j < V.rows(); ++j) {
+      const int row = freeRow_[static_cast<size_t>(j)];
+      const double r2 = (V.row(j) - V.row(vertex)).squaredNorm() / (kGripRadiusCm * kGripRadiusCm);
+      if (row < 0 || r2 >= 1.0) continue;
+      const double w = (1.0 - r2) * (1.0 - r2);
+      grabRows_ += w * B.Phi.middleRows(row, 3);
+      total += w;
+    }
+    grabRows_ /= total;
+    const Eigen::Matrix3d C = grabRows_ * B.lambda.cwiseInverse().asDiagonal() * grabRows_.transpose();
+    grabInverse_ = C.inverse();
+    grabbed_ = vertex;
+    return clock.seconds();
+  }
+  // Moves the grip's target by δ (cm, head space; |δ| capped at 2 cm): f = C⁻¹δ.
+  // Returns |f| (dyn).
+  double moveGrab(double dx, double dy, double dz) {
+    if (grabbed_ < 0) return 0.0;
+    Vec3 d(dx, dy, dz);
+    if (!d.allFinite()) throw InputError("grab: the motion is not finite");
+    if (d.norm() > kGrabReachCm) d *= kGrabReachCm / d.norm();
+    const Vec3 f = grabInverse_ * d;
+    sim_->setModalForce(grabRows_.transpose() * f);
+    settled_ = false;
+    return f.norm();
+  }
+  void release() {
+    if (grabbed_ < 0) return;
+    grabbed_ = -1;
+    sim_->setModalForce(VecX());
+    settled_ = false;
+  }
+  int grabbed() const { return grabbed_; }
 
   // Vertex i's position (cm, the head's order) in the shape last placed.
   std::vector<double> vertex(int i) const {
@@ -245,6 +304,12 @@ class Page {
   FacsMap facs_;
   std::map<int, double> aus_;  // AU → intensity (> 0)
   double jawOpen_ = 0.0;       // the jaw slider (degrees)
+  static constexpr double kGrabReachCm = 2.0;
+  static constexpr double kGripRadiusCm = 1.0;  // the grip's radius at rest (a scene drag's default)
+  std::vector<int> freeRow_;     // per vertex: its first row of Φ, −1 where held fixed
+  int grabbed_ = -1;             // the grabbed vertex, or −1
+  MatX grabRows_;                // 3×d: its rows of Φ
+  Eigen::Matrix3d grabInverse_;  // Cᵢ⁻¹, dyn/cm
   std::unique_ptr<ScenePlayer> player_;
   AnatomicalSimulator* sim_ = nullptr;  // player_'s
   bool playing_ = false;
@@ -294,6 +359,10 @@ EMSCRIPTEN_BINDINGS(myoshell) {
       .function("positionsAddress", &Page::positionsAddress)
       .function("trianglesAddress", &Page::trianglesAddress)
       .function("stepCount", &Page::stepCount)
+      .function("grab", &Page::grab)
+      .function("moveGrab", &Page::moveGrab)
+      .function("release", &Page::release)
+      .function("grabbed", &Page::grabbed)
       .function("takeNames", &Page::takeNames)
       .function("play", &Page::play)
       .function("stopPlaying", &Page::stopPlaying)
