@@ -96,6 +96,26 @@ class Drawing {
     this.pitch = 0.05;
   }
 
+  // The native renderer's front view of the rest face on a square canvas of `size` CSS pixels (null:
+  // back to the page's own view).
+  setPicture(size, frame, rest) {
+    const canvas = this.gl.canvas;
+    if (!size) { this.picture = null; canvas.style.width = canvas.style.height = ''; return; }
+    canvas.style.width = canvas.style.height = `${size}px`;
+    const right = frame.slice(3, 6), up = frame.slice(6, 9), z = frame.slice(9, 12);
+    const forward = z.map((v) => -v);
+    const dot = (a, i) => a[0] * rest[3 * i] + a[1] * rest[3 * i + 1] + a[2] * rest[3 * i + 2];
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity, z0 = Infinity, z1 = -Infinity;
+    for (let i = 0; i < this.n; ++i) {
+      const x = dot(right, i), y = dot(up, i), d = dot(forward, i);
+      x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
+      z0 = Math.min(z0, d); z1 = Math.max(z1, d);
+    }
+    const height = Math.max(y1 - y0, x1 - x0) / (1 - 2 * 0.04);  // fitToBounds, aspect 1
+    this.picture = { right, up, forward, cx: (x0 + x1) / 2, cy: (y0 + y1) / 2, cz: (z0 + z1) / 2,
+                     halfW: height / 2, halfH: height / 2 };
+  }
+
   // The vertex under the pixel (x, y) (CSS pixels from the canvas's corner): the nearest to the eye
   // of those drawn within 10 pixels, and its eye depth; null when none.
   pick(x, y) {
@@ -130,6 +150,18 @@ class Drawing {
     gl.bindVertexArray(this.vao);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
     gl.bufferSubData(gl.ARRAY_BUFFER, 0, this.shape());
+    if (this.picture) {
+      // The native renderer's front view (render/face_picture.cpp, framing "all"): orthographic along
+      // the face frame's −z, fitted to the rest face's extent on its x and y with a 4 % margin.
+      const { right: r, up: u, forward: f, cx, cy, cz, halfW, halfH } = this.picture;
+      const D = 100;  // cm of depth either side of the centre
+      const vp = [r[0] / halfW, u[0] / halfH, f[0] / D, 0, r[1] / halfW, u[1] / halfH, f[1] / D, 0,
+                  r[2] / halfW, u[2] / halfH, f[2] / D, 0, -cx / halfW, -cy / halfH, -cz / D, 1];
+      this.viewProjection = vp;
+      gl.uniformMatrix4fv(gl.getUniformLocation(this.prog, 'viewProjection'), false, vp);
+      gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
+      return;
+    }
     const dist = 2.6 * this.radius;
     const [cx, cy, cz] = this.centre;
     const cyw = Math.cos(this.yaw), syw = Math.sin(this.yaw), cp = Math.cos(this.pitch), sp = Math.sin(this.pitch);
@@ -299,6 +331,14 @@ async function main() {
       moveGrab(dx, dy, dz) { return call(() => page.moveGrab(dx, dy, dz)); },
       release() { page.release(); },
       grabSeconds: 0,
+      // The native renderer's front view on a size×size canvas (`myoshell render --view front`'s
+      // camera), or the page's own view with 0.
+      pictureView(size) {
+        const rest = [];
+        for (let i = 0; i < drawing.n; ++i) rest.push(...list(page.restVertex(i)));
+        drawing.setPicture(size, list(page.frame()), rest);
+        document.getElementById('stats').style.display = size ? 'none' : '';  // the picture alone
+      },
       setGravity(on) { gravity.checked = !!on; call(() => page.setGravity(!!on)); },
       setJaw(deg) { jaw.value = deg; call(() => page.setJaw(deg)); },
       setHeadPitch(deg) { pitch.value = deg; call(() => page.setHeadPitch(deg)); },

@@ -11,11 +11,17 @@ zygomaticus_major_right=0.8 --gravity off`'s shape, every vertex within 1e-3 cm;
 cheek vertex moved by δ must settle with that vertex moved by δ (the force is sized on the basis's
 compliance, along the pull within 20 %), and the release must bring the face back.
 
-usage: page_test.py DIST MYOSHELL SCENES [--screenshot PNG] [--measure]
+The page's picture of that last frame (the native front view's camera, 600×600) and `myoshell render
+scenes/demo.json --frames 150:150 --view front`'s must agree in silhouette: the intersection over
+union of their non-background pixels at least 0.99.
+
+usage: page_test.py DIST MYOSHELL SCENES [--screenshot PNG] [--figure PNG] [--measure]
 Exit 77 (ctest's skip) with a message when chromium, chromedriver, selenium or emscripten are absent.
 """
 import argparse
 import json
+import struct
+import zlib
 import os
 import shutil
 import socket
@@ -45,6 +51,85 @@ def obj_vertices(path):
             if line.startswith("v "):
                 out.append([float(x) for x in line.split()[1:4]])
     return out
+
+
+def read_png(data):
+    """8-bit RGB or RGBA PNG bytes → (width, height, rows of bytes, channels)."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and colour in (2, 6), f"PNG depth {depth} colour type {colour}"
+            ch = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, stride, rows, prev = zlib.decompress(idat), width * ch, [], bytearray(width * ch)
+    for y in range(height):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - ch] if i >= ch else 0
+            b, c = prev[i], prev[i - ch] if i >= ch else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return width, height, rows, ch
+
+
+def write_png(path, width, height, rows):
+    """RGB rows (bytes of width·3) → a PNG file."""
+    raw = b"".join(b"\x00" + bytes(r) for r in rows)
+    chunk = lambda k, b: struct.pack(">I", len(b)) + k + b + struct.pack(">I", zlib.crc32(k + b) & 0xffffffff)
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def silhouette(png):
+    """The non-background pixels (off the corner pixel's colour, the flat background, by more than 8 of 255:
+    the dark sides of both pictures are within 24 of it), and RGB rows."""
+    w, h, rows, ch = png
+    bg = rows[0][:3]
+    mask = [[max(abs(r[x * ch + c] - bg[c]) for c in range(3)) > 8 for x in range(w)] for r in rows]
+    rgb = [bytes(b for x in range(w) for b in r[x * ch:x * ch + 3]) for r in rows]
+    return mask, rgb
+
+
+def check_picture(browser, native_png, figure):
+    """The page's picture of the shape it holds in the native front view's camera against the native
+    render of the same frame: silhouettes' intersection over union."""
+    native = read_png(native_png)
+    size = native[0]
+    browser.execute_script(f"window.myoshell.pictureView({size});")
+    time.sleep(0.5)  # a few frames drawn at the new size
+    canvas = browser.find_element("id", "canvas")
+    page = read_png(canvas.screenshot_as_png)
+    browser.execute_script("window.myoshell.pictureView(0);")
+    if page[0] != size or page[1] != native[1]:
+        print(f"FAILED: the page's picture is {page[0]}×{page[1]}, the native {native[0]}×{native[1]}")
+        return False
+    (pm, prgb), (nm, nrgb) = silhouette(page), silhouette(native)
+    inter = sum(a and b for ra, rb in zip(pm, nm) for a, b in zip(ra, rb))
+    union = sum(a or b for ra, rb in zip(pm, nm) for a, b in zip(ra, rb))
+    iou = inter / max(union, 1)
+    print(f"picture of the take's last frame, page vs `myoshell render --view front` ({size}×{native[1]}): "
+          f"silhouette IoU {iou:.4f} ({union - inter} of {union} pixels differ)")
+    if figure:
+        write_png(figure, 2 * size + 8, native[1],
+                  [pr + bytes([255, 255, 255]) * 8 + nr for pr, nr in zip(prgb, nrgb)])
+        print(f"wrote {figure}")
+    if not iou >= 0.99:
+        print("FAILED: the page's silhouette and the native renderer's differ (IoU below 0.99)")
+        return False
+    return True
 
 
 def all_vertices(browser, what="vertex"):
@@ -170,6 +255,7 @@ def main():
     ap.add_argument("myoshell")
     ap.add_argument("scenes", help="the scenes folder (the shipped take, demo.json)")
     ap.add_argument("--screenshot", default="")
+    ap.add_argument("--figure", default="", help="write the page's picture beside the native one (PNG)")
     ap.add_argument("--measure", action="store_true", help="print load time, steps/s, frame rate as JSON")
     a = ap.parse_args()
 
@@ -210,6 +296,13 @@ def main():
                        check=True, stdout=subprocess.DEVNULL)
         frames = sorted(os.listdir(os.path.join(run, "obj")))
         native_take_end = obj_vertices(os.path.join(run, "obj", frames[-1]))
+        # The native picture of that frame.
+        render = os.path.join(tmp, "render")
+        subprocess.run([a.myoshell, "render", os.path.join(a.scenes, "demo.json"), "--out", render, "--frames",
+                        f"{len(frames) - 1}:{len(frames) - 1}", "--view", "front", "--size", "600x600", "--sheet", "0"],
+                       check=True, stdout=subprocess.DEVNULL)
+        with open(os.path.join(render, "png", sorted(os.listdir(os.path.join(render, "png")))[-1]), "rb") as f:
+            native_png = f.read()
 
     port = free_port()
     server = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind", "127.0.0.1", "-d", a.dist],
@@ -272,6 +365,7 @@ def main():
         ok = check_action_unit(browser, native_au12, native_rest) and ok
         ok = check_grab(browser) and ok
         ok = check_take(browser, native_take_end) and ok
+        ok = check_picture(browser, native_png, a.figure) and ok
 
         measured = {"load_seconds_page": page["load"], "load_seconds_wall": wall_load,
                     "build_seconds": page["build"], "settle_seconds": page["seconds"]}

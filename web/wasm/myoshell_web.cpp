@@ -241,6 +241,16 @@ class Page {
   }
   int grabbed() const { return grabbed_; }
 
+  // The face frame (head/face_frame.h): origin, then the axes' columns x (subject's left), y (up),
+  // z (out of the face), 12 numbers: the native renderer's front view looks along −z.
+  std::vector<double> frame() const {
+    const FaceFrame f = face_->head().frame();
+    std::vector<double> out(f.origin.data(), f.origin.data() + 3);
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) out.push_back(f.axes(r, c));
+    return out;
+  }
+
   // Vertex i's position (cm, the head's order) in the shape last placed.
   std::vector<double> vertex(int i) const {
     if (i < 0 || i >= vertexCount()) throw InputError("vertex " + std::to_string(i) + " is outside the head");
@@ -359,6 +369,7 @@ EMSCRIPTEN_BINDINGS(myoshell) {
       .function("positionsAddress", &Page::positionsAddress)
       .function("trianglesAddress", &Page::trianglesAddress)
       .function("stepCount", &Page::stepCount)
+      .function("frame", &Page::frame)
       .function("grab", &Page::grab)
       .function("moveGrab", &Page::moveGrab)
       .function("release", &Page::release)
