@@ -38,6 +38,38 @@ void main() {
   colour = vec4(skin * (0.25 + 0.75 * d), 1.0);
 }`;
 
+// The modes as morph targets: the skin reconstructed on the GPU, rest + Σⱼ qⱼ Φⱼ, Φ read from a float
+// texture (texel i·d + j holds vertex i's row of mode j), q a uniform array: only d floats uploaded a
+// frame. No placement (the jaw's turn, the lids, the contact projection): docs/web.md.
+const TEXTURE_WIDTH = 4096;
+const VS_MORPH = (d) => `#version 300 es
+precision highp float;
+precision highp sampler2D;
+in vec3 position;
+uniform mat4 viewProjection;
+uniform sampler2D modes;
+uniform vec4 q[${Math.ceil(d / 4)}];
+out vec3 world;
+void main() {
+  vec3 p = position;
+  int base = gl_VertexID * ${d};
+  for (int j = 0; j < ${d}; ++j) {
+    int k = base + j;
+    p += q[j / 4][j % 4] * texelFetch(modes, ivec2(k % ${TEXTURE_WIDTH}, k / ${TEXTURE_WIDTH}), 0).rgb;
+  }
+  world = p;
+  gl_Position = viewProjection * vec4(p, 1.0);
+}`;
+
+function program(gl, vs, fs) {
+  const prog = gl.createProgram();
+  gl.attachShader(prog, compile(gl, gl.VERTEX_SHADER, vs));
+  gl.attachShader(prog, compile(gl, gl.FRAGMENT_SHADER, fs));
+  gl.linkProgram(prog);
+  if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(prog));
+  return prog;
+}
+
 function compile(gl, type, text) {
   const s = gl.createShader(type);
   gl.shaderSource(s, text);
@@ -81,12 +113,13 @@ class Drawing {
     gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0);
     const count = 3 * page.triangleCount();
     const tri = new Uint32Array(Module.HEAPU32.buffer, page.trianglesAddress(), count).slice();
-    const ib = gl.createBuffer();
+    const ib = (this.indices = gl.createBuffer());
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, ib);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, tri, gl.STATIC_DRAW);
     this.count = count;
     // Frame the rest face: its bounding box's centre, seen from the front (+z) at a distance that fits it.
     const p = this.shape();
+    this.rest = p.slice();  // the positions at load are the rest's
     const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < p.length; i += 3)
       for (let c = 0; c < 3; ++c) { lo[c] = Math.min(lo[c], p[i + c]); hi[c] = Math.max(hi[c], p[i + c]); }
@@ -134,6 +167,35 @@ class Drawing {
     return best;
   }
 
+  // Switches to the modes reconstructed on the GPU (true) or positions uploaded (false). The texture
+  // of Φ is made on the first switch.
+  setGpuMorph(on) {
+    const gl = this.gl, page = this.page, Module = this.Module;
+    if (on && !this.morph) {
+      const d = page.modeCount(), n = this.n, texels = n * d, h = Math.ceil(texels / TEXTURE_WIDTH);
+      const phi = new Float32Array(TEXTURE_WIDTH * h * 3);
+      phi.set(new Float32Array(Module.HEAPF32.buffer, page.morphTargetsAddress(), texels * 3));
+      const prog = program(gl, VS_MORPH(d), FS);
+      const vao = gl.createVertexArray();
+      gl.bindVertexArray(vao);
+      const rest = gl.createBuffer();
+      gl.bindBuffer(gl.ARRAY_BUFFER, rest);
+      gl.bufferData(gl.ARRAY_BUFFER, this.rest, gl.STATIC_DRAW);
+      const loc = gl.getAttribLocation(prog, 'position');
+      gl.enableVertexAttribArray(loc);
+      gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0);
+      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indices);
+      const tex = gl.createTexture();
+      gl.bindTexture(gl.TEXTURE_2D, tex);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGB32F, TEXTURE_WIDTH, h, 0, gl.RGB, gl.FLOAT, phi);
+      this.morph = { prog, vao, tex, d, q: new Float32Array(4 * Math.ceil(d / 4)) };
+    }
+    this.gpu = !!on;
+    page.setPlaceOnCpu(!on);
+  }
+
   shape() {  // the module's float32 positions (the view is remade: memory may have grown)
     return new Float32Array(this.Module.HEAPF32.buffer, this.page.positionsAddress(), 3 * this.n);
   }
@@ -146,10 +208,24 @@ class Drawing {
     gl.clearColor(0.13, 0.14, 0.15, 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
-    gl.useProgram(this.prog);
-    gl.bindVertexArray(this.vao);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
-    gl.bufferSubData(gl.ARRAY_BUFFER, 0, this.shape());
+    let prog = this.prog;
+    if (this.gpu) {
+      // d weights a frame instead of n positions.
+      const m = this.morph;
+      prog = m.prog;
+      gl.useProgram(prog);
+      gl.bindVertexArray(m.vao);
+      m.q.set(new Float32Array(this.Module.HEAPF32.buffer, this.page.modalCoordinatesAddress(), m.d));
+      gl.uniform4fv(gl.getUniformLocation(prog, 'q'), m.q);
+      gl.activeTexture(gl.TEXTURE0);
+      gl.bindTexture(gl.TEXTURE_2D, m.tex);
+      gl.uniform1i(gl.getUniformLocation(prog, 'modes'), 0);
+    } else {
+      gl.useProgram(prog);
+      gl.bindVertexArray(this.vao);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
+      gl.bufferSubData(gl.ARRAY_BUFFER, 0, this.shape());
+    }
     if (this.picture) {
       // The native renderer's front view (render/face_picture.cpp, framing "all"): orthographic along
       // the face frame's −z, fitted to the rest face's extent on its x and y with a 4 % margin.
@@ -158,7 +234,7 @@ class Drawing {
       const vp = [r[0] / halfW, u[0] / halfH, f[0] / D, 0, r[1] / halfW, u[1] / halfH, f[1] / D, 0,
                   r[2] / halfW, u[2] / halfH, f[2] / D, 0, -cx / halfW, -cy / halfH, -cz / D, 1];
       this.viewProjection = vp;
-      gl.uniformMatrix4fv(gl.getUniformLocation(this.prog, 'viewProjection'), false, vp);
+      gl.uniformMatrix4fv(gl.getUniformLocation(prog, 'viewProjection'), false, vp);
       gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
       return;
     }
@@ -178,7 +254,7 @@ class Drawing {
     this.right = [cyw, 0, -syw];
     this.up = [-sp * syw, cp, -sp * cyw];
     this.pixelScale = (2 * Math.tan(0.35)) / canvas.height;
-    gl.uniformMatrix4fv(gl.getUniformLocation(this.prog, 'viewProjection'), false, this.viewProjection);
+    gl.uniformMatrix4fv(gl.getUniformLocation(prog, 'viewProjection'), false, this.viewProjection);
     gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
   }
 }
@@ -216,6 +292,8 @@ async function main() {
     const call = (f) => { try { return f(); } catch (e) { throw new Error(message(Module, e)); } };
     const gravity = document.getElementById('gravity');
     gravity.addEventListener('change', () => page.setGravity(gravity.checked));
+    const gpu = document.getElementById('gpu');
+    gpu.addEventListener('change', () => call(() => drawing.setGpuMorph(gpu.checked)));
     const pitch = document.getElementById('pitch');
     pitch.addEventListener('input', () => page.setHeadPitch(Number(pitch.value)));
     const jaw = document.getElementById('jaw');
@@ -331,6 +409,8 @@ async function main() {
       moveGrab(dx, dy, dz) { return call(() => page.moveGrab(dx, dy, dz)); },
       release() { page.release(); },
       grabSeconds: 0,
+      // Draws with the modes as morph targets on the GPU (true) or positions uploaded (false).
+      gpuMorph(on) { gpu.checked = !!on; call(() => drawing.setGpuMorph(!!on)); },
       // The native renderer's front view on a size×size canvas (`myoshell render --view front`'s
       // camera), or the page's own view with 0.
       pictureView(size) {
@@ -360,7 +440,7 @@ async function main() {
     Object.defineProperties(hook, {
       playing: { get: () => page.playing() },
       time: { get: () => page.time() },          // s, the player's clock
-      duration: { get: () => page.duration() },  // s, the take's (the last take's once it ended)
+      duration: { get: () => page.duration() },  // s, the take playing or last played
     });
 
     // Real time: as many steps of dt as the wall clock advanced (at most 0.1 s of them a frame).

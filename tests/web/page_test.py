@@ -375,11 +375,18 @@ def main():
                 m.setActivation('zygomaticus_major_left', 0.5);
                 m.benchmark(20);
                 return m.benchmark(400);""")
-            time.sleep(3)  # the frame loop's own figures (real time, drawing each frame)
-            loop = browser.execute_script("return {fps: window.myoshell.framesPerSecond, "
-                                          "steps: window.myoshell.stepsPerSecond};")
-            measured.update({"steps_per_second_benchmark": bench, "frames_per_second": loop["fps"],
-                             "steps_per_second_in_loop": loop["steps"]})
+            # The frame loop's own figures (real time, drawing each frame), positions uploaded and then the
+            # modes as morph targets on the GPU, each after 3 s (the counter's window is 1 s).
+            for gpu in (False, True):
+                browser.execute_script(f"window.myoshell.gpuMorph({'true' if gpu else 'false'}); "
+                                       "window.myoshell.setActivation('zygomaticus_major_left', 0.5);")
+                time.sleep(3)
+                loop = browser.execute_script("return {fps: window.myoshell.framesPerSecond, "
+                                              "steps: window.myoshell.stepsPerSecond};")
+                key = "gpu_morph" if gpu else "positions_uploaded"
+                measured.update({"steps_per_second_benchmark": bench, f"frames_per_second_{key}": loop["fps"],
+                                 f"steps_per_second_in_loop_{key}": loop["steps"]})
+            browser.execute_script("window.myoshell.gpuMorph(false);")
         if a.screenshot:
             browser.execute_script("window.myoshell.settle();")
             time.sleep(0.5)

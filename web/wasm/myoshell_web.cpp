@@ -125,8 +125,10 @@ class Page {
       for (int i = 0; i < count; ++i) player_->step();
     }
     const double s = clock.seconds();
-    sim_->skinPositions(shape_);
-    copyShape();
+    if (placeOnCpu_) {
+      sim_->skinPositions(shape_);
+      copyShape();
+    }
     return s;
   }
 
@@ -150,6 +152,7 @@ class Page {
     gravityOn_ = true;
     playing_ = true;
     settled_ = false;
+    takeDuration_ = it->duration;
     return it->duration;
   }
   // Stops the take where it is; the sliders take the face from there.
@@ -164,7 +167,7 @@ class Page {
   bool playing() const { return playing_; }
   double jawOpen() const { return sim_->jaw().openDeg; }
   double time() const { return player_->time(); }
-  double duration() const { return player_->scene().duration; }
+  double duration() const { return takeDuration_; }  // the take playing or last played (0 before any)
 
   // The static shape under the current loads, as `myoshell pose` computes it (AnatomicalSkin::settle
   // with the simulator's loads, linear modes, the contact penalty as the skin's settings say; placed
@@ -241,6 +244,32 @@ class Page {
   }
   int grabbed() const { return grabbed_; }
 
+  // The modes as morph targets (docs/web.md, "GPU morph targets"): Φ for every vertex (zero rows
+  // where the basis holds a vertex fixed), float32, texel (i·d + j) = (Φx, Φy, Φz) of vertex i,
+  // mode j: the address of n·d·3 floats, made on the first call.
+  uintptr_t morphTargetsAddress() {
+    if (morph_.empty()) {
+      const ModalBasis& B = *face_->skin().basis();
+      const size_t d = static_cast<size_t>(B.modeCount());
+      morph_.assign(static_cast<size_t>(vertexCount()) * d * 3, 0.0f);
+      for (size_t k = 0; k < B.freeVertices.size(); ++k)
+        for (size_t j = 0; j < d; ++j)
+          for (size_t c = 0; c < 3; ++c)
+            morph_[(static_cast<size_t>(B.freeVertices[k]) * d + j) * 3 + c] =
+                static_cast<float>(B.Phi(static_cast<Eigen::Index>(3 * k + c), static_cast<Eigen::Index>(j)));
+    }
+    return reinterpret_cast<uintptr_t>(morph_.data());
+  }
+  // The modal coordinates q the skin stands at (d, float32; the GPU's weights: u = Φq), and the
+  // address of that copy. Stepping with `place` false skips the CPU's u = Φq and the placement.
+  uintptr_t modalCoordinatesAddress() {
+    const VecX& q = sim_->stepper().integrator().q();
+    qFloat_.resize(static_cast<size_t>(q.size()));
+    for (Eigen::Index j = 0; j < q.size(); ++j) qFloat_[static_cast<size_t>(j)] = static_cast<float>(q(j));
+    return reinterpret_cast<uintptr_t>(qFloat_.data());
+  }
+  void setPlaceOnCpu(bool on) { placeOnCpu_ = on; }
+
   // The face frame (head/face_frame.h): origin, then the axes' columns x (subject's left), y (up),
   // z (out of the face), 12 numbers: the native renderer's front view looks along −z.
   std::vector<double> frame() const {
@@ -311,6 +340,10 @@ class Page {
   }
   std::shared_ptr<const AnatomicalFace> face_;
   std::vector<SceneDesc> takes_;
+  std::vector<float> morph_;     // n·d·3: the modes as morph targets (morphTargetsAddress)
+  std::vector<float> qFloat_;    // d: q for the GPU
+  bool placeOnCpu_ = true;       // false: the GPU reconstructs rest + Φq (no placement)
+  double takeDuration_ = 0.0;    // s: the take playing or last played
   FacsMap facs_;
   std::map<int, double> aus_;  // AU → intensity (> 0)
   double jawOpen_ = 0.0;       // the jaw slider (degrees)
@@ -370,6 +403,9 @@ EMSCRIPTEN_BINDINGS(myoshell) {
       .function("trianglesAddress", &Page::trianglesAddress)
       .function("stepCount", &Page::stepCount)
       .function("frame", &Page::frame)
+      .function("morphTargetsAddress", &Page::morphTargetsAddress)
+      .function("modalCoordinatesAddress", &Page::modalCoordinatesAddress)
+      .function("setPlaceOnCpu", &Page::setPlaceOnCpu)
       .function("grab", &Page::grab)
       .function("moveGrab", &Page::moveGrab)
       .function("release", &Page::release)
