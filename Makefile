@@ -101,7 +101,7 @@ test-asan-ci: setup-test
 # they parse with. `make fuzz` runs each for FUZZ_SECONDS; `make fuzz-replay` replays the seed
 # corpus (fuzz/corpus/) once. Findings land in fuzz/findings/ (docs/RELIABILITY.md).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet
+FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face
 fuzz-build: setup-test
 	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DMYO_FUZZ=ON -DMYO_BUILD_TESTS=OFF -DMYO_BUILD_BENCH=OFF > /dev/null

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "myoshell/core/atomic_file.h"
 #include "myoshell/core/errors.h"
@@ -60,11 +61,16 @@ class In {
     const size_t n = sizeof(T) * count;
     if (count > b_.size() || n > b_.size() - pos_)
       throw InputError("web face data: truncated at byte " + std::to_string(pos_), name_);
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy may not take
     std::memcpy(p, b_.data() + pos_, n);
     pos_ += n;
   }
   std::string str() {
     const uint32_t n = pod<uint32_t>();
+    // Before allocating: a length past the file's end is a truncation (fuzz_web_face found the
+    // allocation of a 2.7 GB string from four damaged bytes).
+    if (n > remaining()) throw InputError("web face data: truncated at byte " + std::to_string(pos_) + " (a string of " +
+                                          std::to_string(n) + " bytes)", name_);
     std::string v(n, '\0');
     raw(v.data(), n);
     return v;
@@ -99,6 +105,12 @@ class In {
     } catch (const InputError& e) {
       throw InputError("web face data: " + e.message(), name_);
     }
+  }
+  // A byte that must be 0 or 1 (a file holds nothing else, so it writes back byte for byte).
+  bool flag(const std::string& what) {
+    const uint8_t v = pod<uint8_t>();
+    if (v > 1) throw InputError("web face data: " + what + ": a flag byte of " + std::to_string(v) + " (want 0 or 1)", name_);
+    return v == 1;
   }
   size_t pos() const { return pos_; }
   size_t remaining() const { return b_.size() - pos_; }
@@ -232,7 +244,7 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     d.contraction = in.pod<double>();
     d.springStiffness = in.pod<double>();
     d.roiAlpha = in.pod<double>();
-    if (in.pod<uint8_t>()) {
+    if (in.flag("muscle '" + d.name + "' coupling")) {
       CouplingProfile c;
       c.insertionModulus = in.pod<double>();
       c.bellyModulus = in.pod<double>();
@@ -245,19 +257,22 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     if (path > in.remaining() / 36)  // an anchor takes at least 36 bytes
       throw InputError("web face data: muscle '" + d.name + "': a ring path of " + std::to_string(path) + " anchors does not fit", name);
     for (uint32_t k = 0; k < path; ++k) d.ring.path.push_back(in.anchor());
-    d.ring.closed = in.pod<uint8_t>() != 0;
+    d.ring.closed = in.flag("muscle '" + d.name + "' ring closed");
     for (MuscleAnchor& a : d.ring.anchors) a = in.anchor();
     d.ring.shortening = in.pod<double>();
     d.ring.protrusion = in.pod<double>();
     d.ring.centre = in.pod<double>();
-    d.ring.alongSkin = in.pod<uint8_t>() != 0;
+    d.ring.alongSkin = in.flag("muscle '" + d.name + "' ring along the skin");
     d.validate();
     w.muscles.push_back(std::move(d));
   }
   w.basisKey.words[0] = in.pod<uint64_t>();
   w.basisKey.words[1] = in.pod<uint64_t>();
   ModalBasis& b = w.basis;
-  b.fullVertexCount = static_cast<int>(in.pod<uint32_t>());
+  const uint32_t full = in.pod<uint32_t>();
+  if (full > static_cast<uint32_t>(std::numeric_limits<int>::max()))
+    throw InputError("web face data: a head of " + std::to_string(full) + " vertices", name);
+  b.fullVertexCount = static_cast<int>(full);
   const uint32_t f = in.pod<uint32_t>();
   const uint32_t d = in.pod<uint32_t>();
   // Each free vertex takes 4 + 8 + 12·d bytes and each mode 8: the sizes must fit in what is left.
@@ -266,12 +281,18 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     throw InputError("web face data: basis sizes " + std::to_string(f) + " free vertices, " + std::to_string(d) + " modes do not fit", name);
   b.freeVertices.resize(f);
   in.raw(b.freeVertices.data(), f);
+  for (const int v : b.freeVertices)
+    if (v < 0 || v >= b.fullVertexCount)
+      throw InputError("web face data: free vertex " + std::to_string(v) + " is outside the head's " +
+                       std::to_string(b.fullVertexCount) + " vertices", name);
   b.lambda.resize(d);
   in.raw(b.lambda.data(), d);
   b.freeMass.resize(f);
   in.raw(b.freeMass.data(), f);
   Eigen::MatrixXf phi(3 * static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(d));
   in.raw(phi.data(), static_cast<size_t>(phi.size()));
+  if (!phi.allFinite() || !b.lambda.allFinite() || !b.freeMass.allFinite())
+    throw InputError("web face data: the basis holds a value that is not finite", name);
   b.Phi = phi.cast<double>();
   b.Psi = MatX::Zero(b.Phi.rows(), b.Phi.cols());
   b.solver = "web face data";
@@ -310,7 +331,7 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     const std::string what = "web face data: AU" + std::to_string(e.au);
     if (w.facs.find(e.au)) throw InputError(what + " is given twice", name);
     e.name = in.str();
-    e.openface = in.pod<uint8_t>() != 0;
+    e.openface = in.flag("AU" + std::to_string(e.au) + " openface");
     const uint32_t muscles = in.pod<uint32_t>();
     if (muscles > in.remaining() / 12) throw InputError(what + ": " + std::to_string(muscles) + " muscles do not fit", name);
     for (uint32_t m = 0; m < muscles; ++m) {
