@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/io/web_face_file.h"
@@ -141,6 +142,39 @@ TEST(WebFaceFile, TheFacsMapRoundTrips) {
     EXPECT_EQ(a.mouthPressureKpa, b.mouthPressureKpa);
   }
   EXPECT_NE(w.facs.find(12), nullptr);
+}
+
+// The refusals fuzz_web_face led to (docs/RELIABILITY.md, findings): with the checksum made right,
+// a string longer than the file, a head of −1 vertices, a free vertex outside the head, a NaN in Φ
+// and a flag byte other than 0 or 1 are refused with the reason, never allocated or read on.
+TEST(WebFaceFile, DamageBehindAGoodChecksumIsRefusedWithTheReason) {
+  const auto resum = [](std::string b) {
+    const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &sum, 8);
+    return b;
+  };
+  const std::vector<MuscleDef> one = {faceMuscleDefs().front()};
+  const std::string good = webFaceBytes(one, someKey(), smallBasis());
+  const size_t name = 16;  // the first muscle's name length: after magic, version, count
+  std::string longName = good;
+  const uint32_t huge = 0xa0000000u;
+  std::memcpy(longName.data() + name, &huge, 4);
+  EXPECT_NE(messageOf(resum(longName)).find("a string of 2684354560 bytes"), std::string::npos) << messageOf(resum(longName));
+  // The basis starts after the muscles: its key (16 bytes), then the head's vertex count.
+  const size_t basis = webFaceBytes(one, someKey(), smallBasis()).size() - 8 - 4 - 4 /*takes, AUs*/ -
+                       (12 * 3 * 4 + 3 * 8 + 4 * 8 + 4 * 4) - 12 - 16;
+  std::string minus = good;
+  const uint32_t all = 0xffffffffu;
+  std::memcpy(minus.data() + basis + 16, &all, 4);
+  EXPECT_NE(messageOf(resum(minus)).find("a head of 4294967295 vertices"), std::string::npos) << messageOf(resum(minus));
+  std::string outside = good;
+  const int32_t far = 9;
+  std::memcpy(outside.data() + basis + 16 + 12, &far, 4);
+  EXPECT_NE(messageOf(resum(outside)).find("free vertex 9 is outside the head's 4 vertices"), std::string::npos)
+      << messageOf(resum(outside));
+  ModalBasis nan = smallBasis();
+  nan.Phi(5, 1) = std::nan("");
+  EXPECT_NE(messageOf(webFaceBytes(one, someKey(), nan)).find("not finite"), std::string::npos);
 }
 
 TEST(WebFaceFile, ImportedMusclesAreRefusedByTheWriter) {
