@@ -55,7 +55,7 @@ web-page:
 	@$(WEB_ENV) cmake --build $(WEB_BUILD_DIR) -j $(JOBS)
 	@mkdir -p web/dist
 	@cp web/index.html web/app.js web/favicon.svg $(WEB_BUILD_DIR)/myoshell_web.js $(WEB_BUILD_DIR)/myoshell_web.wasm web/dist/
-	@$(BUILD_DIR)/bin/myoshell-web-data web/dist/face.myoweb
+	@$(BUILD_DIR)/bin/myoshell-web-data web/dist/face.myoweb --take scenes/demo.json
 
 # The Python module alone, into $(BUILD_DIR)/python/myoshell (docs/python.md); `make test` runs its tests.
 python: configure
@@ -106,7 +106,7 @@ test-asan-ci: setup-test
 # they parse with. `make fuzz` runs each for FUZZ_SECONDS; `make fuzz-replay` replays the seed
 # corpus (fuzz/corpus/) once. Findings land in fuzz/findings/ (docs/RELIABILITY.md).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet
+FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face
 fuzz-build: setup-test
 	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DMYO_FUZZ=ON -DMYO_BUILD_TESTS=OFF -DMYO_BUILD_BENCH=OFF > /dev/null

@@ -4,7 +4,7 @@
 # regression in a reader shows up without fuzzing. Exit status 1 at the first target that fails.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-targets=${FUZZ_TARGETS:-fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet}
+targets=${FUZZ_TARGETS:-fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face}
 mkdir -p build-fuzz/logs
 for t in $targets; do
   log=build-fuzz/logs/$t.replay.log

@@ -110,6 +110,14 @@ void AnatomicalSimulator::setDragForce(int drag, const Vec3& force) {
   loads_.drags[static_cast<size_t>(drag)] = force;
 }
 
+void AnatomicalSimulator::setModalForce(const VecX& force) {
+  const Eigen::Index d = stepper_->integrator().basis().modeCount();
+  if (force.size() != 0 && force.size() != d)
+    throw InputError("modal force: " + std::to_string(force.size()) + " values for a basis of " + std::to_string(d) + " modes");
+  if (!force.allFinite()) throw InputError("modal force: a value is not finite");
+  loads_.modalForce = force;
+}
+
 void AnatomicalSimulator::setDragVertex(int drag, int vertex, double radius) {
   MYO_CHECK(drag >= 0 && drag < static_cast<int>(loads_.drags.size()), "drag index " << drag);
   const DragDef& d = face_->drags()[static_cast<size_t>(drag)];

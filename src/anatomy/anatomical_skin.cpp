@@ -401,7 +401,11 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
     c = -(B.Phi.transpose() * flat(gr));
   }
   SettledSkin out;
-  const VecX f0 = B.Phi.transpose() * flat(F) + c;
+  VecX f0 = B.Phi.transpose() * flat(F) + c;
+  if (loads.modalForce.size() != 0) {
+    MYO_CHECK(loads.modalForce.size() == d, "settle: a modal force of " << loads.modalForce.size() << " for " << d << " modes");
+    f0 += loads.modalForce;
+  }
   out.q = (f0.array() / B.lambda.array()).matrix();
   double scale = std::max(f0.norm(), 1e-300);
   // The contact penalty (contact_penalty.h): E_c(q) joins the reduced energy; with nothing touching

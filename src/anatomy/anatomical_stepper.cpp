@@ -136,6 +136,11 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     } else {
       modalForce_.noalias() = loadModes_ * loadCoords_;
     }
+    if (loads.modalForce.size() != 0) {
+      MYO_CHECK(loads.modalForce.size() == modalForce_.size(),
+                "a modal force of " << loads.modalForce.size() << " for " << modalForce_.size() << " modes");
+      modalForce_ += loads.modalForce;
+    }
     // The contact penalty, linearly implicit (docs/mouth_contact.md, "Penalty forces"): at q_n its
     // force f_c and stiffness K_c; the step's force f_c − K_c Δ with Δ = q⁺ − q_n, so that
     // q⁺ = a q + b q̇ + g (f̃ + f_c − K_c Δ) gives (I + diag(g) K_c) Δ = a q + b q̇ + g (f̃ + f_c) − q.
@@ -172,6 +177,7 @@ void AnatomicalStepper::step(const SkinLoads& loads) {
     times_.modal = clock.seconds() - times_.levels - times_.force;
     return;
   }
+  MYO_CHECK(loads.modalForce.size() == 0, "a modal force (SkinLoads::modalForce) needs linear modes: warping is on");
   // Reading (b): Σ level_m F_m + M(g − g_rest) + drags, built in place.
   const VecX& mass = skin_->mass_;
   for (Eigen::Index i = 0; i < force_.rows(); ++i) force_.row(i) = mass(i) * dg.transpose();

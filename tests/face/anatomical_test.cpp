@@ -234,13 +234,45 @@ TEST(AnatomicalDefaultHead, GravityFaceDownAndFaceUpWithoutPins) {
   }
 }
 
+// The built-in head with the thesis's muscles and a drag at vertex 205 (1 cm), built once for the
+// tests below.
+std::shared_ptr<const AnatomicalSkin> draggedDefaultSkin() {
+  static const auto skin = std::make_shared<const AnatomicalSkin>(loadDefaultHead(), thesisMuscleDefs(), AnatomicalSettings{},
+                                                           std::vector<DragSite>{{205, 1.0}}, nullptr);
+  return skin;
+}
+
+// A load given as a reduced force Φᵀf (SkinLoads::modalForce: the web page's mouse grab) acts as
+// the same force given as a drag does: a drag's force projected by hand, stepped and settled, gives
+// the drag's displacement to round-off; with warping on, the stepper refuses it.
+TEST(AnatomicalDefaultHead, AModalForceIsTheDragItProjects) {
+  const auto skin = draggedDefaultSkin();
+  ASSERT_FALSE(skin->settings().warping);
+  SkinLoads dragged;
+  dragged.activations = VecX::Zero(static_cast<Eigen::Index>(skin->muscles().size()));
+  dragged.gravity = skin->restGravity();  // no gravity load
+  dragged.drags = {Vec3(-2000.0, 600.0, 100.0)};
+  SkinLoads projected = dragged;
+  projected.drags = {Vec3::Zero()};
+  projected.modalForce = modalForce(*skin->basis(), VecX::Zero(skin->basis()->modeCount()), skin->worldLoad(dragged), false);
+  AnatomicalStepper a(skin), b(skin);
+  for (int k = 0; k < 240; ++k) {
+    a.step(dragged);
+    b.step(projected);
+  }
+  EXPECT_GT(a.displacement().rowwise().norm().maxCoeff(), 0.01);  // cm: it moved
+  EXPECT_LE(relativeError(b.displacement(), a.displacement()), 1e-10);
+  EXPECT_LE(relativeError(skin->settle(projected, false).u, skin->settle(dragged, false).u), 1e-10);
+  projected.modalForce.conservativeResize(3);
+  EXPECT_THROW(b.step(projected), CheckError);
+}
+
 // With linear modes the stepper forms the modal force from the load patterns reduced once
 // (AnatomicalSkin::modalLoadPatterns) and computes u = Φq when read; stepping the same basis with
 // the n×3 world force assembled and projected every step (the path before, kept for warping) gives
 // the same displacement to round-off.
 TEST(AnatomicalDefaultHead, TheReducedLoadStepIsTheAssembledForceStep) {
-  const auto skin = std::make_shared<const AnatomicalSkin>(loadDefaultHead(), thesisMuscleDefs(), AnatomicalSettings{},
-                                                           std::vector<DragSite>{{205, 1.0}}, nullptr);
+  const auto skin = draggedDefaultSkin();
   ASSERT_FALSE(skin->settings().warping);
   AnatomicalStepper fast(skin);
   ModalWarpingIntegrator assembled(skin->basis(), fast.integrator().settings());

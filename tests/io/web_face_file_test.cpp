@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/io/web_face_file.h"
@@ -82,6 +83,99 @@ TEST(WebFaceFile, TruncatedDamagedAndForeignFilesAreRefusedWithTheReason) {
   const std::string cut = good.substr(0, good.size() - 100);
   EXPECT_NE(messageOf(cut).find("checksum mismatch"), std::string::npos) << messageOf(cut);
   EXPECT_EQ(messageOf(good), "");
+}
+
+// A take keeps its name, duration, fps and every key (time, value, interpolation) of its activation
+// and jaw tracks; a scene with more on its timeline (a head pose) is refused by the writer, naming it.
+TEST(WebFaceFile, TakesRoundTripAndATimelineBeyondActivationsAndJawIsRefused) {
+  SceneDesc take;
+  take.name = "smile";
+  take.duration = 1.5;
+  take.fps = 24.0;
+  take.activations["zygomaticus_major_left"] =
+      ScalarTrack({{0.0, 0.0, Interpolation::Smooth}, {0.5, 0.75, Interpolation::Step}, {1.0, 0.25}});
+  take.jawOpen = ScalarTrack({{0.2, 0.0}, {0.9, 12.5, Interpolation::Smooth}});
+  const WebFace w = readWebFace(webFaceBytes(faceMuscleDefs(), someKey(), smallBasis(), {take}), "face.myoweb");
+  ASSERT_EQ(w.takes.size(), 1u);
+  const SceneDesc& t = w.takes[0];
+  EXPECT_EQ(t.name, "smile");
+  EXPECT_EQ(t.duration, 1.5);
+  EXPECT_EQ(t.fps, 24.0);
+  ASSERT_EQ(t.activations.size(), 1u);
+  const auto& keys = t.activations.at("zygomaticus_major_left").keys();
+  ASSERT_EQ(keys.size(), 3u);
+  EXPECT_EQ(keys[1].time, 0.5);
+  EXPECT_EQ(keys[1].value, 0.75);
+  EXPECT_EQ(keys[1].interpolation, Interpolation::Step);
+  EXPECT_EQ(keys[0].interpolation, Interpolation::Smooth);
+  EXPECT_EQ(t.jawOpen.at(0.9), 12.5);
+  EXPECT_TRUE(t.jawForward.empty());
+  EXPECT_TRUE(t.jawLateral.empty());
+  for (double time : {0.1, 0.3, 0.6, 1.2}) EXPECT_EQ(t.activations.at("zygomaticus_major_left").at(time),
+                                                     take.activations.at("zygomaticus_major_left").at(time));
+  take.headPose = HeadPoseTrack({{0.0, Vec3(10.0, 0.0, 0.0), Interpolation::Linear}});
+  try {
+    webFaceBytes(faceMuscleDefs(), someKey(), smallBasis(), {take});
+    FAIL() << "a take with a head pose was written";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("take 'smile' has a head pose"), std::string::npos) << e.what();
+  }
+}
+
+// The shipped FACS map round-trips entry for entry (muscles and weights, jaw, gaze, air, needs), so
+// the page's action units drive what drive's do.
+TEST(WebFaceFile, TheFacsMapRoundTrips) {
+  const FacsMap& map = builtinFacsMap();
+  const WebFace w = readWebFace(webFaceBytes(faceMuscleDefs(), someKey(), smallBasis(), {}, map), "face.myoweb");
+  ASSERT_EQ(w.facs.entries.size(), map.entries.size());
+  for (size_t k = 0; k < map.entries.size(); ++k) {
+    const FacsEntry &a = map.entries[k], &b = w.facs.entries[k];
+    EXPECT_EQ(a.au, b.au);
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.openface, b.openface);
+    EXPECT_EQ(a.muscles, b.muscles);
+    EXPECT_EQ(a.needs, b.needs);
+    EXPECT_EQ(a.jawOpenDeg, b.jawOpenDeg);
+    EXPECT_EQ(a.jawForwardCm, b.jawForwardCm);
+    EXPECT_EQ(a.jawLateralCm, b.jawLateralCm);
+    EXPECT_EQ(a.gazePitchDeg, b.gazePitchDeg);
+    EXPECT_EQ(a.gazeYawDeg, b.gazeYawDeg);
+    EXPECT_EQ(a.mouthPressureKpa, b.mouthPressureKpa);
+  }
+  EXPECT_NE(w.facs.find(12), nullptr);
+}
+
+// The refusals fuzz_web_face led to (docs/RELIABILITY.md, findings): with the checksum made right,
+// a string longer than the file, a head of −1 vertices, a free vertex outside the head, a NaN in Φ
+// and a flag byte other than 0 or 1 are refused with the reason, never allocated or read on.
+TEST(WebFaceFile, DamageBehindAGoodChecksumIsRefusedWithTheReason) {
+  const auto resum = [](std::string b) {
+    const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &sum, 8);
+    return b;
+  };
+  const std::vector<MuscleDef> one = {faceMuscleDefs().front()};
+  const std::string good = webFaceBytes(one, someKey(), smallBasis());
+  const size_t name = 16;  // the first muscle's name length: after magic, version, count
+  std::string longName = good;
+  const uint32_t huge = 0xa0000000u;
+  std::memcpy(longName.data() + name, &huge, 4);
+  EXPECT_NE(messageOf(resum(longName)).find("a string of 2684354560 bytes"), std::string::npos) << messageOf(resum(longName));
+  // The basis starts after the muscles: its key (16 bytes), then the head's vertex count.
+  const size_t basis = webFaceBytes(one, someKey(), smallBasis()).size() - 8 - 4 - 4 /*takes, AUs*/ -
+                       (12 * 3 * 4 + 3 * 8 + 4 * 8 + 4 * 4) - 12 - 16;
+  std::string minus = good;
+  const uint32_t all = 0xffffffffu;
+  std::memcpy(minus.data() + basis + 16, &all, 4);
+  EXPECT_NE(messageOf(resum(minus)).find("a head of 4294967295 vertices"), std::string::npos) << messageOf(resum(minus));
+  std::string outside = good;
+  const int32_t far = 9;
+  std::memcpy(outside.data() + basis + 16 + 12, &far, 4);
+  EXPECT_NE(messageOf(resum(outside)).find("free vertex 9 is outside the head's 4 vertices"), std::string::npos)
+      << messageOf(resum(outside));
+  ModalBasis nan = smallBasis();
+  nan.Phi(5, 1) = std::nan("");
+  EXPECT_NE(messageOf(webFaceBytes(one, someKey(), nan)).find("not finite"), std::string::npos);
 }
 
 TEST(WebFaceFile, ImportedMusclesAreRefusedByTheWriter) {

@@ -105,6 +105,9 @@ class AnatomicalSimulator : public FaceStepper {
   void setGaze(const EyeGaze& gaze) override;
   EyeGaze gaze() const override { return loads_.gaze; }
   void setDragForce(int drag, const Vec3& force) override;
+  // An extra reduced force Φᵀf on the skin (SkinLoads::modalForce: d of the skin's basis, or empty
+  // for none); InputError for another size or a value not finite.
+  void setModalForce(const VecX& force);
   // Moves the grip to any skin vertex (radius ≤ 0: the drag's own) for this simulator only
   // (AnatomicalStepper::grab: the grip's static responses join this simulator's basis, the shared
   // face is untouched; the displacement does not jump). InputError naming the drag and the vertex

@@ -52,6 +52,11 @@ struct SkinLoads {
   // AnatomicalSettings::contact). false keeps the settle and the step exactly linear in the loads
   // (the fit's activation columns).
   bool contact = false;
+  // An extra reduced force Φᵀf (d, the skin's basis; f in dyn) the caller projected itself, added to
+  // the modal force as it is: a load no pattern of the skin holds, with no factorisation (the web
+  // page's mouse grab: a force at the grabbed vertices; docs/web.md). Empty = none. Linear modes
+  // only: the stepper refuses it when warping (its n×3 force would need f itself).
+  VecX modalForce;
 };
 
 // A drag known when the skin is built: a force spread over the vertices within `radius` (cm) of
