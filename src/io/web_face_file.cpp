@@ -11,7 +11,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: a ring's lip_body
 
 class Out {
  public:
@@ -115,6 +115,7 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
     o.pod(d.ring.protrusion);
     o.pod(d.ring.centre);
     o.pod(static_cast<uint8_t>(d.ring.alongSkin));
+    o.pod(static_cast<uint8_t>(d.ring.lipBody));
   }
   o.pod(key.words[0]);
   o.pod(key.words[1]);
@@ -183,6 +184,7 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     d.ring.protrusion = in.pod<double>();
     d.ring.centre = in.pod<double>();
     d.ring.alongSkin = in.pod<uint8_t>() != 0;
+    d.ring.lipBody = in.pod<uint8_t>() != 0;
     d.validate();
     w.muscles.push_back(std::move(d));
   }
