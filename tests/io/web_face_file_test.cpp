@@ -59,6 +59,7 @@ TEST(WebFaceFile, TheWholeFacesMusclesAndTheBasisRoundTrip) {
     EXPECT_EQ(a.ring.anchors[1].landmark, c.ring.anchors[1].landmark);
     EXPECT_EQ(a.ring.shortening, c.ring.shortening);
     EXPECT_EQ(a.ring.alongSkin, c.ring.alongSkin);
+    EXPECT_EQ(a.ring.lipBody, c.ring.lipBody);
   }
   EXPECT_EQ(w.basisKey, someKey());
   EXPECT_EQ(w.basis.fullVertexCount, 4);
