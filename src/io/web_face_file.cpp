@@ -13,7 +13,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 4;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`
+constexpr uint32_t kVersion = 4;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`
 
 class Out {
  public:
@@ -158,6 +158,7 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
     o.pod(d.ring.centre);
     o.pod(static_cast<uint8_t>(d.ring.alongSkin));
     o.pod(static_cast<uint8_t>(d.thickens));
+    o.pod(static_cast<uint8_t>(d.ring.lipBody));
   }
   o.pod(key.words[0]);
   o.pod(key.words[1]);
@@ -265,6 +266,7 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     d.ring.centre = in.pod<double>();
     d.ring.alongSkin = in.flag("muscle '" + d.name + "' ring along the skin");
     d.thickens = in.flag("muscle '" + d.name + "' thickens");
+    d.ring.lipBody = in.flag("muscle '" + d.name + "' ring in the lip's body");
     d.validate();
     w.muscles.push_back(std::move(d));
   }

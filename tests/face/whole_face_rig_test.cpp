@@ -22,9 +22,10 @@ namespace myo {
 namespace {
 
 // The median cosine over the reachable shapes, and over the mouth and brow shapes (the names not
-// starting with jaw, eye or mouthClose), is at least 0.85 (measured 0.864 and 0.863 on 2026-11-26);
-// the six named shapes the model makes reach 0.8, eyeSquint 0.75. The three it does not make yet
-// (browInnerUp, mouthShrugUpper, mouthRollLower: docs/muscles.md) are recorded.
+// starting with jaw, eye or mouthClose), is at least 0.88 (measured 0.864 and 0.863 on 2026-11-26,
+// 0.888 and 0.882 on 2026-11-29);
+// the six named shapes the model makes reach 0.8, eyeSquint and mouthShrugUpper 0.75. The two it does
+// not make yet (browInnerUp, mouthRollLower: docs/muscles.md) are recorded.
 TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
   MYO_REQUIRE_SHARED_DATA();
   FitHeadOptions head;
@@ -50,8 +51,8 @@ TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
   RecordProperty("median_mouth_and_brow", std::to_string(median(mouthAndBrow)));
   EXPECT_EQ(all.size(), 26u);
   EXPECT_EQ(mouthAndBrow.size(), 15u);
-  EXPECT_GE(median(all), 0.85);
-  EXPECT_GE(median(mouthAndBrow), 0.85);
+  EXPECT_GE(median(all), 0.88);  // the whole-face issue's bar
+  EXPECT_GE(median(mouthAndBrow), 0.88);
   for (const std::string name : {"mouthSmileLeft", "mouthFrownLeft", "mouthStretchLeft", "mouthUpperUpLeft", "mouthPucker",
                                  "mouthFunnel"}) {
     ASSERT_TRUE(cosine.count(name)) << name;
@@ -63,6 +64,11 @@ TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
     ASSERT_TRUE(cosine.count(name)) << name;
     EXPECT_GE(cosine[name], 0.75) << name;
   }
+  // The upper lip raised (the lip's body growing in height about its own axis; docs/muscles.md,
+  // "The lip's body"): 0.771 on 2026-11-29, 0.718 with the ring squeezing the lip across. The
+  // issue asks 0.75.
+  ASSERT_TRUE(cosine.count("mouthShrugUpper"));
+  EXPECT_GE(cosine["mouthShrugUpper"], 0.75);
 }
 
 // The eyes' turns are derived, never fitted (the lids follow the gaze: docs/eyelids.md): ICT's artist
@@ -102,6 +108,21 @@ TEST(WholeFaceIct, TheDerivedEyeTurnsAndCheekPuffFollowTheArtists) {
   RecordProperty("cheekPuff_cheeks_out_mm", std::to_string(10 * cheeks));
   EXPECT_GE(cheeks, 0.5);
   EXPECT_LE(cheeks, 1.5);
+  // The derived lip presser (AU24) and lip suck (AU28) drive both rings of the mouth: with the lip's
+  // body (docs/muscles.md, "The lip's body") the lips' inner margins at the midline stay together,
+  // no farther apart than at rest (0.76 mm); a ring pushing each lip away from the mouth's line
+  // parted them by 3.8 and 6.9 mm.
+  const FaceFrame frame = inputs.head.frame();
+  const int upper = inputs.head.landmarks.vertex("upper_lip_inner"), lower = inputs.head.landmarks.vertex("lower_lip_inner");
+  auto gap = [&](const MatX3& d) { return frame.directionToFrame(Vec3((rest + d).row(upper) - (rest + d).row(lower))).y(); };
+  const double restGap = gap(MatX3::Zero(rest.rows(), 3));
+  for (const std::string name : {"mouthPressLeft", "mouthPressRight", "mouthRollUpper"}) {
+    const auto it = std::find_if(made.settled.shapes.begin(), made.settled.shapes.end(),
+                                 [&](const ArkitRigShape& s) { return s.name == name; });
+    ASSERT_NE(it, made.settled.shapes.end()) << name;
+    RecordProperty(name + "_lip_gap_mm", std::to_string(10 * gap(it->delta)));
+    EXPECT_LE(gap(it->delta), restGap) << name;
+  }
 }
 
 }  // namespace

@@ -61,6 +61,7 @@ TEST(WebFaceFile, TheWholeFacesMusclesAndTheBasisRoundTrip) {
     EXPECT_EQ(a.ring.shortening, c.ring.shortening);
     EXPECT_EQ(a.ring.alongSkin, c.ring.alongSkin);
     EXPECT_EQ(a.thickens, c.thickens);
+    EXPECT_EQ(a.ring.lipBody, c.ring.lipBody);
   }
   EXPECT_EQ(w.basisKey, someKey());
   EXPECT_EQ(w.basis.fullVertexCount, 4);

@@ -90,6 +90,10 @@ struct MuscleDef {
     // over a curved bed (the orbital part over the rim and the cheek) rather than in the face's
     // plane (the lips, with their protrusion; the palpebral part, whose lids turn about the globe).
     bool alongSkin = false;
+    // Whether the ring runs in a lip that keeps its volume (key `lip_body`): shortened along its
+    // fibres, the lip grows in height about its own axis instead of being squeezed across
+    // (docs/muscles.md, "The lip's body"; the mouth's parts).
+    bool lipBody = false;
   };
   Ring ring;
   bool isRing() const { return kind == MuscleKind::Ring; }
