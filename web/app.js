@@ -278,17 +278,20 @@ async function main() {
     const names = list(page.muscleNames());
     const sliders = {};
     const box = document.getElementById('muscles');
-    for (const name of [...names].sort()) {
+    // A labelled slider over [0, 1] in `parent`, calling `set` with its value.
+    const addSlider = (parent, text, set) => {
       const label = document.createElement('label');
       label.className = 'slider';
-      label.textContent = name.replace(/_/g, ' ');
+      label.textContent = text;
       const input = document.createElement('input');
       Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, value: 0 });
-      input.addEventListener('input', () => page.setActivation(name, Number(input.value)));
+      input.addEventListener('input', () => set(Number(input.value)));
       label.appendChild(input);
-      box.appendChild(label);
-      sliders[name] = input;
-    }
+      parent.appendChild(label);
+      return input;
+    };
+    for (const name of [...names].sort())
+      sliders[name] = addSlider(box, name.replace(/_/g, ' '), (x) => page.setActivation(name, x));
     const call = (f) => { try { return f(); } catch (e) { throw new Error(message(Module, e)); } };
     const gravity = document.getElementById('gravity');
     gravity.addEventListener('change', () => page.setGravity(gravity.checked));
@@ -308,17 +311,8 @@ async function main() {
     const actionUnits = list(page.actionUnits()).map((s) => ({ au: Number(s.split(':')[0]), name: s.split(': ')[1] }));
     const auSliders = {};
     const auBox = document.getElementById('aus');
-    for (const { au, name } of actionUnits) {
-      const label = document.createElement('label');
-      label.className = 'slider';
-      label.textContent = `AU${au} ${name}`;
-      const input = document.createElement('input');
-      Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, value: 0 });
-      input.addEventListener('input', () => page.setActionUnit(au, Number(input.value)));
-      label.appendChild(input);
-      auBox.appendChild(label);
-      auSliders[au] = input;
-    }
+    for (const { au, name } of actionUnits)
+      auSliders[au] = addSlider(auBox, `AU${au} ${name}`, (x) => page.setActionUnit(au, x));
     const setActionUnit = (au, x) => {
       call(() => page.setActionUnit(au, x));
       if (auSliders[au]) auSliders[au].value = x;
