@@ -303,6 +303,7 @@ static void addPushSprings(CoupledMuscle& cm, const Head& head, const MatX3& ski
     spring.t = 1.0;
     spring.depth = pad;
     spring.stiffness = profile.insertionModulus * skinArea(i) / pad * (1.0 - s * s) * (1.0 - s * s);
+    spring.along = ahead;
     cm.springs.push_back(spring);
   }
 }
@@ -397,8 +398,14 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
 }
 
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets) {
-  for (const auto& s : m.springs)
-    for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin + c, 3 * s.skin + c, s.stiffness);
+  for (const auto& s : m.springs) {
+    if (s.along.isZero()) {
+      for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin + c, 3 * s.skin + c, s.stiffness);
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) triplets.emplace_back(3 * s.skin + a, 3 * s.skin + b, s.stiffness * s.along(a) * s.along(b));
+  }
 }
 
 Vec3 CoupledMuscle::Spring::muscleDisplacement(const MatX3& muscleU) const {
@@ -409,7 +416,7 @@ Vec3 CoupledMuscle::Spring::muscleDisplacement(const MatX3& muscleU) const {
 
 MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount) {
   MatX3 f = MatX3::Zero(skinVertexCount, 3);
-  for (const auto& s : m.springs) f.row(s.skin) += s.stiffness * s.muscleDisplacement(m.fullShape).transpose();
+  for (const auto& s : m.springs) f.row(s.skin) += s.tie(s.muscleDisplacement(m.fullShape)).transpose();
   return f;
 }
 
