@@ -76,8 +76,9 @@ void AnatomicalSkin::buildReleaseColumns() {
     const CoupledMuscle& cm = muscles_[static_cast<size_t>(m)];
     for (const auto& spring : cm.springs) {
       const Vec3 w = spring.muscleDisplacement(cm.fullShape);
-      shapeEnergy_(m) += spring.stiffness * w.squaredNorm();
-      for (int c = 0; c < 3; ++c) pulls.emplace_back(3 * spring.skin + c, m, spring.stiffness * w(c));
+      const Vec3 pull = spring.tie(w);
+      shapeEnergy_(m) += w.dot(pull);
+      for (int c = 0; c < 3; ++c) pulls.emplace_back(3 * spring.skin + c, m, pull(c));
     }
   }
   couplingColumns_.resize(3 * n, M);
@@ -106,15 +107,15 @@ void AnatomicalSkin::buildReleaseColumns() {
       const ReleasePiece& springs = pieces[piece];
       const size_t ns = springs.size();
       std::vector<Vec3> w(ns);
-      std::vector<double> k(ns);
       std::vector<int> skinVertex(ns);
+      // K_i v: the spring's tie (a push's along its direction only) at its share.
+      auto K = [&](size_t i, const Vec3& v) { return cm.springs[springs[i].first].tie(v, springs[i].second); };
       double s = 0.0;
       for (size_t i = 0; i < ns; ++i) {
         const CoupledMuscle::Spring& spring = cm.springs[springs[i].first];
         w[i] = spring.muscleDisplacement(cm.fullShape);
-        k[i] = springs[i].second * spring.stiffness;
         skinVertex[i] = spring.skin;
-        s += k[i] * w[i].squaredNorm();
+        s += w[i].dot(K(i, w[i]));
       }
       if (!(s > 0)) {
         if (piece == 0) rho[static_cast<size_t>(m)] = 0.0;
@@ -124,8 +125,10 @@ void AnatomicalSkin::buildReleaseColumns() {
       // The piece's shape: muscle m's own column for the first piece, an extra column for the other.
       const bool first = piece == 0;
       const Eigen::Index shapeCol = first ? m : extraReleaseColumns_++;
-      for (size_t i = 0; i < ns; ++i)
-        for (int c = 0; c < 3; ++c) (first ? axial : extra).emplace_back(3 * skinVertex[i] + c, shapeCol, k[i] * w[i](c) / root);
+      for (size_t i = 0; i < ns; ++i) {
+        const Vec3 pull = K(i, w[i]);
+        for (int c = 0; c < 3; ++c) (first ? axial : extra).emplace_back(3 * skinVertex[i] + c, shapeCol, pull(c) / root);
+      }
       if (first)
         rho[static_cast<size_t>(m)] = s / (s + kappa);
       else
@@ -137,13 +140,13 @@ void AnatomicalSkin::buildReleaseColumns() {
         for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] = w[i].norm() * Vec3::Unit(a);
       Vec3 vw = Vec3::Zero();
       for (size_t i = 0; i < ns; ++i)
-        for (int a = 0; a < 3; ++a) vw(a) += k[i] * v[i][static_cast<size_t>(a)].dot(w[i]);
+        for (int a = 0; a < 3; ++a) vw(a) += v[i][static_cast<size_t>(a)].dot(K(i, w[i]));
       for (size_t i = 0; i < ns; ++i)
         for (int a = 0; a < 3; ++a) v[i][static_cast<size_t>(a)] -= (vw(a) / s) * w[i];
       Mat3 G = Mat3::Zero();
       for (size_t i = 0; i < ns; ++i)
         for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) G(a, b) += k[i] * v[i][static_cast<size_t>(a)].dot(v[i][static_cast<size_t>(b)]);
+          for (int b = 0; b < 3; ++b) G(a, b) += v[i][static_cast<size_t>(a)].dot(K(i, v[i][static_cast<size_t>(b)]));
       const Eigen::SelfAdjointEigenSolver<Mat3> eig(G);
       for (int j = 0; j < 3; ++j) {
         const double g = eig.eigenvalues()(j);
@@ -152,7 +155,8 @@ void AnatomicalSkin::buildReleaseColumns() {
         const Eigen::Index col = extraReleaseColumns_++;
         for (size_t i = 0; i < ns; ++i) {
           const Vec3 vi = v[i][0] * e(0) + v[i][1] * e(1) + v[i][2] * e(2);
-          for (int c = 0; c < 3; ++c) extra.emplace_back(3 * skinVertex[i] + c, col, k[i] * vi(c));
+          const Vec3 pull = K(i, vi);
+          for (int c = 0; c < 3; ++c) extra.emplace_back(3 * skinVertex[i] + c, col, pull(c));
         }
         rhoExtra.push_back(s / (s + kappa));
       }

@@ -13,7 +13,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 4;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`
+constexpr uint32_t kVersion = 5;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`; 5: `pushes`
 
 class Out {
  public:
@@ -159,6 +159,8 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
     o.pod(static_cast<uint8_t>(d.ring.alongSkin));
     o.pod(static_cast<uint8_t>(d.thickens));
     o.pod(static_cast<uint8_t>(d.ring.lipBody));
+    o.pod(static_cast<uint8_t>(d.pushes ? 1 : 0));
+    if (d.pushes) o.anchor(*d.pushes);
   }
   o.pod(key.words[0]);
   o.pod(key.words[1]);
@@ -267,6 +269,7 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     d.ring.alongSkin = in.flag("muscle '" + d.name + "' ring along the skin");
     d.thickens = in.flag("muscle '" + d.name + "' thickens");
     d.ring.lipBody = in.flag("muscle '" + d.name + "' ring in the lip's body");
+    if (in.flag("muscle '" + d.name + "' pushes")) d.pushes = in.anchor();
     d.validate();
     w.muscles.push_back(std::move(d));
   }

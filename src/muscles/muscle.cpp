@@ -178,6 +178,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
   } else {
     const SurfacePoint o = anchorOnSkin(def.origin, head, frame, onSkin, def.name);
     const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, onSkin, def.name);
+    if (def.pushes) muscle.pushPoint = anchorOnSkin(*def.pushes, head, frame, onSkin, def.name).point;
     if ((o.point - i.point).norm() < 1e-3 * frame.scale)
       throw InputError("muscle '" + def.name + "': origin and insertion coincide on this head");
 

@@ -268,6 +268,46 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
   cm.naturalFrequency = std::sqrt(u.dot(shell.stiffnessAtRest() * u) / mm2);
 }
 
+// A muscle that `pushes` (the mentalis; docs/muscles.md, "The chin's pad pushes the lower lip"):
+// the soft tissue it squeezes between its insertion and its origin keeps its volume, and the bone
+// holds only the muscle's deep end, so the tissue flows on past the origin and carries the skin
+// ahead of it — the lower lip, up to the pushed anchor — along with the insertion. Each skin vertex
+// ahead of the origin along the fibres (0 ≤ (x − o)·â ≤ (p − o)·â, â from the insertion to the
+// origin, p the pushed point), in front of the origin, facing out of the face or up (not the lip's
+// inner face, which faces the teeth) and within the muscle's width of its axis across the face, is
+// tied to the insertion ring's mean motion by the insertion's shear layer (modulus G_ins, the
+// origin's depth δ as the pad's thickness under it), faded to nothing at that width as the
+// footprint's springs are: k = G_ins A / δ (1 − s²)².
+static void addPushSprings(CoupledMuscle& cm, const Head& head, const MatX3& skinNormals, const VecX& skinArea,
+                    const CouplingProfile& profile) {
+  const Muscle& mu = cm.muscle;
+  const MuscleDef& def = mu.def;
+  const FaceFrame frame = head.frame();
+  const Vec3 across = frame.axes.col(0), out = frame.axes.col(2);
+  const Vec3 ahead = (mu.originPoint - mu.insertionPoint).normalized();
+  const double reach = (mu.pushPoint - mu.originPoint).dot(ahead);
+  if (!(reach > 0.0))
+    throw InputError("muscle '" + def.name + "': the pushed anchor '" + def.pushes->landmark +
+                     "' does not lie ahead of the origin along the muscle on this head");
+  const double halfWidth = def.width * frame.scale, pad = def.origin.depth * frame.scale;
+  const MatX3& S = head.mesh.V;
+  for (Eigen::Index i = 0; i < S.rows(); ++i) {
+    const Vec3 d = Vec3(S.row(i)) - mu.originPoint;
+    const double along = d.dot(ahead), s = std::abs(d.dot(across)) / halfWidth;
+    if (along < 0.0 || along > reach || s >= 1.0 || d.dot(out) <= 0.0) continue;
+    if (Vec3(skinNormals.row(i)).dot(out) < -kBeneath) continue;
+    CoupledMuscle::Spring spring;
+    spring.skin = static_cast<int>(i);
+    spring.nodes = mu.insertionNodes;
+    spring.weights.assign(mu.insertionNodes.size(), 1.0 / static_cast<double>(mu.insertionNodes.size()));
+    spring.t = 1.0;
+    spring.depth = pad;
+    spring.stiffness = profile.insertionModulus * skinArea(i) / pad * (1.0 - s * s) * (1.0 - s * s);
+    spring.along = ahead;
+    cm.springs.push_back(spring);
+  }
+}
+
 CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings,
                            const SurfaceLocator* skin) {
   const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
@@ -353,12 +393,19 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
     spring.stiffness = G * skinArea(i) / std::max(below.distance, 1e-3 * L) * (1.0 - s * s) * (1.0 - s * s);
     cm.springs.push_back(spring);
   }
+  if (def.pushes) addPushSprings(cm, head, skinNormals, skinArea, profile);
   return cm;
 }
 
 void addCouplingStiffness(const CoupledMuscle& m, std::vector<Triplet>& triplets) {
-  for (const auto& s : m.springs)
-    for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin + c, 3 * s.skin + c, s.stiffness);
+  for (const auto& s : m.springs) {
+    if (s.along.isZero()) {
+      for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * s.skin + c, 3 * s.skin + c, s.stiffness);
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) triplets.emplace_back(3 * s.skin + a, 3 * s.skin + b, s.stiffness * s.along(a) * s.along(b));
+  }
 }
 
 Vec3 CoupledMuscle::Spring::muscleDisplacement(const MatX3& muscleU) const {
@@ -369,7 +416,7 @@ Vec3 CoupledMuscle::Spring::muscleDisplacement(const MatX3& muscleU) const {
 
 MatX3 couplingLoad(const CoupledMuscle& m, int skinVertexCount) {
   MatX3 f = MatX3::Zero(skinVertexCount, 3);
-  for (const auto& s : m.springs) f.row(s.skin) += s.stiffness * s.muscleDisplacement(m.fullShape).transpose();
+  for (const auto& s : m.springs) f.row(s.skin) += s.tie(s.muscleDisplacement(m.fullShape)).transpose();
   return f;
 }
 

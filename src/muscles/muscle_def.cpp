@@ -28,7 +28,9 @@ void MuscleDef::validate() const {
     if (!(ring.protrusion >= 0.0) || !std::isfinite(ring.protrusion)) bad("ring protrusion must be ≥ 0");
     if (!(ring.centre >= 0.0 && ring.centre <= 1.0)) bad("ring centre must lie in [0, 1]");
   }
+  if (pushes && (isRing() || imported())) bad("pushes is for generated linear muscles");
   std::vector<const MuscleAnchor*> anchors = {&origin, &insertion};
+  if (pushes) anchors.push_back(&*pushes);
   if (isRing()) {
     anchors.clear();
     for (const MuscleAnchor& a : ring.path) anchors.push_back(&a);

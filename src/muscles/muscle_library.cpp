@@ -142,6 +142,10 @@ MuscleDef readMuscleDef(DocReader& r) {
   if (r.has("coupling")) d.coupling = readCoupling(r.child("coupling"), d.name);
   d.thickens = r.boolean("thickens", d.thickens);
   if (d.thickens && d.isRing()) r.fail("thickens", "is for linear muscles (a ring's bulge is its protrusion)");
+  if (r.has("pushes")) {
+    if (d.isRing() || d.imported()) r.fail("pushes", "is for generated linear muscles (an origin, an insertion and the anchor the tissue is pushed to)");
+    d.pushes = readAnchor(r.child("pushes"));
+  }
   r.finish();
   d.validate();
   return d;

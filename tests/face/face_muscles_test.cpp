@@ -357,6 +357,33 @@ TEST_F(FaceMusclesDefaultHead, TheMouthRingNarrowsTheMouthAndBringsTheLipsForwar
   EXPECT_LE(marginsCloser, 0.0);
 }
 
+// AU17 (docs/muscles.md, "The chin's pad pushes the lower lip"): the mentalis raises the chin's skin
+// and the pad it squeezes carries the lower lip up against the upper one. Both mentalis at 1 on the
+// built-in head, whose lips are 5.4 mm apart at rest: the lower lip's inner margin rises 4.5 mm
+// (0.6 mm when the mentalis only pulled the chin: nothing carried the tissue past its origin), its
+// lower border 5.2 mm, the chin 5.2 mm up and 4.5 mm forward; the margins stay apart by 1.3 mm (the
+// upper lip is lifted 0.4 mm with the mouth's corners).
+TEST_F(FaceMusclesDefaultHead, TheMentalisRaisesTheChinAndPushesTheLowerLipUpToTheUpper) {
+  const MatX3 u = settle({{"mentalis_left", 1.0}, {"mentalis_right", 1.0}});
+  const Head& head = skin_->head();
+  const FaceFrame f = head.frame();
+  auto restY = [&](const std::string& lm) { return f.directionToFrame(Vec3(head.mesh.V.row(head.landmarks.vertex(lm)))).y(); };
+  const double gapRest = restY("upper_lip_inner") - restY("lower_lip_inner");
+  const double gap = gapRest + at(u, "upper_lip_inner").y() - at(u, "lower_lip_inner").y();
+  RecordProperty("lower_lip_margin_up_mm", std::to_string(10 * at(u, "lower_lip_inner").y()));
+  RecordProperty("lower_lip_border_up_mm", std::to_string(10 * at(u, "lower_lip_bottom").y()));
+  RecordProperty("chin_up_mm", std::to_string(10 * at(u, "chin_menton").y()));
+  RecordProperty("chin_forward_mm", std::to_string(10 * at(u, "chin_menton").z()));
+  RecordProperty("margins_gap_rest_mm", std::to_string(10 * gapRest));
+  RecordProperty("margins_gap_mm", std::to_string(10 * gap));
+  EXPECT_GT(at(u, "lower_lip_inner").y(), 0.3);    // the margin rises at least 3 mm
+  EXPECT_GT(at(u, "lower_lip_bottom").y(), 0.3);   // the whole red lip, not only its edge
+  EXPECT_GT(at(u, "chin_menton").y(), 0.2);        // the chin's soft tissue up
+  EXPECT_GT(at(u, "chin_menton").z(), 0.1);        // and forward
+  EXPECT_LT(gap, 0.5 * gapRest);                   // the lower lip goes up to the upper
+  EXPECT_GT(gap, 0.0);                             // and not through it
+}
+
 // AU6 is the orbital part's lower and lateral arc, fixed to bone only at the medial palpebral
 // ligament (docs/muscles.md, "The cheek raiser"): it draws the cheek under the eye up and towards the
 // nose, and leaves the brow (the upper arc's work is the brow depressors').

@@ -62,6 +62,9 @@ TEST(WebFaceFile, TheWholeFacesMusclesAndTheBasisRoundTrip) {
     EXPECT_EQ(a.ring.alongSkin, c.ring.alongSkin);
     EXPECT_EQ(a.thickens, c.thickens);
     EXPECT_EQ(a.ring.lipBody, c.ring.lipBody);
+    ASSERT_EQ(a.pushes.has_value(), c.pushes.has_value());
+    if (a.pushes) EXPECT_EQ(a.pushes->offset, c.pushes->offset);
+    if (a.pushes) EXPECT_EQ(a.pushes->landmark, c.pushes->landmark);
   }
   EXPECT_EQ(w.basisKey, someKey());
   EXPECT_EQ(w.basis.fullVertexCount, 4);

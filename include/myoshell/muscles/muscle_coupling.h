@@ -74,8 +74,15 @@ struct CoupledMuscle {
     double t = 0.0;              // position along the muscle (0 origin, 1 insertion)
     double depth = 0.0;          // δ: distance to the muscle at rest, cm
     double stiffness = 0.0;      // k_i, dyn/cm (> 0)
+    // A push (MuscleDef::pushes) ties the skin along this unit direction only, the lip sliding
+    // freely across the pad: K_i = k_i â âᵀ. Zero: a shear layer, K_i = k_i I.
+    Vec3 along = Vec3::Zero();
     // Σ_b β_b U_b (cm) for a muscle displacement U (nodes×3).
     Vec3 muscleDisplacement(const MatX3& muscleU) const;
+    // K_i v (dyn for v in cm), scaled by `share`.
+    Vec3 tie(const Vec3& v, double share = 1.0) const {
+      return along.isZero() ? (share * stiffness) * v : (share * stiffness * along.dot(v)) * along;
+    }
   };
   std::vector<Spring> springs;   // nodes with k_c > 0 only
 };

@@ -68,6 +68,11 @@ struct MuscleDef {
   // bunches out of the face (the frontalis, whose skin, dense connective layer and aponeurosis move
   // as one over the loose areolar layer: docs/muscles.md, "The compressed forehead thickens").
   bool thickens = false;
+  // Anatomical model, linear muscles (key `pushes`, an anchor): the soft tissue the muscle squeezes
+  // flows past its origin, which holds only the muscle's deep end on the bone, and carries the skin
+  // ahead of the origin, up to this anchor, along with the insertion (the mentalis: the chin's pad
+  // pushes the lower lip up; docs/muscles.md, "The chin's pad pushes the lower lip").
+  std::optional<MuscleAnchor> pushes;
 
   // Ring muscles (kind Ring; key `ring`): the band's course through `path` (≥ 3 anchors, in order,
   // each placed as origin and insertion are), closed into a loop or open (an arc whose ends are the
