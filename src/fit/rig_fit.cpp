@@ -191,7 +191,12 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
   // and the value with the smallest total misfit wins (a pair's right jaw is the left's mirror
   // image). A corrective rides on its base's jaw (`basePose`).
   const std::vector<int> twins = mirroredMuscles(skin);
-  auto fitShape = [&](RigShapeFit& s, RigShapeFit* mirror, const JawPose* basePose) {
+  // `symmetric`: a shape without sides (jawOpen, mouthPucker, browInnerUp, mouthClose...) is its own
+  // mirror image by definition, so it is fitted as a pair with itself — A a against it and A_twin a
+  // against it again. The objective is then unchanged by a → twin(a), and its minimiser (unique where
+  // the columns are independent) is its own mirror: the entry drives each muscle as its twin, and an
+  // asymmetry of the head (ICT's lower ring) cannot tip a midline shape onto one side's muscles.
+  auto fitShape = [&](RigShapeFit& s, RigShapeFit* mirror, const JawPose* basePose, bool symmetric) {
     auto motionOf = [&](const JawPose& p) { return p.isZero() ? MatX3::Zero(n, 3) : MatX3(jawedRest(*jaw, p, rest) - rest); };
     // The fit (and its mirror's) with the jaw in pose p (at rest on a head without the jaw).
     auto fitWithJaw = [&](const JawPose& p) {
@@ -206,6 +211,8 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
         tm.displacement = mirror->target - mirrorMotion;
         f = fitMirroredActivations(skin, t, tm, twins, settings, &placement, &columns);
         if (!q.isZero()) remeasure(f.mirrorFit, mirrorMotion, mirror->target, rest, settings.threshold);
+      } else if (symmetric) {
+        f.fit = std::move(fitMirroredActivations(skin, t, t, twins, settings, &placement, &columns).fit);
       } else {
         f.fit = fitActivations(skin, t, settings, &placement, &columns);
       }
@@ -263,7 +270,7 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
     RigShapeFit& s = shapes[k];
     if (!s.reachable || !s.correctiveOf.empty() || fittedByItsTwin[k]) return;
     const size_t j = mirrorOf[k];
-    poses[k] = fitShape(s, j < shapes.size() ? &shapes[j] : nullptr, nullptr);
+    poses[k] = fitShape(s, j < shapes.size() ? &shapes[j] : nullptr, nullptr, twinned && !mirroredArkitName(s.name));
     if (j < shapes.size()) poses[j] = mirroredPose(poses[k]);
   });
   for (size_t i = 0; i < shapes.size(); ++i) {
@@ -271,7 +278,7 @@ RigFit fitRig(const AnatomicalSkin& skin, const std::vector<RigTarget>& targets,
     if (!s.reachable || s.correctiveOf.empty()) continue;
     const size_t base = indexOf(s.correctiveOf);
     s.target += shapes[base].target;  // the corrective only makes sense on its base
-    poses[i] = fitShape(s, nullptr, &poses[base]);
+    poses[i] = fitShape(s, nullptr, &poses[base], twinned && !mirroredArkitName(s.name));
   }
 
   std::vector<double> cosines, rms;

@@ -225,7 +225,8 @@ TEST_F(ActivationFitDefaultHead, FitRigFitsTheJawOfJawShapes) {
   left.lateralCm = 0.6;
   const MatX3 opened = jawedRest(rig, open, head.mesh.V) - head.mesh.V;
   const MatX3 shifted = jawedRest(rig, left, head.mesh.V) - head.mesh.V;
-  const MatX3 smile = shape(acts({{"zygomaticus_major_left", 0.5}}));
+  // A shape without sides is fitted as its own mirror image (below), so the made rig's are symmetric.
+  const MatX3 smile = shape(acts({{"zygomaticus_major_left", 0.5}, {"zygomaticus_major_right", 0.5}}));
   const std::vector<RigTarget> targets = {{"jawOpen", opened + smile}, {"jawLeft", shifted}, {"mouthClose", smile}};
   FitSettings plain;
   const RigFit fit = fitRig(*skin_, targets, plain);
@@ -324,6 +325,31 @@ TEST_F(ActivationFitDefaultHead, FitRigFitsALeftRightPairAsOneMirroredProblem) {
     EXPECT_STREQ(e.what(), "fit: muscle 'zygomaticus_major_left' has no mirror twin ('zygomaticus_major_right' is no "
                            "muscle of the library): a mirror pair is fitted with both sides' muscles");
   }
+}
+
+// A shape without sides (mouthPucker, browInnerUp, mouthClose, ...) is its own mirror image by
+// definition: fit-rig fits it as a pair with itself, so its entry drives each muscle as its twin even
+// when the target leans to one side. A "pucker" made by the left zygomaticus alone at 0.8, fitted with
+// both zygomatici and no sparsity: both at s minimising 2‖s(zl + zr) − 0.8 zl‖², s = 0.8 (p + r)/(p + q + 2r).
+TEST_F(ActivationFitDefaultHead, FitRigFitsAShapeWithoutSidesAsItsOwnMirrorImage) {
+  const int kl = skin_->muscleIndex("zygomaticus_major_left"), kr = skin_->muscleIndex("zygomaticus_major_right");
+  const std::vector<MatX3> cols = activationColumns(*skin_, {kl, kr});
+  const VecX zl = flat(cols[0]), zr = flat(cols[1]);
+  FitSettings two;
+  two.muscles = {"zygomaticus_major_left", "zygomaticus_major_right"};
+  const RigFit fit = fitRig(*skin_, {{"mouthPucker", 0.8 * cols[0]}}, two);
+  const double p = zl.squaredNorm(), q = zr.squaredNorm(), r = zl.dot(zr);
+  const double want = 0.8 * (p + r) / (p + q + 2 * r);
+  const RigShapeFit& s = fit.shapes.at(0);
+  ASSERT_EQ(s.name, "mouthPucker");
+  EXPECT_TRUE(s.pairedWith.empty());
+  EXPECT_NEAR(s.fit->activations(kl), want, 1e-9);
+  EXPECT_NEAR(s.fit->activations(kr), want, 1e-9);
+  RecordProperty("symmetric_activation", std::to_string(want));
+  // The same target under a name with a side is fitted as it is: the left muscle alone.
+  const RigFit sided = fitRig(*skin_, {{"mouthSmileLeft", 0.8 * cols[0]}}, two);
+  EXPECT_NEAR(sided.shapes.at(0).fit->activations(kl), 0.8, 1e-9);
+  EXPECT_NEAR(sided.shapes.at(0).fit->activations(kr), 0.0, 1e-9);
 }
 
 // A jaw pair: jawLeft shifts the jaw 0.6 cm to the subject's left, jawRight 0.4 cm to the right. The
@@ -428,12 +454,13 @@ TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsA
   const std::vector<std::pair<std::string, double>> jaw = {{"depressor_labii_inferioris_left", 0.5},
                                                            {"depressor_labii_inferioris_right", 0.5}};
   const std::vector<std::pair<std::string, double>> jawAndClose = {{"depressor_labii_inferioris_left", 0.2},
-                                                                   {"depressor_labii_inferioris_right", 0.3},
-                                                                   {"zygomaticus_major_left", 0.4}};
+                                                                   {"depressor_labii_inferioris_right", 0.2},
+                                                                   {"zygomaticus_major_left", 0.4},
+                                                                   {"zygomaticus_major_right", 0.4}};
   std::vector<RigTarget> rig = {
       {"mouthSmileLeft", shape(acts({{"zygomaticus_major_left", 0.7}}))},
       {"browInnerUp_L", shape(acts({{"corrugator_supercilii_left", 0.6}}))},
-      {"browInnerUp_R", shape(acts({{"corrugator_supercilii_right", 0.3}}))},
+      {"browInnerUp_R", shape(acts({{"corrugator_supercilii_right", 0.6}}))},
       {"jawOpen", shape(acts(jaw))},
       {"mouthClose", shape(acts(jawAndClose)) - shape(acts(jaw))},
       {"eyeLookIn_L", shape(acts({{"corrugator_supercilii_left", 0.2}}))},
@@ -486,15 +513,15 @@ TEST_F(ActivationFitDefaultHead, FitRigRecoversAMadeRigAndStoresTheCorrectiveAsA
   };
   EXPECT_NEAR(value("mouthSmile_L", "zygomaticus_major_left"), 0.7, 1e-6);
   EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_left"), 0.6, 1e-6);
-  EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_right"), 0.3, 1e-6);
+  EXPECT_NEAR(value("browInnerUp", "corrugator_supercilii_right"), 0.6, 1e-6);
   EXPECT_EQ(fit.shapes[3].sources, (std::vector<std::string>{"browInnerUp_L", "browInnerUp_R"}));
   const RetargetShape& close = *fit.map.find("mouthClose");
   EXPECT_EQ(close.correctiveOf, "jawOpen");
   EXPECT_NEAR(value("mouthClose", "depressor_labii_inferioris_left"), 0.2 - 0.5, 1e-6);
-  EXPECT_NEAR(value("mouthClose", "depressor_labii_inferioris_right"), 0.3 - 0.5, 1e-6);
+  EXPECT_NEAR(value("mouthClose", "depressor_labii_inferioris_right"), 0.2 - 0.5, 1e-6);
   EXPECT_NEAR(value("mouthClose", "zygomaticus_major_left"), 0.4, 1e-6);
   for (const auto& [muscle, total] : fit.map.totalActivations(close))
-    EXPECT_NEAR(total, muscle == "zygomaticus_major_left" ? 0.4 : muscle == "depressor_labii_inferioris_left" ? 0.2 : 0.3, 1e-6);
+    EXPECT_NEAR(total, muscle.starts_with("zygomaticus_major") ? 0.4 : 0.2, 1e-6);
   for (const RigShapeFit& s : fit.shapes)
     if (s.fit) {
       EXPECT_GT(s.fit->metric.cosine, 1.0 - 1e-9) << s.name;
