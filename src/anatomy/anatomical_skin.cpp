@@ -67,7 +67,9 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   muscleLoads_ = couplingLoads_;
   SparseMat Kc(3 * n, 3 * n);
   Kc.setFromTriplets(trip.begin(), trip.end());
-  Kextra_ = tissue_.stiffness() + Kc;
+  // K_att, the forehead column's volume (docs/muscles.md, "The forehead's column keeps its volume")
+  // and the couplings.
+  Kextra_ = tissue_.stiffness() + foreheadColumnStiffness(head_, tissue_, settings_.attachment.foreheadColumnStiffness) + Kc;
   for (int i = 0; i < n; ++i)  // isolated vertices: hold them so K̂ stays positive definite
     if (!(tissue_.area(i) > 0))
       for (int c = 0; c < 3; ++c) Kextra_.coeffRef(3 * i + c, 3 * i + c) += 1.0;

@@ -54,6 +54,8 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
   if (!(s.fatShearModulus > 0) || !(s.heldStiffness > 0) || !(s.thinTissue > 0) || !(s.cheekTissue > 0) ||
       !(s.lipChinTissue > 0) || !(s.tissueDensity > 0))
     throw InputError("tissue attachment: moduli, stiffnesses, thicknesses and density must be > 0");
+  if (!(s.foreheadColumnStiffness >= 0) || !std::isfinite(s.foreheadColumnStiffness))
+    throw InputError("tissue attachment: the forehead column's stiffness must be ≥ 0");
   const FaceFrame frame = head.frame();
   const Landmarks& lm = head.landmarks;
   const MatX3& V = head.mesh.V;
@@ -67,6 +69,8 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
   const double browY = 0.25 * (at("right_brow_inner").y() + at("left_brow_inner").y() +
                                at("right_brow_outer").y() + at("left_brow_outer").y());  // 0.22
   const double lipTopY = at("upper_lip_top").y();
+  const Vec3 browInR = at("right_brow_inner"), browInL = at("left_brow_inner");
+  const Vec3 browOutR = at("right_brow_outer"), browOutL = at("left_brow_outer");
 
   const int n = static_cast<int>(V.rows());
   TissueMap map;
@@ -75,6 +79,7 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
   map.attachment.resize(n);
   map.thickness.resize(n);
   map.held.resize(n);
+  map.forehead.resize(n);
   for (int i = 0; i < n; ++i) {
     const Vec3 q = frame.toFrame(Vec3(V.row(i)));
     const Vec2 p(q.x(), q.y());
@@ -125,11 +130,62 @@ TissueMap tissueMap(const Head& head, const AttachmentSettings& s) {
       const double b = bump((p - Vec2(corner.x() + side * 0.02, menton.y() + 0.12)).norm(), 0.0, 0.25);
       w = std::max(w, kFree * (std::pow(s.heldStiffness / kFree, b) - 1.0) / (s.heldStiffness - kFree));
     }
+    // The forehead over the frontal bone: from the brows (their skin lies on the supraorbital rim)
+    // up, in front of the temples; the lids below have no bone under them.
+    const Vec3& browIn = side > 0 ? browInL : browInR;
+    const Vec3& browOut = side > 0 ? browOutL : browOutR;
+    const double along = std::clamp((std::abs(q.x()) - std::abs(browIn.x())) / (std::abs(browOut.x()) - std::abs(browIn.x())), 0.0, 1.0);
+    const double browLine = browIn.y() + along * (browOut.y() - browIn.y());  // the brow's height over this x
+    map.forehead(i) = smooth((q.y() - (browLine - 0.06)) / 0.06) * smooth((q.z() + 0.45) / 0.15);
     map.held(i) = w;
     map.thickness(i) = h;
     map.attachment(i) = (1.0 - w) * kFree + w * s.heldStiffness;
   }
   return map;
+}
+
+SparseMat columnVolumeStiffness(const MatX3& V, const MatX3i& F, const VecX& depth, const VecX& area, const VecX& kappa) {
+  const int n = static_cast<int>(V.rows());
+  const MatX3 normals = vertexNormals(V, F);
+  // The rows of C over the vertices with κ_i > 0: c_i = n_iᵀu_i + h_i div_s(u)_i.
+  std::vector<Triplet> rows;
+  std::vector<int> rowOf(static_cast<size_t>(n), -1);
+  std::vector<double> rowKappa;
+  for (int i = 0; i < n; ++i)
+    if (kappa(i) > 0.0 && area(i) > 0.0) {
+      rowOf[static_cast<size_t>(i)] = static_cast<int>(rowKappa.size());
+      for (int c = 0; c < 3; ++c) rows.emplace_back(rowOf[static_cast<size_t>(i)], 3 * i + c, normals(i, c));
+      rowKappa.push_back(kappa(i));
+    }
+  if (rowKappa.empty()) return SparseMat(3 * n, 3 * n);
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    const Vec3 a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
+    const Vec3 cross = (b - a).cross(c - a);
+    const double twiceArea = cross.norm();
+    if (!(twiceArea > 0.0)) continue;
+    const Vec3 nt = cross / twiceArea;
+    // ∇φ_j = n_t × (the edge opposite j, counter-clockwise) / 2A_t.
+    const Vec3 grad[3] = {nt.cross(c - b) / twiceArea, nt.cross(a - c) / twiceArea, nt.cross(b - a) / twiceArea};
+    for (int k = 0; k < 3; ++k) {
+      const int i = F(t, k);
+      const int r = rowOf[static_cast<size_t>(i)];
+      if (r < 0) continue;
+      const double share = depth(i) * (0.5 * twiceArea / 3.0) / area(i);  // h_i A_t / 3A_i
+      for (int j = 0; j < 3; ++j)
+        for (int d = 0; d < 3; ++d) rows.emplace_back(r, 3 * F(t, j) + d, share * grad[j](d));
+    }
+  }
+  SparseMat C(static_cast<Eigen::Index>(rowKappa.size()), 3 * n);
+  C.setFromTriplets(rows.begin(), rows.end());
+  const VecX w = Eigen::Map<const VecX>(rowKappa.data(), static_cast<Eigen::Index>(rowKappa.size()));
+  return SparseMat(C.transpose() * w.asDiagonal() * C);
+}
+
+SparseMat foreheadColumnStiffness(const Head& head, const TissueMap& map, double stiffness) {
+  const int n = map.size();
+  if (!(stiffness > 0)) return SparseMat(3 * n, 3 * n);
+  return columnVolumeStiffness(head.mesh.V, head.mesh.F, map.thickness, map.area,
+                               stiffness * map.forehead.cwiseProduct(map.area));
 }
 
 void applyAttachmentOverrides(TissueMap& map, const std::vector<AttachmentOverride>& overrides) {

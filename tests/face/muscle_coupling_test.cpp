@@ -118,5 +118,44 @@ TEST(MuscleCoupling, TheLipsBodyGrowsInHeightAboutItsOwnAxisAsTheRingShortens) {
   }
 }
 
+// The column's volume (tissue_attachment.h, columnVolumeStiffness) on a flat sheet in the x–y plane
+// (normal +z), h = 0.4 cm: a uniform compression ε along x that lifts the skin by h ε keeps the
+// column's volume and costs nothing; the same compression without the lift costs Σ κ (h ε)², a
+// push along the normal alone Σ κ δ², a slide along the sheet nothing (exact: the energy is
+// quadratic, ½uᵀKu).
+TEST(ColumnVolume, AUniformCompressionCostsNothingOnlyWhenTheSkinRisesByTheColumnsThickening) {
+  const int m = 7;  // m × m vertices, 0.3 cm apart
+  MatX3 V(m * m, 3);
+  for (int r = 0; r < m; ++r)
+    for (int c = 0; c < m; ++c) V.row(r * m + c) << 0.3 * c, 0.3 * r, 0.0;
+  MatX3i F(2 * (m - 1) * (m - 1), 3);
+  int t = 0;
+  for (int r = 0; r + 1 < m; ++r)
+    for (int c = 0; c + 1 < m; ++c) {
+      const int a = r * m + c;
+      F.row(t++) << a, a + 1, a + m + 1;
+      F.row(t++) << a, a + m + 1, a + m;
+    }
+  const VecX area = lumpedVertexAreas(V, F);
+  const VecX depth = VecX::Constant(m * m, 0.4);
+  VecX kappa = 3e6 * area;
+  kappa(0) = 0.0;  // a vertex outside the region has no row
+  const SparseMat K = columnVolumeStiffness(V, F, depth, area, kappa);
+  ASSERT_EQ(K.rows(), 3 * m * m);
+  EXPECT_LT((SparseMat(K.transpose()) - K).norm(), 1e-9 * K.norm());
+  const double eps = 0.1, delta = 0.05;
+  auto energy = [&](auto field) {
+    VecX u(3 * m * m);
+    for (int v = 0; v < m * m; ++v) u.segment<3>(3 * v) = field(Vec3(V.row(v)));
+    return 0.5 * u.dot(K * u);
+  };
+  const double sumKappa = kappa.sum();
+  EXPECT_NEAR(energy([&](const Vec3& p) { return Vec3(-eps * p.x(), 0.0, 0.4 * eps); }), 0.0, 1e-9 * sumKappa);
+  EXPECT_NEAR(energy([&](const Vec3& p) { return Vec3(-eps * p.x(), 0.0, 0.0); }), 0.5 * sumKappa * std::pow(0.4 * eps, 2),
+              1e-9 * sumKappa);
+  EXPECT_NEAR(energy([&](const Vec3&) { return Vec3(0.0, 0.0, delta); }), 0.5 * sumKappa * delta * delta, 1e-9 * sumKappa);
+  EXPECT_NEAR(energy([&](const Vec3&) { return Vec3(0.2, -0.1, 0.0); }), 0.0, 1e-9 * sumKappa);
+}
+
 }  // namespace
 }  // namespace myo

@@ -32,6 +32,11 @@ struct AttachmentSettings {
   double cheekTissue = 1.8;    // the cheek over the buccal fat and masseter
   double lipChinTissue = 1.1;  // lips and chin
   double tissueDensity = 1.0;  // ρ of skin and soft tissue, g/cm³
+  // The forehead's column keeps its volume (docs/muscles.md, "The forehead's column keeps its
+  // volume"): skin, dense layer and galea/frontalis slide as one over the loose areolar layer on the
+  // frontal bone, so the skin moves along its normal only as the column thickens,
+  // u·n = −h div_s(u). Penalty stiffness of that constraint, dyn/cm³ (0: off).
+  double foreheadColumnStiffness = 3.0e6;
 };
 
 // Per-vertex maps over the n skin vertices.
@@ -40,6 +45,7 @@ struct TissueMap {
   VecX thickness;   // h_i, cm (soft tissue carried by the vertex)
   VecX held;        // w_i ∈ [0, 1], 1 = held by ligament/fascia/bone-backed region
   VecX area;        // A_i, lumped vertex area (a third of each incident triangle), cm²
+  VecX forehead;    // f_i ∈ [0, 1], 1 = over the frontal bone, from the brows up (the column's region)
   double density = 1.0;  // g/cm³
 
   int size() const { return static_cast<int>(attachment.size()); }
@@ -48,6 +54,19 @@ struct TissueMap {
   // K_att = diag(k_att,i A_i) ⊗ I₃, 3n×3n (dyn/cm).
   SparseMat stiffness() const;
 };
+
+// A column of tissue that keeps its volume (docs/muscles.md, "The forehead's column keeps its
+// volume"): where the skin, its dense layer and a muscle bound to them slide as one over a loose
+// layer on bone, the skin moves along its rest normal n_i only as the column, h_i thick, thickens
+// under the surface's compression (incompressible, its deep face on the loose layer):
+//   c_i(u) = n_iᵀu_i + h_i div_s(u)_i = 0,   div_s(u)_i = Σ_{t∋i} (A_t/3A_i) Σ_{j∈t} ∇φ_j,tᵀ u_j,
+// ∇φ_j,t the gradient of vertex j's hat function on triangle t (in its plane), A_i the lumped
+// area. Held by the penalty E = ½ Σ_i κ_i c_i², K = Cᵀ diag(κ) C (3n×3n, dyn/cm), κ_i in dyn/cm
+// (0: no row). Exact: a uniform in-plane compression ε with u·n = h ε costs nothing.
+SparseMat columnVolumeStiffness(const MatX3& V, const MatX3i& F, const VecX& depth, const VecX& area, const VecX& kappa);
+// The forehead's column: κ_i = k f_i A_i over the frontal bone (TissueMap::forehead), h_i the
+// soft-tissue thickness; empty for k = 0.
+SparseMat foreheadColumnStiffness(const Head& head, const TissueMap& map, double stiffness);
 
 // The region maps of a head (its landmarks give the face frame and the regions' places).
 TissueMap tissueMap(const Head& head, const AttachmentSettings& settings = {});
