@@ -103,7 +103,7 @@ struct Match {
   Vec3 point, normal;
   double distance;
   bool onBoundary;
-  int nearestVertex;
+  int nearestVertex;  // the closest point's triangle's vertex nearest the query point
 };
 
 Match match(const Target& tg, const Vec3& p) {
@@ -112,7 +112,7 @@ Match match(const Target& tg, const Vec3& p) {
   int best = 0;
   bool allBoundary = true;
   for (int k = 0; k < 3; ++k) {
-    if (sp.barycentric(k) > sp.barycentric(best)) best = k;
+    if ((tg.V.row(tg.F(sp.triangle, k)) - p.transpose()).squaredNorm() < (tg.V.row(tg.F(sp.triangle, best)) - p.transpose()).squaredNorm()) best = k;
     if (sp.barycentric(k) > 1e-6 && !tg.boundary[tg.F(sp.triangle, k)]) allBoundary = false;
   }
   m.onBoundary = allBoundary;
@@ -307,6 +307,7 @@ int extremeAlong(const std::vector<int>& loop, const MatX3& V, const Vec3& dir) 
   return best;
 }
 
+
 int nearestOf(const std::vector<int>& loop, const MatX3& V, const Vec3& p) {
   int best = loop.front();
   for (int v : loop)
@@ -314,30 +315,65 @@ int nearestOf(const std::vector<int>& loop, const MatX3& V, const Vec3& p) {
   return best;
 }
 
+// A face frame from four points (cm): origin the outer eye corners' midpoint, x towards the
+// subject's left eye corner, y up (away from the mouth corners' midpoint, orthogonal to x), z out
+// of the face. Unit: the eye width along x and z; along y the eye width too, or (byMouth) the
+// height of the eye corners above the mouth corners, so that a face longer or shorter for its
+// width than the template keeps its proportions. The frame of frontalJawLine and of the lids' and
+// brows' placement.
+struct EyeFrame {
+  Vec3 o = Vec3::Zero(), ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
+  double s = 0.0, sy = 0.0;
+  bool ok = false;
+  Vec3 to(const Vec3& p) const {
+    const Vec3 d = p - o;
+    return {d.dot(ex) / s, d.dot(ey) / sy, d.dot(ez) / s};
+  }
+  Vec3 from(const Vec3& q) const { return o + s * q.x() * ex + sy * q.y() * ey + s * q.z() * ez; }
+};
+
+EyeFrame eyeFrame(const Vec3& r, const Vec3& l, const Vec3& mouthR, const Vec3& mouthL, bool byMouth = false) {
+  EyeFrame f;
+  f.o = 0.5 * (r + l);
+  f.s = (l - r).norm();
+  if (!(f.s > 0.0)) return f;
+  f.ex = (l - r) / f.s;
+  Vec3 ey = f.o - 0.5 * (mouthR + mouthL);
+  ey -= ey.dot(f.ex) * f.ex;
+  if (ey.norm() < 1e-9) return f;
+  f.ey = ey.normalized();
+  f.ez = f.ex.cross(f.ey);
+  f.sy = byMouth ? ey.norm() : f.s;
+  f.ok = true;
+  return f;
+}
+
+// The share of the angle from the jaw line's end (point 0 or 16) to the chin (8) at which each jaw
+// point lies, seen from the outer eye corners' midpoint in a frontal view, on the mean face of
+// dlib's 68-point (iBUG 300-W) annotations: OpenFace's normalised template (Amos, Ludwiczuk &
+// Satyanarayanan 2016, openface/align_dlib.py TEMPLATE), both halves averaged (angles 180.6°,
+// 195.5°, 209.3°, 221.4°, 232.3°, 242.7°, 252.4°, 261.3°, 270° from the subject's right). Not even
+// steps: annotators space the points closer towards the chin than along the sides.
+constexpr std::array<double, 9> kJawAngleShare = {0.000, 0.167, 0.322, 0.457, 0.579, 0.695, 0.803, 0.903, 1.000};
+
 // The jaw line (Multi-PIE 0–16) on the head's frontal outline. Multi-PIE's jaw points are drawn
 // on a frontal photograph's face contour, which the built-in template has no label for (its jaw
 // labels are its rim, behind and below that contour). In a provisional frame of the found points
 // (eye corners, mouth corners; eye widths), the skin's front-facing triangles are rasterised into a
 // depth map (0.01 eye widths); along spokes from the eye corners' midpoint (150°–390°, every 1°,
 // each starting 0.08 beyond the found points within 0.15 of it) the visible surface is followed
-// outward until it turns away from a view tilted 15° from above (normal · view ≤ 0.1, the crossing
+// outward until it turns away from a view tilted 20° from above (normal · view ≤ 0.05, the crossing
 // interpolated) or its depth drops by more than 0.1 (an ear or the neck behind the outline). The
 // outline, smoothed over ±10 spokes, runs from its point at 0.1 eye widths above the eye corners on
-// each side to the midline; 9 points per half go at equal arc length (Multi-PIE's annotators space
-// them evenly along the contour). False (the fit's points kept) when too little outline is found.
-bool frontalJawLine(const Target& tg, std::vector<int>& lm68) {
+// each side to the midline; 9 points per half go on it, by angle (byAngle: the mean face's shares,
+// kJawAngleShare) or at equal arc length. False (the fit's points kept) when too little outline is
+// found.
+bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
   const auto at = [&](int v) { return Vec3(tg.V.row(v).transpose()); };
-  const Vec3 r = at(lm68[36]), l = at(lm68[45]);
-  const Vec3 mouth = 0.5 * (at(lm68[48]) + at(lm68[54]));
-  const Vec3 o = 0.5 * (r + l);
-  const double s = (l - r).norm();
-  if (!(s > 0.0)) return false;
-  const Vec3 ex = (l - r) / s;
-  Vec3 ey = o - mouth;
-  ey = (ey - ey.dot(ex) * ex);
-  if (ey.norm() < 1e-9) return false;
-  ey.normalize();
-  const Vec3 ez = ex.cross(ey);
+  const EyeFrame fr = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]));
+  if (!fr.ok) return false;
+  const Vec3 &o = fr.o, &ex = fr.ex, &ey = fr.ey, &ez = fr.ez;
+  const double s = fr.s;
   const int n = static_cast<int>(tg.V.rows());
   MatX3 Q(n, 3), NQ(n, 3);
   for (int v = 0; v < n; ++v) {
@@ -460,8 +496,23 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68) {
       lm68[static_cast<size_t>(k0 + dk * k)] = match(tg, p).nearestVertex;
     }
   };
-  place(first, mid, 0, 1);       // 0 … 8
-  place(mid, lastI, 8, 1);       // 8 … 16
+  if (!byAngle) {
+    place(first, mid, 0, 1);       // 0 … 8
+    place(mid, lastI, 8, 1);       // 8 … 16
+    return true;
+  }
+  // By angle: point k on the spoke at the share f_k of the angle from the outline's end to the
+  // midline that the mean 68-point face gives it (kJawAngleShare).
+  auto put = [&](int k, double spoke) {
+    const int i = std::clamp(static_cast<int>(std::lround(spoke)), 0, m - 1);
+    const Vec3 q = raw[static_cast<size_t>(i)];
+    lm68[static_cast<size_t>(k)] = match(tg, o + s * (q.x() * ex + q.y() * ey + q.z() * ez)).nearestVertex;
+  };
+  for (int k = 0; k <= 8; ++k) {
+    const double f = kJawAngleShare[static_cast<size_t>(k)];
+    put(k, first + f * (mid - first));
+    put(16 - k, lastI - f * (lastI - mid));
+  }
   return true;
 }
 
@@ -632,7 +683,6 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
     }
     return true;
   };
-  const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68);
   const std::vector<int> lmFit = lm68;
   const bool rightEye = snapOpening(36, 39, {37, 38, 40, 41});
   const bool leftEye = snapOpening(45, 42, {43, 44, 46, 47});
@@ -642,6 +692,31 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
     lm68 = lmFit;
     std::fill(snapCm.begin(), snapCm.end(), 0.0);
   }
+
+  // The outer eye corners onto the ends of the eye openings (where the mesh has them): the loop's
+  // vertex farthest along the fitted inner-to-outer corner direction.
+  if (options.outerEyeCornersOnOpenings)
+    for (const auto& [outer, inner] : {std::pair{36, 39}, std::pair{45, 42}})
+      if (const std::vector<int>* loop = openingBetween(loops, V, at(lmFit[outer]), at(lmFit[inner])))
+        lm68[outer] = extremeAlong(*loop, V, (at(lmFit[outer]) - at(lmFit[inner])).normalized());
+
+  // Lids and brows at the template's own positions in the eye frame of the found corners: on a
+  // smooth brow, or a lid over an opening, the fit slides, while where these points lie in a
+  // frontal view relative to the eye and mouth corners varies little between faces. Each point
+  // keeps its fitted depth and goes to the skin vertex nearest (x, y, depth) in that frame.
+  std::vector<char> fromEyeFrame(68, 0);
+  if (options.lidsAndBrowsFromEyeFrame) {
+    const auto tAt = [&](int k) { return Vec3(tp.V.row(tl.multipie68[static_cast<size_t>(k)]).transpose()); };
+    const EyeFrame tf = eyeFrame(tAt(36), tAt(45), tAt(48), tAt(54), true);
+    const EyeFrame f = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]), true);
+    if (tf.ok && f.ok)
+      for (int k : {17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 37, 38, 40, 41, 43, 44, 46, 47}) {
+        const Vec3 q = tf.to(tAt(k)), p = f.to(at(lm68[k]));
+        lm68[k] = match(tg, f.from(Vec3(q.x(), q.y(), p.z()))).nearestVertex;
+        fromEyeFrame[static_cast<size_t>(k)] = 1;
+      }
+  }
+  const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68, options.jawByAngle);
 
   // Confidence: the share of the template's vertices within 1.5 cm of the landmark that found a
   // compatible skin point, times exp(−(d/2 mm)²) for the bent landmark's distance d to the skin and
@@ -658,6 +733,12 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   };
   out.confidence68.resize(68);
   for (int k = 0; k < 68; ++k) out.confidence68[k] = confidence(tl.multipie68[static_cast<size_t>(k)], snapCm[k]);
+  // A lid point placed from the eye frame is as certain as its eye's corners (its template vertex
+  // lies over the opening, where the fit finds no skin).
+  for (int k : {37, 38, 40, 41, 43, 44, 46, 47})
+    if (fromEyeFrame[static_cast<size_t>(k)])
+      out.confidence68[k] = k < 42 ? std::min(out.confidence68[36], out.confidence68[39])
+                                   : std::min(out.confidence68[42], out.confidence68[45]);
   // The jaw line is the least certain part (see the warning below): its confidence at most 0.45
   // (drawn yellow), before the named points on it (chin_menton) take theirs.
   for (int k = 0; k <= 16; ++k) out.confidence68[k] = std::min(out.confidence68[k], jawOnOutline ? 0.45 : 0.3);
@@ -691,11 +772,11 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   if (!out.mouthOpen)
     out.warnings.push_back("the mouth has no opening: no lip contact, and the jaw stretches the skin; "
                            "the inner lip points come from the fit alone");
-  // The jaw line: on the frontal outline it lies a mean 5.6 mm (max 11 mm) from ICT's given points,
+  // The jaw line: on the frontal outline it lies a mean 5.0 mm (max 9.8 mm) from ICT's given points,
   // on the template's rim (the fallback when no outline is found) 15 mm (docs/heads.md). Either way
   // it is the least certain part: said, and its confidence capped above.
   out.warnings.push_back(jawOnOutline
-                             ? "the jaw line (Multi-PIE points 0-16) is placed on the face's frontal outline (6 mm "
+                             ? "the jaw line (Multi-PIE points 0-16) is placed on the face's frontal outline (5 mm "
                                "from the given points on ICT, mean): check it before rig, drive or pose, which build "
                                "the jaw from it"
                              : "the jaw line (Multi-PIE points 0-16) is approximate (no frontal outline was found; the "
