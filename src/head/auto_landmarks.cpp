@@ -362,8 +362,9 @@ constexpr std::array<double, 9> kJawAngleShare = {0.000, 0.167, 0.322, 0.457, 0.
 // (eye corners, mouth corners; eye widths), the skin's front-facing triangles are rasterised into a
 // depth map (0.01 eye widths); along spokes from the eye corners' midpoint (150°–390°, every 1°,
 // each starting 0.08 beyond the found points within 0.15 of it) the visible surface is followed
-// outward until it turns away from a view tilted 20° from above (normal · view ≤ 0.05, the crossing
-// interpolated) or its depth drops by more than 0.1 (an ear or the neck behind the outline). The
+// outward until it turns away from the view (normal · view ≤ 0.08, the crossing interpolated; the
+// view tilted from above by 20° times the spoke's downward share, −sin of its angle: 20° under the
+// chin, 0° at the sides) or its depth drops by more than 0.1 (an ear or the neck behind it). The
 // outline, smoothed over ±10 spokes, runs from its point at 0.1 eye widths above the eye corners on
 // each side to the midline; 9 points per half go on it, by angle (byAngle: the mean face's shares,
 // kJawAngleShare) or at equal arc length. False (the fit's points kept) when too little outline is
@@ -428,12 +429,16 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
     return true;
   };
   const double tilt = 20.0 * std::numbers::pi / 180.0;
-  const Vec3 view(0.0, std::sin(tilt), std::cos(tilt));
-  const double turned = 0.05, drop = 0.1, step = 0.005;
+  const double turned = 0.08, drop = 0.1, step = 0.005;
   std::vector<Vec3> raw;
   for (int deg = 150; deg <= 390; ++deg) {
     const double th = deg * std::numbers::pi / 180.0;
     const Eigen::Vector2d u(std::cos(th), std::sin(th));
+    // The view tilts from above only as far as the spoke points down: under the chin fully, along
+    // the sides not at all (there the surface is seen edge-on and its normal's small downward
+    // component would decide where the march stops; ICT's point 15 lay 7.8 mm off in depth).
+    const double tiltHere = tilt * std::max(0.0, -std::sin(th));
+    const Vec3 view(0.0, std::sin(tiltHere), std::cos(tiltHere));
     double r = 0.3;
     for (int k = 17; k < 68; ++k) {
       const Eigen::Vector2d q = Q.row(lm68[static_cast<size_t>(k)]).head<2>().transpose();
