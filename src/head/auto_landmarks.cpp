@@ -103,21 +103,34 @@ struct Match {
   Vec3 point, normal;
   double distance;
   bool onBoundary;
-  int nearestVertex;  // the closest point's triangle's vertex nearest the query point
 };
 
 Match match(const Target& tg, const Vec3& p) {
   const SurfacePoint sp = tg.loc->closest(p);
-  Match m{sp.point, sp.normal, sp.distance, false, -1};
-  int best = 0;
+  Match m{sp.point, sp.normal, sp.distance, false};
   bool allBoundary = true;
-  for (int k = 0; k < 3; ++k) {
-    if ((tg.V.row(tg.F(sp.triangle, k)) - p.transpose()).squaredNorm() < (tg.V.row(tg.F(sp.triangle, best)) - p.transpose()).squaredNorm()) best = k;
+  for (int k = 0; k < 3; ++k)
     if (sp.barycentric(k) > 1e-6 && !tg.boundary[tg.F(sp.triangle, k)]) allBoundary = false;
-  }
   m.onBoundary = allBoundary;
-  m.nearestVertex = tg.F(sp.triangle, best);
   return m;
+}
+
+// A label's vertex: the skin vertex nearest the surface point closest to p, searched over every
+// skin vertex rather than the closest triangle's three (on a coarse mesh's long triangles, such as
+// a decimated nose ridge's, a neighbouring triangle's vertex can lie much nearer). A few hundred
+// calls per search, each a pass over the skin's vertices.
+int labelVertex(const Target& tg, const Vec3& p) {
+  const Vec3 c = match(tg, p).point;
+  int best = -1;
+  double bestD = 1e300;
+  for (int v : tg.skinIds) {
+    const double d = (tg.V.row(v).transpose() - c).squaredNorm();
+    if (d < bestD) {
+      bestD = d;
+      best = v;
+    }
+  }
+  return best;
 }
 
 // Similarity ICP of template points X (with normals NX) onto the target, from `init`. Pairs whose
@@ -498,7 +511,7 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
       while (i + 1 < static_cast<int>(L.size()) && L[static_cast<size_t>(i + 1)] <= want + 1e-12) ++i;
       const Vec3 q = raw[static_cast<size_t>(a + i)];
       const Vec3 p = o + s * (q.x() * ex + q.y() * ey + q.z() * ez);
-      lm68[static_cast<size_t>(k0 + dk * k)] = match(tg, p).nearestVertex;
+      lm68[static_cast<size_t>(k0 + dk * k)] = labelVertex(tg, p);
     }
   };
   if (!byAngle) {
@@ -511,7 +524,7 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
   auto put = [&](int k, double spoke) {
     const int i = std::clamp(static_cast<int>(std::lround(spoke)), 0, m - 1);
     const Vec3 q = raw[static_cast<size_t>(i)];
-    lm68[static_cast<size_t>(k)] = match(tg, o + s * (q.x() * ex + q.y() * ey + q.z() * ez)).nearestVertex;
+    lm68[static_cast<size_t>(k)] = labelVertex(tg, o + s * (q.x() * ex + q.y() * ey + q.z() * ez));
   };
   for (int k = 0; k <= 8; ++k) {
     const double f = kJawAngleShare[static_cast<size_t>(k)];
@@ -664,7 +677,7 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
 
   // Labels move by closest point: each template landmark to the skin vertex nearest its bent position.
   const Landmarks& tl = tp.head.landmarks;
-  auto transfer = [&](int tv) { return match(tg, bent.row(tv).transpose()).nearestVertex; };
+  auto transfer = [&](int tv) { return labelVertex(tg, bent.row(tv).transpose()); };
   std::vector<int> lm68(68);
   for (int k = 0; k < 68; ++k) lm68[k] = transfer(tl.multipie68[static_cast<size_t>(k)]);
   std::vector<double> snapCm(68, 0.0);
@@ -717,9 +730,19 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
     if (tf.ok && f.ok)
       for (int k : {17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 37, 38, 40, 41, 43, 44, 46, 47}) {
         const Vec3 q = tf.to(tAt(k)), p = f.to(at(lm68[k]));
-        lm68[k] = match(tg, f.from(Vec3(q.x(), q.y(), p.z()))).nearestVertex;
+        lm68[k] = labelVertex(tg, f.from(Vec3(q.x(), q.y(), p.z())));
         fromEyeFrame[static_cast<size_t>(k)] = 1;
       }
+  }
+  // The nose bridge's inner points (28, 29) at a third and two thirds of the way from the nasion
+  // (27) to the tip (30), as on the mean 68-point face (OpenFace's template, see kJawAngleShare:
+  // its 27-30 are 0.078, 0.078, 0.079 apart in height). On a smooth ridge the fit slides along it
+  // (decimated ICT: 28 and 29 on one vertex); the line between 27 and 30 lies just under the ridge,
+  // so its closest surface point is on the ridge.
+  if (options.noseBridgeAtThirds) {
+    const Vec3 nasion = at(lm68[27]), tip = at(lm68[30]);
+    lm68[28] = labelVertex(tg, nasion + (tip - nasion) / 3.0);
+    lm68[29] = labelVertex(tg, nasion + 2.0 * (tip - nasion) / 3.0);
   }
   const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68, options.jawByAngle);
 
