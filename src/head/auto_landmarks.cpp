@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <numbers>
 #include <numeric>
+#include <optional>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/head/head_checks.h"
@@ -368,6 +369,33 @@ EyeFrame eyeFrame(const Vec3& r, const Vec3& l, const Vec3& mouthR, const Vec3& 
 // 195.5°, 209.3°, 221.4°, 232.3°, 242.7°, 252.4°, 261.3°, 270° from the subject's right). Not even
 // steps: annotators space the points closer towards the chin than along the sides.
 constexpr std::array<double, 9> kJawAngleShare = {0.000, 0.167, 0.322, 0.457, 0.579, 0.695, 0.803, 0.903, 1.000};
+
+// The brows' distances from the eye corners' midpoint across the face, in eye widths (17-21 on
+// the subject's right, negated; 26-22 mirror them): the mean 68-point face's (OpenFace's template,
+// see kJawAngleShare), in the eye frame of its outer eye corners, both halves averaged.
+constexpr std::array<double, 5> kMeanFaceBrowX = {0.6665, 0.5615, 0.4205, 0.2760, 0.1385};
+
+// The frontmost skin point on the line a + t·dir (largest t), if the line meets the skin: a
+// frontal view's point at a's position across the face. Möller–Trumbore per skin triangle.
+std::optional<Vec3> frontmostAlong(const Target& tg, const Vec3& a, const Vec3& dir) {
+  double bestT = -1e300;
+  for (int t = 0; t < tg.F.rows(); ++t) {
+    const Vec3 A = tg.V.row(tg.F(t, 0)).transpose(), e1 = tg.V.row(tg.F(t, 1)).transpose() - A,
+               e2 = tg.V.row(tg.F(t, 2)).transpose() - A;
+    const Vec3 pv = dir.cross(e2);
+    const double det = e1.dot(pv);
+    if (std::abs(det) < 1e-12) continue;
+    const Vec3 tv = a - A;
+    const double u = tv.dot(pv) / det;
+    if (u < 0.0 || u > 1.0) continue;
+    const Vec3 qv = tv.cross(e1);
+    const double v = dir.dot(qv) / det;
+    if (v < 0.0 || u + v > 1.0) continue;
+    bestT = std::max(bestT, e2.dot(qv) / det);
+  }
+  if (bestT < -1e299) return std::nullopt;
+  return a + bestT * dir;
+}
 
 // The jaw line (Multi-PIE 0–16) on the head's frontal outline. Multi-PIE's jaw points are drawn
 // on a frontal photograph's face contour, which the built-in template has no label for (its jaw
@@ -745,6 +773,26 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
     lm68[29] = labelVertex(tg, nasion + 2.0 * (tip - nasion) / 3.0);
   }
   const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68, options.jawByAngle);
+
+  // The brows (17-26) seen from the front: across, at the mean 68-point face's positions in the eye
+  // frame (kMeanFaceBrowX); up, at the template's; in depth, on the skin a frontal view sees there
+  // (the frontmost skin point along the frame's z). The template's brows sit up to 3 mm from the
+  // mean face's across (its inner ends farther apart), and the fitted depth, kept before, lies in
+  // front of the skin where the brow's end turns back (ICT's point 17: 3.9 mm). The mean face's
+  // heights are not taken: in photographs they move with the head's pitch (the brows stand ~2 cm
+  // in front of the eye corners), its widths do not. After the jaw line, whose outline search
+  // starts beyond the points already found.
+  if (options.browsSeenFromTheFront && fromEyeFrame[17]) {
+    const auto tAt = [&](int k) { return Vec3(tp.V.row(tl.multipie68[static_cast<size_t>(k)]).transpose()); };
+    const EyeFrame tf = eyeFrame(tAt(36), tAt(45), tAt(48), tAt(54), true);
+    const EyeFrame f = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]), true);
+    for (int k = 17; k <= 26; ++k) {
+      const double x = k <= 21 ? -kMeanFaceBrowX[static_cast<size_t>(k - 17)] : kMeanFaceBrowX[static_cast<size_t>(26 - k)];
+      const Vec3 a = f.from(Vec3(x, tf.to(tAt(k)).y(), 0.0));
+      const std::optional<Vec3> hit = frontmostAlong(tg, a, f.ez);
+      lm68[static_cast<size_t>(k)] = labelVertex(tg, hit ? *hit : f.from(Vec3(x, tf.to(tAt(k)).y(), f.to(at(lm68[k])).z())));
+    }
+  }
 
   // Confidence: the share of the template's vertices within 1.5 cm of the landmark that found a
   // compatible skin point, times exp(−(d/2 mm)²) for the bent landmark's distance d to the skin and
