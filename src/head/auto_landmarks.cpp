@@ -374,6 +374,8 @@ constexpr std::array<double, 9> kJawAngleShare = {0.000, 0.167, 0.322, 0.457, 0.
 // the subject's right, negated; 26-22 mirror them): the mean 68-point face's (OpenFace's template,
 // see kJawAngleShare), in the eye frame of its outer eye corners, both halves averaged.
 constexpr std::array<double, 5> kMeanFaceBrowX = {0.6665, 0.5615, 0.4205, 0.2760, 0.1385};
+// The inner eye corners' (39, 42) distance from that midpoint, likewise (0.2147 and 0.2143).
+constexpr double kMeanFaceInnerEyeX = 0.2145;
 
 // The frontmost skin point on the line a + t·dir (largest t), if the line meets the skin: a
 // frontal view's point at a's position across the face. Möller–Trumbore per skin triangle.
@@ -782,6 +784,20 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   // heights are not taken: in photographs they move with the head's pitch (the brows stand ~2 cm
   // in front of the eye corners), its widths do not. After the jaw line, whose outline search
   // starts beyond the points already found.
+  //
+  // The inner eye corners (39, 42) likewise: across at the mean face's positions (kMeanFaceInnerEyeX),
+  // at their fitted height, in depth on the skin seen from the front. The fit leaves them ~1 mm
+  // towards the nose on ICT (its caruncle region is smooth), and the opening's end lies 2.9 mm
+  // lateral of them; the rig's eyeWide follows them (docs/heads.md, "End to end").
+  if (options.innerEyeCornersSeenFromTheFront) {
+    const EyeFrame f = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]), true);
+    if (f.ok)
+      for (int k : {39, 42}) {
+        const double x = k == 39 ? -kMeanFaceInnerEyeX : kMeanFaceInnerEyeX;
+        if (const std::optional<Vec3> hit = frontmostAlong(tg, f.from(Vec3(x, f.to(at(lm68[k])).y(), 0.0)), f.ez))
+          lm68[static_cast<size_t>(k)] = labelVertex(tg, *hit);
+      }
+  }
   if (options.browsSeenFromTheFront && fromEyeFrame[17]) {
     const auto tAt = [&](int k) { return Vec3(tp.V.row(tl.multipie68[static_cast<size_t>(k)]).transpose()); };
     const EyeFrame tf = eyeFrame(tAt(36), tAt(45), tAt(48), tAt(54), true);

@@ -50,6 +50,9 @@ struct AutoLandmarkOptions {
   // The brows (17-26) across the face at the mean 68-point face's positions in the eye frame, up
   // at the template's, in depth on the skin a frontal view sees there (docs/heads.md, "Method").
   bool browsSeenFromTheFront = true;
+  // The inner eye corners (39, 42) across the face at the mean 68-point face's positions, at their
+  // fitted height, in depth on the skin a frontal view sees there.
+  bool innerEyeCornersSeenFromTheFront = true;
   // The nose bridge's points 28 and 29 at thirds between 27 and 30 (the mean 68-point face's
   // spacing) rather than where the fit leaves them. Off: ICT agrees with the mean face, but the
   // built-in head's own file puts them at 0.44 and 0.64 of the way (docs/heads.md, "Method").
