@@ -43,21 +43,27 @@ TriMesh transformed(const TriMesh& m, const Mat3& R, double s, const Vec3& t) {
   return out;
 }
 
-// ICT found with the built-in head as the only template. The 51 points off the jaw line meet the
-// issue's mean (≤ 3 mm; measured 2.7–2.9 mm) but not quite its 8 mm maximum (the brow ends, 7.3–9.2
-// mm depending on the pose). The jaw line, placed on the frontal outline (frontalJawLine), measures
-// a mean 5.6-5.8 mm, max 11.4 mm in every pose (on the template's rim it was 15 mm, max 30 mm), so all 68
-// a mean 3.3-3.6 mm (docs/heads.md, "Automatic landmarks"). The bounds hold what is measured, with a
-// small margin.
+// ICT found with the built-in head as the only template. Measured in these poses (search version
+// 4): all 68 a mean 2.29-2.47 mm, max 6.95 mm (jaw points 0 and 16); off the jaw line (17-67)
+// 1.62-1.85 mm, max 4.70 mm (the upper lip, 49); the jaw line a mean 4.30 mm (docs/heads.md,
+// "Automatic landmarks"). The issue's mean (≤ 3 mm) and maximum (≤ 8 mm) are asserted.
 void expectIctBounds(const Head& ict, const AutoLandmarks& a) {
   const Errors e = landmarkErrors(ict.mesh.V, ict.landmarks, a.landmarks);
-  EXPECT_LT(e.faceMeanMm, 3.0);
-  EXPECT_LT(e.faceMaxMm, 10.0) << "Multi-PIE point " << e.faceWorst;
-  EXPECT_LT(e.jawMeanMm, 7.0);
-  EXPECT_LT(e.meanMm, 4.0);
+  EXPECT_LT(e.faceMeanMm, 2.1);
+  EXPECT_LT(e.faceMaxMm, 5.5) << "Multi-PIE point " << e.faceWorst;
+  EXPECT_LT(e.jawMeanMm, 5.0);
+  EXPECT_LT(e.meanMm, 2.8);
   std::printf("errors: all 68 mean %.2f max %.2f mm; 17-67 mean %.2f max %.2f mm (point %d); jaw mean %.2f mm\n",
               e.meanMm, e.maxMm, e.faceMeanMm, e.faceMaxMm, e.faceWorst, e.jawMeanMm);
-  EXPECT_LT(e.maxMm, 12.0);
+  EXPECT_LT(e.maxMm, 8.0);
+  // The brows and the eyes, which the rig's brow and eye shapes follow (docs/heads.md, "End to
+  // end"): measured brows 0-3.2 mm, eye points 0-1.9 mm.
+  for (int k = 17; k <= 26; ++k)
+    EXPECT_LT(10.0 * (ict.mesh.V.row(ict.landmarks.multipie68[k]) - ict.mesh.V.row(a.landmarks.multipie68[k])).norm(), 4.0)
+        << "brow point " << k;
+  for (int k = 36; k <= 47; ++k)
+    EXPECT_LT(10.0 * (ict.mesh.V.row(ict.landmarks.multipie68[k]) - ict.mesh.V.row(a.landmarks.multipie68[k])).norm(), 3.0)
+        << "eye point " << k;
   EXPECT_TRUE(a.eyesOpen);
   EXPECT_TRUE(a.mouthOpen);
   EXPECT_EQ(a.otherPieces, 0);
@@ -166,8 +172,9 @@ void appendPiece(TriMesh& m, const TriMesh& part) {
 
 // Remeshed: ICT after one Loop step (44,786 vertices; its vertices keep their ids, moved by the
 // smoothing), with two sphere eyeballs and a tooth arch (a strip bent along an arc behind the lips)
-// as separate pieces. Errors from the original mesh's given points: measured 3.5 mm mean over the
-// 68 (jaw 6.2, off the jaw 2.6; docs/heads.md's remeshed rows).
+// as separate pieces. Errors from the original mesh's given points: measured 2.62 mm mean over the
+// 68, max 9.07 mm (a jaw point), 1.82 mm off the jaw (search version 4; docs/heads.md's remeshed
+// rows).
 TEST(AutoLandmarks, LoopSubdividedWithEyeballsAndAToothArch) {
   MYO_REQUIRE_SHARED_DATA();
   const Head ict = test::ictHead();
@@ -202,11 +209,48 @@ TEST(AutoLandmarks, LoopSubdividedWithEyeballsAndAToothArch) {
   }
   std::printf("Loop-subdivided ICT with eyeballs and a tooth arch: 68 mean %.2f max %.2f mm, 17-67 mean %.2f mm\n", mean,
               maxMm, faceMean);
-  EXPECT_LT(faceMean, 3.0);
-  EXPECT_LT(mean, 4.0);
-  EXPECT_LT(maxMm, 13.0);
+  EXPECT_LT(faceMean, 2.2);
+  EXPECT_LT(mean, 3.0);
+  EXPECT_LT(maxMm, 10.5);
   EXPECT_TRUE(a.eyesOpen);
   EXPECT_TRUE(a.mouthOpen);
+}
+
+// The built-in head made 10 % wider and 8 % shorter (not the template's proportions, and not
+// ICT, on which the lid, brow and jaw rules were chosen): its own labels 27-67 come back within a
+// mean 0.9 mm, max 2.3 mm (the lids' frame keeps the face's height apart from its width). Its jaw
+// labels are its rim, not the frontal outline: left out. Its brows are the template's own points,
+// which the search now places across the face at the mean 68-point face's positions and in depth
+// where a frontal view sees the skin: measured 0-5.6 mm from its labels (docs/heads.md), held
+// under 6.5 mm.
+TEST(AutoLandmarks, AStretchedBuiltInHeadGetsItsOwnLabelsBack) {
+  DefaultHeadOptions o;
+  o.subdivisionLevels = 2;
+  const Head h = loadDefaultHead(o);
+  TriMesh m = h.mesh;
+  m.V.col(0) *= 1.1;
+  m.V.col(1) *= 0.92;
+  const AutoLandmarks a = findLandmarks(m);
+  double mean = 0.0, maxMm = 0.0, browMax = 0.0;
+  int worst = -1;
+  for (int k = 17; k < 68; ++k) {
+    const double d = 10.0 * (m.V.row(h.landmarks.multipie68[static_cast<size_t>(k)]) -
+                             m.V.row(a.landmarks.multipie68[static_cast<size_t>(k)])).norm();
+    if (k <= 26) {
+      browMax = std::max(browMax, d);
+      continue;
+    }
+    mean += d / 41.0;
+    if (d > maxMm) {
+      maxMm = d;
+      worst = k;
+    }
+  }
+  std::printf("stretched built-in head: 27-67 mean %.2f max %.2f mm (point %d); brows max %.2f mm\n", mean, maxMm,
+              worst, browMax);
+  EXPECT_LT(mean, 1.2);
+  EXPECT_LT(maxMm, 4.0) << "Multi-PIE point " << worst;
+  EXPECT_LT(browMax, 6.5);
 }
 
 TEST(AutoLandmarks, GivenFileChecksCatchTheCommonMistakes) {

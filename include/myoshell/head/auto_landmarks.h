@@ -3,8 +3,9 @@
 // "Automatic landmarks"). The built-in head is the labelled template: it is placed on the mesh by
 // a similarity ICP from 48 candidate orientations, bent onto it by non-rigid ICP (Amberg, Romdhani
 // & Vetter 2007, "Optimal Step Nonrigid ICP Algorithms for Surface Registration"), and its labels
-// move to the mesh's nearest vertices; eye and inner mouth corners snap to the openings' boundary
-// loops where the mesh has openings.
+// move to the mesh's nearest vertices; the outer eye corners go to the ends of the eye openings
+// where the mesh has them, the lids and brows to the template's positions in the frame of the found
+// eye corners, and the jaw line onto the face's frontal outline.
 #pragma once
 
 #include <map>
@@ -32,9 +33,30 @@ struct AutoLandmarkOptions {
   // lid and lip lines, not on its loops (which turn into the sockets); on ICT snapping raised the
   // inner lip errors from 1.1–2.5 mm to 3.4–7.0 mm.
   bool snapToOpenings = false;
+  // The outer eye corners (Multi-PIE 36, 45) moved to the ends of the eye openings, where the mesh
+  // has them. The inner corners stay where the fit puts them: on ICT the inner canthus lies 2.9 mm
+  // medial of its opening's end (snapping them raised their error from 1.4 to 3.2 mm).
+  bool outerEyeCornersOnOpenings = true;
+  // The lid points (37, 38, 40, 41, 43, 44, 46, 47) and the brows (17-26) placed at the template's
+  // own positions in the frontal eye frame of the found eye and mouth corners, at their fitted
+  // depth (docs/heads.md, "Method").
+  bool lidsAndBrowsFromEyeFrame = true;
   // The jaw line (Multi-PIE 0-16) placed on the head's frontal outline (frontalJawLine in
   // auto_landmarks.cpp) instead of the template's jaw labels, which are its rim.
   bool jawOnOutline = true;
+  // Along that outline, the points at the mean 68-point face's angles (seen from the eye corners'
+  // midpoint) rather than at equal arc length.
+  bool jawByAngle = true;
+  // The brows (17-26) across the face at the mean 68-point face's positions in the eye frame, up
+  // at the template's, in depth on the skin a frontal view sees there (docs/heads.md, "Method").
+  bool browsSeenFromTheFront = true;
+  // The inner eye corners (39, 42) across the face at the mean 68-point face's positions, at their
+  // fitted height, in depth on the skin a frontal view sees there.
+  bool innerEyeCornersSeenFromTheFront = true;
+  // The nose bridge's points 28 and 29 at thirds between 27 and 30 (the mean 68-point face's
+  // spacing) rather than where the fit leaves them. Off: ICT agrees with the mean face, but the
+  // built-in head's own file puts them at 0.44 and 0.64 of the way (docs/heads.md, "Method").
+  bool noseBridgeAtThirds = false;
   // The non-rigid ICP's stiffness schedule α (Amberg et al. 2007), decreasing.
   std::vector<double> stiffness = {50, 20, 10, 5, 2, 1};
 };
