@@ -113,6 +113,11 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
     const VecX col = releaseColumns_.col(releaseColumns_.cols() - extraReleaseColumns_ + j);
     h.bytes(col.data(), sizeof(double) * static_cast<size_t>(col.size()));
   }
+  for (size_t m = 0; m < muscles_.size(); ++m)  // the release columns along another shape (buildHeldBasis)
+    if (muscles_[m].releaseShape.rows() > 0 && releaseColumns_.cols() > 0) {
+      const VecX col = releaseColumns_.col(static_cast<Eigen::Index>(m));
+      h.str("release shape").pod(static_cast<int64_t>(m)).bytes(col.data(), sizeof(double) * static_cast<size_t>(col.size()));
+    }
   if (!contactLoads_.empty()) {  // absent (a head with nothing to touch): the key as before contact
     h.str("contact").pod(static_cast<int64_t>(contactLoads_.size()));
     for (const MatX3& f : contactLoads_) h.bytes(f.data(), sizeof(double) * static_cast<size_t>(f.size()));
@@ -165,7 +170,7 @@ bool AnatomicalSkin::fitsSkin(const ModalBasis& b) const {
 }
 
 // The held basis from scratch, in the build sequence the key names: muscle loads, gravity x, y, z,
-// the extra release columns, diagonalise; then per build-time drag its x, y, z and diagonalise.
+// the extra release columns, the release columns along another shape than the muscle's, diagonalise; then per build-time drag its x, y, z and diagonalise.
 ModalBasis AnatomicalSkin::buildHeldBasis() const {
   Stopwatch clock;
   builder_ = std::make_unique<RitzBasisBuilder>(Khat_, mass_, head_.mesh.V, head_.mesh.F, ritz_);
@@ -174,6 +179,11 @@ ModalBasis AnatomicalSkin::buildHeldBasis() const {
   // The extra release columns' responses, so that the release stays exact in the basis (Woodbury).
   for (int j = 0; j < extraReleaseColumns_; ++j)
     loads.push_back(rows3(VecX(releaseColumns_.col(releaseColumns_.cols() - extraReleaseColumns_ + j))));
+  // A muscle released along another shape than its own (a lip's ring: CoupledMuscle::releaseShape)
+  // has a first release column its load does not span: its response too.
+  for (size_t m = 0; m < muscles_.size(); ++m)
+    if (muscles_[m].releaseShape.rows() > 0 && releaseColumns_.cols() > 0)
+      loads.push_back(rows3(VecX(releaseColumns_.col(static_cast<Eigen::Index>(m)))));
   // The contact's normal loads (after everything else, so a head without contact builds as before).
   loads.insert(loads.end(), contactLoads_.begin(), contactLoads_.end());
   builder_->addLoads(loads);

@@ -58,7 +58,8 @@ std::vector<ReleasePiece> releasePieces(const CoupledMuscle& cm, bool splitRings
 
 // Relaxed muscles follow the skin (docs/anatomical_model.md, "Relaxed muscles follow the skin" and
 // "Released across"). Muscle m moves with coordinates p in the shapes Q̃_m (at its springs), the
-// first its own shape U_m/√s_m (s_m = Σ k_i |w_i|², w = U at the springs), the others its motion
+// first its own shape U_m/√s_m (s_m = Σ k_i |w_i|², w = U at the springs; U the shape's tangent at
+// rest, CoupledMuscle::releaseShape, where it differs: a ring in a lip's body), the others its motion
 // across: |w_i| ê_a (a = x, y, z: weighted as the shape, so nothing moves at the origin), made
 // S-orthogonal to the shape and S-orthonormal (S the coupling metric Σ k_i v_i·v'_i; a direction
 // already spanned is dropped). Its energy: the passive belly ½ (κ_m/s_m) |p|² (κ_m = E_p A σ² L along
@@ -113,7 +114,7 @@ void AnatomicalSkin::buildReleaseColumns() {
       double s = 0.0;
       for (size_t i = 0; i < ns; ++i) {
         const CoupledMuscle::Spring& spring = cm.springs[springs[i].first];
-        w[i] = spring.muscleDisplacement(cm.fullShape);
+        w[i] = spring.muscleDisplacement(cm.releaseShape.rows() ? cm.releaseShape : cm.fullShape);
         skinVertex[i] = spring.skin;
         s += w[i].dot(K(i, w[i]));
       }

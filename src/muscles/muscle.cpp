@@ -13,6 +13,8 @@
 #include "myoshell/mesh/ray_cast.h"
 
 #include <algorithm>
+#include <string>
+#include <utility>
 
 namespace myo {
 
@@ -150,6 +152,61 @@ void ringCentreLine(const MuscleDef& def, const Head& head, const FaceFrame& fra
   }
 }
 
+// A landmark's mirror twin by name: the side's token swapped (mouth_corner_left ↔
+// mouth_corner_right, left_eye_inner ↔ right_eye_inner); a midline landmark is its own twin.
+std::string mirroredLandmark(const std::string& name) {
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"left", "right"}, {"right", "left"}}) {
+    const size_t at = name.find(from);
+    if (at != std::string::npos) return name.substr(0, at) + to + name.substr(at + from.size());
+  }
+  return name;
+}
+
+bool mirrorAnchors(const MuscleAnchor& a, const MuscleAnchor& b) {
+  return mirroredLandmark(a.landmark) == b.landmark && a.offset.x() == -b.offset.x() &&
+         a.offset.y() == b.offset.y() && a.offset.z() == b.offset.z() && a.depth == b.depth;
+}
+
+// Whether a ring is a midline muscle whose definition is its own mirror image: open, its path read
+// backwards the mirror of itself anchor by anchor, its two anchors each other's mirror and its
+// centre halfway (the mouth's two parts).
+bool midlineMirrorRing(const MuscleDef& def) {
+  if (def.side != "center" || def.ring.closed || def.ring.centre != 0.5) return false;
+  const auto& path = def.ring.path;
+  for (size_t k = 0; k < path.size(); ++k)
+    if (!mirrorAnchors(path[k], path[path.size() - 1 - k])) return false;
+  return mirrorAnchors(def.ring.anchors[0], def.ring.anchors[1]);
+}
+
+// The reflection through the face's midplane (the frame's y–z plane through its origin).
+Vec3 mirrorPoint(const FaceFrame& frame, const Vec3& p) {
+  const Vec3 x = frame.axes.col(0);
+  return p - 2.0 * (p - frame.origin).dot(x) * x;
+}
+Vec3 mirrorDirection(const FaceFrame& frame, const Vec3& d) {
+  const Vec3 x = frame.axes.col(0);
+  return d - 2.0 * d.dot(x) * x;
+}
+
+// A midline ring placed symmetric by construction (docs/muscles.md, "A midline ring is its own
+// mirror"): each station and its twin from the other end (s and S − 1 − s) are placed on each side
+// independently, so on a head that is not exactly symmetric a point near a rim can land on either
+// side of a closest-point tie; each pair is replaced by the mean of the one and the other's mirror
+// image through the face's midplane, and its mirror. Neither side is chosen: the rule is the same on
+// every head, and on an exactly symmetric head it changes nothing.
+void symmetrizeStations(const FaceFrame& frame, std::vector<Vec3>& centre, std::vector<Vec3>& normal) {
+  const size_t S = centre.size();
+  for (size_t s = 0; s < (S + 1) / 2; ++s) {
+    const size_t twin = S - 1 - s;
+    const Vec3 c = 0.5 * (centre[s] + mirrorPoint(frame, centre[twin]));
+    const Vec3 n = (normal[s] + mirrorDirection(frame, normal[twin])).normalized();
+    centre[s] = c;
+    normal[s] = n;
+    centre[twin] = mirrorPoint(frame, c);
+    normal[twin] = mirrorDirection(frame, n);
+  }
+}
+
 }  // namespace
 
 Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orientation, const SurfaceLocator* skin) {
@@ -173,6 +230,11 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
       const MuscleAnchor& a = def.ring.anchors[static_cast<size_t>(k)];
       const SurfacePoint p = anchorOnSkin(a, head, frame, onSkin, def.name, false);
       c += (k == 0 ? 1.0 - def.ring.centre : def.ring.centre) * (p.point - frame.scale * a.depth * p.normal);
+    }
+    const bool symmetric = midlineMirrorRing(def);
+    if (symmetric) {
+      symmetrizeStations(frame, centre, normal);
+      c = 0.5 * (c + mirrorPoint(frame, c));  // the centre on the midplane
     }
     muscle.ringCentre = c;
   } else {
@@ -224,13 +286,23 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
   }
   // Triangles: two per quad of the tube, fans closing both ends; 2·S·R − 4 in all. A loop joins
   // its last ring to its first instead (a torus, 2·S·R triangles, no ends).
+  // A midline ring's second half splits its quads along the other diagonal, the mirror image of the
+  // first half's split (docs/muscles.md, "A midline ring is its own mirror"): the same diagonal on
+  // both halves is the other one in the mirror, and where the lips' skin lies within a millimetre of
+  // the band (the mouth's corners) the closest points and the coupling's 1/δ differed by 4×.
+  const bool mirrorSplit = def.isRing() && !loop && midlineMirrorRing(def);
   std::vector<Eigen::Vector3i> tris;
   for (int s = 0; s + 1 < S || (loop && s < S); ++s)
     for (int k = 0; k < R; ++k) {
       const int next = (s + 1) % S;
       const int a = s * R + k, b = s * R + (k + 1) % R, c = next * R + k, d = next * R + (k + 1) % R;
-      tris.emplace_back(a, b, d);
-      tris.emplace_back(a, d, c);
+      if (mirrorSplit && 2 * s > S - 2) {  // the quad's mirror lies between stations S − 2 − s and S − 1 − s
+        tris.emplace_back(a, b, c);
+        tris.emplace_back(b, d, c);
+      } else {
+        tris.emplace_back(a, b, d);
+        tris.emplace_back(a, d, c);
+      }
     }
   if (!loop) {
     for (int k = 1; k + 1 < R; ++k) tris.emplace_back(0, k + 1, k);

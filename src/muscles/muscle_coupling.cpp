@@ -244,6 +244,10 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
   std::vector<Vec3> axisPoint(static_cast<size_t>(stations), Vec3::Zero());
   for (int v = 0; v < nm; ++v) axisPoint[static_cast<size_t>(mu.stationOf(v))] += Vec3(mu.mesh.V.row(v)) / mu.def.ringNodes;
   const double swell = ring.shortening + 1.0 / std::sqrt(1.0 - ring.shortening) - 1.0;
+  // The release's shape (CoupledMuscle::releaseShape): the same with the growth's tangent at rest,
+  // d/dσ (1/√(1 − σ)) = ½, so the height grows by ½σ h where the ring draws it in by σ h.
+  const double linearSwell = 1.5 * ring.shortening;
+  if (ring.lipBody) cm.releaseShape.resize(nm, 3);
   for (int v = 0; v < nm; ++v) {
     const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.ringCentre;
     Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
@@ -256,7 +260,11 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
       if (inPlane.norm() > 0.0) inPlane *= length / inPlane.norm();
     }
     Vec3 u = -ring.shortening * inPlane + ring.protrusion * ring.shortening * inPlane.norm() * z;
-    if (ring.lipBody) u += swell * (Vec3(mu.mesh.V.row(v)) - axisPoint[static_cast<size_t>(mu.stationOf(v))]).dot(y) * y;
+    if (ring.lipBody) {
+      const double h = (Vec3(mu.mesh.V.row(v)) - axisPoint[static_cast<size_t>(mu.stationOf(v))]).dot(y);
+      cm.releaseShape.row(v) = (u + linearSwell * h * y).transpose();
+      u += swell * h * y;
+    }
     cm.fullShape.row(v) = u.transpose();
   }
   // ω from the free band's Rayleigh quotient (the shape has no rigid part: it shrinks the band).

@@ -346,9 +346,10 @@ TEST(CliRig, TheShippedMapsPairsMirrorOnBothHeads) {
   expectPairsMirror(make("default", "builtin"), "built-in head, built-in ten");
   MYO_REQUIRE_SHARED_DATA();
   const std::string ict = quoted(test::sharedDataDir() / "ict");
-  expectPairsMirror(make(ict, "face"), "ICT, whole face", {{"mouthPressLeft", 0.090}, {"mouthFrownLeft", 0.059}});
-  expectPairsMirror(make(ict, "builtin"), "ICT, built-in ten",
-                    {{"mouthPressLeft", 0.082}, {"mouthLeft", 0.142}, {"mouthUpperUpLeft", 0.156}});
+  // The mouth's rings are their own mirror images (docs/muscles.md, "A midline ring is its own
+  // mirror"): every pair within 5 % on ICT too (mouthPress was 0.079, mouthFrown 0.051 before).
+  expectPairsMirror(make(ict, "face"), "ICT, whole face");
+  expectPairsMirror(make(ict, "builtin"), "ICT, built-in ten");
   fs::remove_all(dir);
 }
 

@@ -22,6 +22,7 @@
 #include "myoshell/mesh/geometry.h"
 #include "myoshell/mesh/subdivision.h"
 #include "myoshell/muscles/muscle.h"
+#include "myoshell/muscles/muscle_coupling.h"
 #include "myoshell/muscles/muscle_def.h"
 #include "myoshell/muscles/muscle_mirror.h"
 #include "support/ict.h"
@@ -194,6 +195,62 @@ TEST(FaceMuscles, AnAnchorOnAHolesRimTakesTheSkinInFrontOfIt) {
     const Vec3 canthus = ict.mesh.V.row(ict.landmarks.vertex(side + "_eye_inner"));
     EXPECT_GT(fr.directionToFrame(lps.insertionPoint - canthus).y(), 0.08 * fr.scale) << side;
   }
+}
+
+// The mouth's two rings are midline muscles whose definitions are their own mirror images; built,
+// each is its own mirror image through the face's midplane, node for node (station s ↔ S − 1 − s) and
+// triangle for triangle (muscle.cpp, "A midline ring is its own mirror"). Before, both halves split
+// their quads along the same diagonal, the other one in the mirror: on ICT the lower ring's springs
+// near the mouth's corners, where the lip's skin lies within a millimetre of the band, differed by up
+// to 4× between the sides (46 % of the coupling on the left, 54 % on the right) and the derived
+// mouthPress mirrored to 7.9 %. On ICT (exactly symmetric about the frame's midplane at the mouth)
+// the springs now balance.
+TEST(FaceMuscles, TheMouthsRingsAreTheirOwnMirrorImage) {
+  auto named = [](const std::string& name) {
+    return *std::find_if(faceMuscleDefs().begin(), faceMuscleDefs().end(), [&](const MuscleDef& d) { return d.name == name; });
+  };
+  auto expectSelfMirror = [&](const Head& head, const std::string& what) {
+    const FaceFrame fr = head.frame();
+    const Vec3 x = fr.axes.col(0);
+    auto mirror = [&](const Vec3& p) -> Vec3 { return p - 2.0 * (p - fr.origin).dot(x) * x; };
+    for (const std::string name : {"orbicularis_oris_upper", "orbicularis_oris_lower"}) {
+      const Muscle ring = buildMuscle(named(name), head, TubeOrientation::MirrorRightSide);
+      const int S = ring.def.stations, R = ring.def.ringNodes;
+      auto twin = [&](int v) { return (S - 1 - v / R) * R + v % R; };
+      double worst = 0.0;
+      for (int v = 0; v < S * R; ++v)
+        worst = std::max(worst, (mirror(ring.mesh.V.row(v)) - Vec3(ring.mesh.V.row(twin(v)))).norm());
+      EXPECT_LT(worst, 1e-9 * fr.scale) << what << " " << name;
+      std::set<std::set<int>> triangles;
+      for (Eigen::Index f = 0; f < ring.mesh.F.rows(); ++f)
+        triangles.insert({ring.mesh.F(f, 0), ring.mesh.F(f, 1), ring.mesh.F(f, 2)});
+      int unmatched = 0;
+      for (const auto& t : triangles) {
+        std::set<int> m;
+        for (int v : t) m.insert(twin(v));
+        // The middle band's quads (between stations S/2 − 1 and S/2) are each their own mirror: no
+        // split of them is symmetric.
+        const bool middle = std::all_of(t.begin(), t.end(), [&](int v) { return v / R == S / 2 - 1 || v / R == S / 2; });
+        if (!middle && !triangles.count(m)) ++unmatched;
+      }
+      EXPECT_EQ(unmatched, 0) << what << " " << name;
+    }
+  };
+  expectSelfMirror(loadDefaultHead(), "built-in head");
+  MYO_REQUIRE_SHARED_DATA();
+  const auto dir = test::sharedDataDir() / "ict";
+  const Head ict = loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string());
+  expectSelfMirror(ict, "ICT");
+  const CoupledMuscle lower = coupleMuscle(named("orbicularis_oris_lower"), ict);
+  const FaceFrame fr = ict.frame();
+  double left = 0.0, right = 0.0;
+  for (const auto& spring : lower.springs) {
+    const double side = fr.toFrame(Vec3(ict.mesh.V.row(spring.skin))).x();
+    if (side > 1e-6) left += spring.stiffness;
+    if (side < -1e-6) right += spring.stiffness;
+  }
+  RecordProperty("lower_ring_coupling_left_over_right", std::to_string(left / right));
+  EXPECT_NEAR(left / right, 1.0, 1e-3);
 }
 
 TEST(FaceMuscles, PlacementMovesTurnsAndScalesWithTheHead) {
@@ -474,6 +531,33 @@ TEST_F(ForeheadIct, TheMedialFrontalisLiftsTheBrowOverTheBoneWithoutSinkingIntoI
   EXPECT_GT(meanBelow, 0.0);      // on average the skin over the insertion stays out of the head
   EXPECT_GT(deepest, -0.15);      // and no vertex of it sinks 1.5 mm
   EXPECT_GT(up, 0.5);  // the brow's head rises at least 5 mm
+}
+
+// The dimpler (AU14, ARKit's mouthDimple: "backward movement of the mouth's corner"): the buccinator
+// draws the modiolus back along the cheek, and the skin at and beside the corner goes into the face;
+// the risorius (AU20) stretches the corner sideways instead. Measured in the face frame at the left
+// mouth corner and 1 cm lateral of it, along the skin's rest normal there (2026-11-29: the corner
+// 3.0 mm back, 4.3 mm out, 1.9 mm in; the cheek beside it 0.44 mm in; the risorius's corner 4.4 mm
+// back for 7.2 mm out). The buccinator still slides over the skin's bed, not over the teeth
+// (docs/muscles.md, "The dimpler"), so the dimple beside the corner is shallow.
+TEST_F(FaceMusclesDefaultHead, TheBuccinatorDrawsTheCornerBackAndIntoTheFace) {
+  const Head& head = skin_->head();
+  const FaceFrame f = head.frame();
+  const MatX3 normals = vertexNormals(head.mesh.V, head.mesh.F);
+  const int corner = head.landmarks.vertex("mouth_corner_left");
+  const int beside = nearestVertex(head.mesh.V, Vec3(head.mesh.V.row(corner)) + f.directionFromFrame(Vec3(1.0, 0.0, 0.0)));
+  auto in = [&](const MatX3& u, int v) { return -10 * Vec3(u.row(v)).dot(Vec3(normals.row(v))); };
+  const MatX3 dimple = settle({{"buccinator_left", 1.0}});
+  const MatX3 stretch = settle({{"risorius_left", 1.0}});
+  const Vec3 d = 10 * f.directionToFrame(Vec3(dimple.row(corner))), r = 10 * f.directionToFrame(Vec3(stretch.row(corner)));
+  for (const auto& [key, value] : std::map<std::string, double>{{"corner_back_mm", -d.z()}, {"corner_out_mm", d.x()},
+                                                                 {"corner_in_mm", in(dimple, corner)}, {"beside_in_mm", in(dimple, beside)},
+                                                                 {"risorius_corner_back_mm", -r.z()}, {"risorius_corner_out_mm", r.x()}})
+    RecordProperty(key, std::to_string(value));
+  EXPECT_GT(-d.z(), 1.0);                      // back by more than a millimetre
+  EXPECT_GT(in(dimple, corner), 0.5);          // the corner into the face
+  EXPECT_GT(in(dimple, beside), 0.25);         // and the cheek beside it: the dimple (0.44 mm on 2026-11-29)
+  EXPECT_GT(-d.z() / d.x(), -r.z() / r.x());   // more back, for its sideways motion, than the risorius
 }
 
 }  // namespace

@@ -157,5 +157,44 @@ TEST(ColumnVolume, AUniformCompressionCostsNothingOnlyWhenTheSkinRisesByTheColum
   EXPECT_NEAR(energy([&](const Vec3&) { return Vec3(0.2, -0.1, 0.0); }), 0.0, 1e-9 * sumKappa);
 }
 
+// A relaxed muscle follows the skin along its shape by a small motion about the rest (the release,
+// docs/anatomical_model.md, "Relaxed muscles follow the skin"), so a lip's ring is released along the
+// tangent of the lip body's law at rest: per unit of the ring's shortening ε the lip's height grows by
+// ε/2 (1/√(1 − ε) − 1 → ε/2), where the active shape at a = 1 carries the finite 1/√(1 − σ) − 1 of
+// σ = 0.45 (0.35, 1.55 times the tangent's 0.225). The in-plane part is the active shape's.
+TEST(MuscleCoupling, ARelaxedLipIsReleasedAlongTheTangentOfItsBodysLaw) {
+  const Head& head = builtInHead();
+  const Vec3 y = head.frame().axes.col(1);
+  for (const MuscleDef& def : faceMuscleDefs()) {
+    if (!def.isRing() || !def.ring.lipBody) continue;
+    const double sigma = def.ring.shortening;
+    const CoupledMuscle m = coupleMuscle(def, head);
+    ASSERT_EQ(m.releaseShape.rows(), m.fullShape.rows()) << def.name;
+    const MatX3& V = m.muscle.mesh.V;
+    const int k = def.ringNodes, stations = static_cast<int>(V.rows()) / k;
+    double worst = 0.0;
+    for (int s = 0; s < stations; ++s) {
+      Vec3 axis = Vec3::Zero(), moved = Vec3::Zero();
+      for (int j = 0; j < k; ++j) axis += Vec3(V.row(s * k + j)) / k, moved += Vec3((V + m.releaseShape).row(s * k + j)) / k;
+      double before = 0.0, after = 0.0;
+      for (int j = 0; j < k; ++j) {
+        before = std::max(before, std::abs((Vec3(V.row(s * k + j)) - axis).dot(y)));
+        after = std::max(after, std::abs((Vec3((V + m.releaseShape).row(s * k + j)) - moved).dot(y)));
+      }
+      worst = std::max(worst, std::abs(after / before - (1.0 + 0.5 * sigma)));
+      // The axis moves as the active shape's: the release differs only in the lip's height.
+      for (int j = 0; j < k; ++j) {
+        const Vec3 d = (m.releaseShape - m.fullShape).row(s * k + j);
+        EXPECT_LT((d - d.dot(y) * y).norm(), 1e-12) << def.name;
+      }
+    }
+    EXPECT_LT(worst, 1e-9) << def.name;
+  }
+  // A ring without a lip's body and a linear muscle are released along their shape itself.
+  for (const MuscleDef& def : faceMuscleDefs())
+    if (def.name == "orbicularis_oculi_orbital_left" || def.name == "zygomaticus_major_left")
+      EXPECT_EQ(coupleMuscle(def, head).releaseShape.rows(), 0) << def.name;
+}
+
 }  // namespace
 }  // namespace myo

@@ -66,6 +66,11 @@ struct MuscleCouplingSettings {
 struct CoupledMuscle {
   Muscle muscle;
   MatX3 fullShape;       // U_m: the muscle's displacement at a = 1 (nodes×3, cm), origin rows 0
+  // The direction a relaxed muscle follows the skin along (nodes×3, cm; empty: fullShape). The
+  // release is a small motion about the rest, so it takes the shape's tangent there: for a ring in a
+  // lip's body the lip's growth in height linearised, ½σ h instead of (1/√(1 − σ) − 1) h
+  // (docs/muscles.md, "The relaxed lip's release").
+  MatX3 releaseShape;
   double naturalFrequency = 0.0;  // ω = √(φᵀKφ/φᵀMφ) of that shape (rad/s), for its dynamics
   struct Spring {
     int skin = -1;                 // the skin vertex
