@@ -50,11 +50,12 @@ std::string readText(const fs::path& p) {
 }
 
 // Mirror pairs at equal activations, an open jaw made of the lower-lip depressors, a corrective
-// that adds a tenth of the left smile, and an eye rotation.
+// that adds a tenth of both smiles (a shape without sides is fitted as its own mirror image, so the
+// made rig's mouthClose is symmetric), and an eye rotation.
 const char* kMap = R"({"format": "myoshell-retarget-map", "version": 1, "model": "anatomical", "shapes": [
   {"name": "eyeLookInLeft", "reachable": false, "reason": "eye rotation"},
   {"name": "jawOpen", "activations": {"depressor_labii_inferioris_left": 0.5, "depressor_labii_inferioris_right": 0.5}},
-  {"name": "mouthClose", "corrective_of": "jawOpen", "activations": {"zygomaticus_major_left": 0.1}},
+  {"name": "mouthClose", "corrective_of": "jawOpen", "activations": {"zygomaticus_major_left": 0.1, "zygomaticus_major_right": 0.1}},
   {"name": "mouthSmile_L", "activations": {"zygomaticus_major_left": 0.8}},
   {"name": "mouthSmile_R", "activations": {"zygomaticus_major_right": 0.8}},
   {"name": "mouthFrownLeft", "activations": {"depressor_anguli_oris_left": 0.6}},
@@ -140,9 +141,9 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
     RecordProperty(l + "_mirror_mismatch", std::to_string(mismatch));
     EXPECT_LT(mismatch, 0.05) << l << " / " << r;
   }
-  // The corrective is what it adds to jawOpen: a tenth of the left smile's eighth (warping off: linear).
+  // The corrective is what it adds to jawOpen: an eighth of both smiles (warping off: linear).
   const MatX3 close = rig.delta("mouthClose");
-  EXPECT_LT((close - smileL / 8.0).norm(), 1e-4 * smileL.norm());
+  EXPECT_LT((close - (smileL + rig.delta("mouthSmileRight")) / 8.0).norm(), 1e-4 * smileL.norm());
   // Unmapped and unreachable names are zero targets.
   EXPECT_EQ(rig.delta("eyeLookInLeft").cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ(rig.delta("cheekPuff").cwiseAbs().maxCoeff(), 0.0);
@@ -317,9 +318,13 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
   EXPECT_LT(open.row(forehead).norm(), 0.05 * open.row(chin).norm()) << open.row(forehead);
   const MatX3 left = rig.delta("jawLeft");
   EXPECT_GT(left(chin, 0), 0.3) << left.row(chin);  // + x: the subject's left
-  // mouthClose is a corrective on the open jaw: the lips close, the chin stays where the jaw put it.
+  // mouthClose is a corrective on the open jaw: the lips close, the jaw stays where jawOpen put it
+  // (a mouthClose that shut the jaw would raise the chin by all of its drop). The chin's skin rises
+  // with the lower lip: ICT's artist mouthClose raises its menton 3.9 mm where its jawOpen drops it
+  // 28.2 mm (14 %); ours 25 % here and 27 % on ICT (6.8 of 25.3 mm) since the mentalis's pad carries
+  // the lower lip and the chin together (docs/fitting.md, "Shapes without sides"); 20 % before.
   const MatX3 close = rig.delta("mouthClose");
-  EXPECT_LT(std::abs(close(chin, 1)), 0.2 * std::abs(open(chin, 1))) << close.row(chin);
+  EXPECT_LT(std::abs(close(chin, 1)), 0.3 * std::abs(open(chin, 1))) << close.row(chin);
   EXPECT_GT(close.norm(), 0.0);
   (void)V;
   fs::remove_all(dir);
