@@ -18,6 +18,7 @@
 #include "myoshell/core/timer.h"
 #include "myoshell/gl/gl_face_painter.h"
 #include "myoshell/gl/gl_renderer.h"
+#include "myoshell/mesh/ray_cast.h"
 #include "myoshell/render/colormap.h"
 #include "myoshell/render/png.h"
 
@@ -61,27 +62,17 @@ void pixelRay(const Camera& camera, double x, double y, int width, int height, V
   }
 }
 
-// The skin vertex nearest to where the ray first hits the mesh (Möller–Trumbore), or −1.
+// The skin vertex nearest to where the ray first hits the mesh (mesh/ray_cast.h), or −1.
 int pickVertex(const MatX3& V, const MatX3i& F, const Vec3& origin, const Vec3& direction) {
   double best = std::numeric_limits<double>::infinity();
   int hitTriangle = -1;
   Vec3 hitPoint = Vec3::Zero();
   for (Eigen::Index t = 0; t < F.rows(); ++t) {
-    const Vec3 a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
-    const Vec3 e1 = b - a, e2 = c - a, p = direction.cross(e2);
-    const double det = e1.dot(p);
-    if (std::abs(det) < 1e-14) continue;
-    const Vec3 s = origin - a;
-    const double u = s.dot(p) / det;
-    if (u < 0 || u > 1) continue;
-    const Vec3 q = s.cross(e1);
-    const double v = direction.dot(q) / det;
-    if (v < 0 || u + v > 1) continue;
-    const double distance = e2.dot(q) / det;
-    if (distance > 0 && distance < best) {
-      best = distance;
+    const std::optional<LineTriangleHit> hit = lineMeetsTriangle(origin, direction, V.row(F(t, 0)), V.row(F(t, 1)), V.row(F(t, 2)));
+    if (hit && hit->t > 0 && hit->t < best) {
+      best = hit->t;
       hitTriangle = static_cast<int>(t);
-      hitPoint = origin + distance * direction;
+      hitPoint = origin + hit->t * direction;
     }
   }
   if (hitTriangle < 0) return -1;

@@ -15,6 +15,7 @@
 #include "myoshell/head/head_checks.h"
 #include "myoshell/mesh/closest_point.h"
 #include "myoshell/mesh/geometry.h"
+#include "myoshell/mesh/ray_cast.h"
 #include "myoshell/mesh/subdivision.h"
 
 namespace myo {
@@ -378,23 +379,12 @@ constexpr std::array<double, 5> kMeanFaceBrowX = {0.6665, 0.5615, 0.4205, 0.2760
 constexpr double kMeanFaceInnerEyeX = 0.2145;
 
 // The frontmost skin point on the line a + t·dir (largest t), if the line meets the skin: a
-// frontal view's point at a's position across the face. Möller–Trumbore per skin triangle.
+// frontal view's point at a's position across the face (mesh/ray_cast.h, per skin triangle).
 std::optional<Vec3> frontmostAlong(const Target& tg, const Vec3& a, const Vec3& dir) {
   double bestT = -1e300;
-  for (int t = 0; t < tg.F.rows(); ++t) {
-    const Vec3 A = tg.V.row(tg.F(t, 0)).transpose(), e1 = tg.V.row(tg.F(t, 1)).transpose() - A,
-               e2 = tg.V.row(tg.F(t, 2)).transpose() - A;
-    const Vec3 pv = dir.cross(e2);
-    const double det = e1.dot(pv);
-    if (std::abs(det) < 1e-12) continue;
-    const Vec3 tv = a - A;
-    const double u = tv.dot(pv) / det;
-    if (u < 0.0 || u > 1.0) continue;
-    const Vec3 qv = tv.cross(e1);
-    const double v = dir.dot(qv) / det;
-    if (v < 0.0 || u + v > 1.0) continue;
-    bestT = std::max(bestT, e2.dot(qv) / det);
-  }
+  for (int t = 0; t < tg.F.rows(); ++t)
+    if (const auto hit = lineMeetsTriangle(a, dir, tg.V.row(tg.F(t, 0)), tg.V.row(tg.F(t, 1)), tg.V.row(tg.F(t, 2))))
+      bestT = std::max(bestT, hit->t);
   if (bestT < -1e299) return std::nullopt;
   return a + bestT * dir;
 }

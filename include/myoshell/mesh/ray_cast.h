@@ -1,6 +1,7 @@
-// Where a ray first meets a triangle mesh (Möller & Trumbore 1997, "Fast, minimum storage
-// ray–triangle intersection"): brute force over the triangles, for the few queries that need it
-// (a muscle anchor whose closest skin lies on a hole's rim, muscle.cpp).
+// Where a line or a ray meets triangles (Möller & Trumbore 1997, "Fast, minimum storage ray–triangle
+// intersection"): one triangle, and brute force over a mesh's triangles for the few queries that
+// need it (a muscle anchor whose closest skin lies on a hole's rim, muscle.cpp; the viewer's pick;
+// the automatic landmarks' frontal view).
 #pragma once
 
 #include <optional>
@@ -9,6 +10,15 @@
 #include "myoshell/mesh/closest_point.h"
 
 namespace myo {
+
+// Where the line origin + t·direction meets triangle (a, b, c): its t (either sign) and the
+// barycentric weights (1 − u − v, u, v) of the point; none when it misses the triangle or runs
+// parallel to its plane.
+struct LineTriangleHit {
+  double t = 0.0, u = 0.0, v = 0.0;
+};
+std::optional<LineTriangleHit> lineMeetsTriangle(const Vec3& origin, const Vec3& direction, const Vec3& a, const Vec3& b,
+                                                 const Vec3& c);
 
 // The first point of the mesh (V n×3, F m×3) on the ray origin + t·direction, t > 0, as a surface
 // point (its normal interpolated from vertexNormals, distance = t·|direction|); none if the ray
