@@ -13,7 +13,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 5;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`; 5: `pushes`
+constexpr uint32_t kVersion = 6;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`; 5: `pushes`; 6: `continues_into`
 
 class Out {
  public:
@@ -161,6 +161,8 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
     o.pod(static_cast<uint8_t>(d.ring.lipBody));
     o.pod(static_cast<uint8_t>(d.pushes ? 1 : 0));
     if (d.pushes) o.anchor(*d.pushes);
+    o.pod(static_cast<uint8_t>(d.continuesInto ? 1 : 0));
+    if (d.continuesInto) o.anchor(*d.continuesInto);
   }
   o.pod(key.words[0]);
   o.pod(key.words[1]);
@@ -270,6 +272,7 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     d.thickens = in.flag("muscle '" + d.name + "' thickens");
     d.ring.lipBody = in.flag("muscle '" + d.name + "' ring in the lip's body");
     if (in.flag("muscle '" + d.name + "' pushes")) d.pushes = in.anchor();
+    if (in.flag("muscle '" + d.name + "' continues into")) d.continuesInto = in.anchor();
     d.validate();
     w.muscles.push_back(std::move(d));
   }

@@ -241,6 +241,10 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
     const SurfacePoint o = anchorOnSkin(def.origin, head, frame, onSkin, def.name);
     const SurfacePoint i = anchorOnSkin(def.insertion, head, frame, onSkin, def.name);
     if (def.pushes) muscle.pushPoint = anchorOnSkin(*def.pushes, head, frame, onSkin, def.name).point;
+    if (def.continuesInto) {
+      const SurfacePoint c = anchorOnSkin(*def.continuesInto, head, frame, onSkin, def.name);
+      muscle.continuePoint = c.point - frame.scale * def.continuesInto->depth * c.normal;
+    }
     if ((o.point - i.point).norm() < 1e-3 * frame.scale)
       throw InputError("muscle '" + def.name + "': origin and insertion coincide on this head");
 

@@ -316,6 +316,48 @@ static void addPushSprings(CoupledMuscle& cm, const Head& head, const MatX3& ski
   }
 }
 
+// A muscle that `continues_into` another (the medial frontalis into the procerus; docs/muscles.md,
+// "The medial frontalis draws the nose's root"): the muscle in series runs from the insertion I to
+// its fixed end C (the anchor, under the skin). Pulled at I and held at C, it stretches evenly, so
+// its point at s along the segment (s = (x − I)·(C − I)/|C − I|², 0 at I, 1 at C) moves with the
+// insertion ring's mean motion times (1 − s). Each skin vertex x over the segment (0 ≤ s ≤ 1, the
+// segment beneath it as the footprint's springs require, facing out of the face or up) within the
+// muscle's half-width w of it across the skin (q = the distance from the segment's point to x, its
+// part along x's normal removed, over w) is tied to that motion by the insertion's shear layer,
+// δ = the distance to the segment's point: k = G_ins A / δ (1 − q²)², as the footprint's springs.
+static void addContinuationSprings(CoupledMuscle& cm, const Head& head, const MatX3& skinNormals, const VecX& skinArea,
+                                   const CouplingProfile& profile) {
+  const Muscle& mu = cm.muscle;
+  const MuscleDef& def = mu.def;
+  const FaceFrame frame = head.frame();
+  const Vec3 out = frame.axes.col(2);
+  const Vec3 d = mu.continuePoint - mu.insertionPoint;
+  if (!(d.squaredNorm() > 1e-6 * frame.scale * frame.scale))
+    throw InputError("muscle '" + def.name + "': the anchor it continues into, '" + def.continuesInto->landmark +
+                     "', lies at its insertion on this head");
+  const double halfWidth = 0.5 * def.width * frame.scale;
+  const double floorDepth = 1e-3 * mu.restLength;
+  const size_t ring = mu.insertionNodes.size();
+  const MatX3& S = head.mesh.V;
+  for (Eigen::Index i = 0; i < S.rows(); ++i) {
+    const Vec3 x = S.row(i), n = skinNormals.row(i);
+    const double s = (x - mu.insertionPoint).dot(d) / d.squaredNorm();
+    if (s < 0.0 || s > 1.0) continue;
+    const Vec3 r = x - (mu.insertionPoint + s * d);  // from the segment up to the skin
+    const double q = (r - r.dot(n) * n).norm() / halfWidth;
+    if (q >= 1.0 || n.dot(out) < -kBeneath) continue;
+    if (r.dot(n) < kBeneath * r.norm()) continue;  // the segment must lie beneath the skin
+    CoupledMuscle::Spring spring;
+    spring.skin = static_cast<int>(i);
+    spring.nodes = mu.insertionNodes;
+    spring.weights.assign(ring, (1.0 - s) / static_cast<double>(ring));
+    spring.t = 1.0 + s;
+    spring.depth = r.norm();
+    spring.stiffness = profile.insertionModulus * skinArea(i) / std::max(r.norm(), floorDepth) * (1.0 - q * q) * (1.0 - q * q);
+    cm.springs.push_back(spring);
+  }
+}
+
 CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleCouplingSettings& settings,
                            const SurfaceLocator* skin) {
   const CouplingProfile& profile = def.coupling ? *def.coupling : settings.profile;
@@ -402,6 +444,7 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
     cm.springs.push_back(spring);
   }
   if (def.pushes) addPushSprings(cm, head, skinNormals, skinArea, profile);
+  if (def.continuesInto) addContinuationSprings(cm, head, skinNormals, skinArea, profile);
   return cm;
 }
 

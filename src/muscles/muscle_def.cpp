@@ -31,6 +31,8 @@ void MuscleDef::validate() const {
   if (pushes && (isRing() || imported())) bad("pushes is for generated linear muscles");
   std::vector<const MuscleAnchor*> anchors = {&origin, &insertion};
   if (pushes) anchors.push_back(&*pushes);
+  if (continuesInto && (isRing() || imported())) bad("continues_into is for generated linear muscles");
+  if (continuesInto) anchors.push_back(&*continuesInto);
   if (isRing()) {
     anchors.clear();
     for (const MuscleAnchor& a : ring.path) anchors.push_back(&a);

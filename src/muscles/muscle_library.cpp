@@ -146,6 +146,10 @@ MuscleDef readMuscleDef(DocReader& r) {
     if (d.isRing() || d.imported()) r.fail("pushes", "is for generated linear muscles (an origin, an insertion and the anchor the tissue is pushed to)");
     d.pushes = readAnchor(r.child("pushes"));
   }
+  if (r.has("continues_into")) {
+    if (d.isRing() || d.imported()) r.fail("continues_into", "is for generated linear muscles (an origin, an insertion and the anchor where the muscle in series with it is fixed)");
+    d.continuesInto = readAnchor(r.child("continues_into"));
+  }
   r.finish();
   d.validate();
   return d;

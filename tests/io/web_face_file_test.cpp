@@ -65,6 +65,8 @@ TEST(WebFaceFile, TheWholeFacesMusclesAndTheBasisRoundTrip) {
     ASSERT_EQ(a.pushes.has_value(), c.pushes.has_value());
     if (a.pushes) EXPECT_EQ(a.pushes->offset, c.pushes->offset);
     if (a.pushes) EXPECT_EQ(a.pushes->landmark, c.pushes->landmark);
+    ASSERT_EQ(a.continuesInto.has_value(), c.continuesInto.has_value());
+    if (a.continuesInto) EXPECT_EQ(a.continuesInto->landmark, c.continuesInto->landmark);
   }
   EXPECT_EQ(w.basisKey, someKey());
   EXPECT_EQ(w.basis.fullVertexCount, 4);

@@ -76,7 +76,7 @@ struct CoupledMuscle {
     int skin = -1;                 // the skin vertex
     std::vector<int> nodes;        // the muscle's nodes around the point below it
     std::vector<double> weights;   // their barycentric weights β_b (Σ = 1)
-    double t = 0.0;              // position along the muscle (0 origin, 1 insertion)
+    double t = 0.0;              // position along the muscle (0 origin, 1 insertion; 1 + s over a continuation, MuscleDef::continuesInto)
     double depth = 0.0;          // δ: distance to the muscle at rest, cm
     double stiffness = 0.0;      // k_i, dyn/cm (> 0)
     // A push (MuscleDef::pushes) ties the skin along this unit direction only, the lip sliding

@@ -73,6 +73,14 @@ struct MuscleDef {
   // ahead of the origin, up to this anchor, along with the insertion (the mentalis: the chin's pad
   // pushes the lower lip up; docs/muscles.md, "The chin's pad pushes the lower lip").
   std::optional<MuscleAnchor> pushes;
+  // Anatomical model, linear muscles (key `continues_into`, an anchor): the fibres continue past the
+  // insertion into a muscle in series whose far end is fixed at this anchor (the medial frontalis
+  // into the procerus, fixed on the nasal bone). Pulled at one end and held at the other, the
+  // continuation stretches evenly and draws the skin over it along: each skin vertex over the
+  // segment from the insertion to the anchor, within the muscle's width, moves with the insertion
+  // ring's mean motion times (1 − s), s its place along the segment (docs/muscles.md, "The medial
+  // frontalis draws the nose's root").
+  std::optional<MuscleAnchor> continuesInto;
 
   // Ring muscles (kind Ring; key `ring`): the band's course through `path` (≥ 3 anchors, in order,
   // each placed as origin and insertion are), closed into a loop or open (an arc whose ends are the
