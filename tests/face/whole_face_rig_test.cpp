@@ -77,9 +77,11 @@ TEST(WholeFaceIct, TheRigFitReachesTheArtistsMouthAndBrowShapes) {
   ASSERT_TRUE(cosine.count("mouthRollLower"));
   EXPECT_GE(cosine["mouthRollLower"], 0.45);
   // The inner brows raised (the forehead's column keeping its volume: the brow no longer sinks into
-  // the head; docs/muscles.md): 0.690 on 2026-11-29, 0.672 before. The issue asks 0.75: not reached.
+  // the head; docs/muscles.md) and the medial frontalis drawing the nose's root (its continuation
+  // into the procerus): 0.716 on 2026-12-07 (fit-rig), 0.690 before, 0.672 before that. The issue
+  // asks 0.75: not reached.
   ASSERT_TRUE(cosine.count("browInnerUp"));
-  EXPECT_GE(cosine["browInnerUp"], 0.685);
+  EXPECT_GE(cosine["browInnerUp"], 0.71);
 }
 
 // The eyes' turns are derived, never fitted (the lids follow the gaze: docs/eyelids.md): ICT's artist
