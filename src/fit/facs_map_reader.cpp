@@ -8,7 +8,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "myoshell/core/check.h"
 #include "myoshell/core/close_names.h"
@@ -30,12 +29,6 @@ namespace {
 constexpr int kLargestAu = 999;
 
 std::string auName(int au) { return "AU" + std::to_string(au); }
-
-std::string shortNumber(double v) {
-  std::ostringstream out;
-  out << v;  // 6 significant digits: enough to recognise the value in a message
-  return out.str();
-}
 
 std::string openFaceList() {
   std::vector<std::string> names;

@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "myoshell/core/errors.h"
 #include "myoshell/io/web_face_file.h"
+#include "web_face_seeds.h"
 
 namespace myo {
 namespace {
@@ -209,6 +212,24 @@ TEST(WebFaceFile, ThePagesCacheServesItsKeyAndNamesBothKeysOtherwise) {
     const std::string m = e.what();
     EXPECT_NE(m.find(other.hex()), std::string::npos) << m;
     EXPECT_NE(m.find(someKey().hex()), std::string::npos) << m;
+  }
+}
+
+// The fuzz corpus holds the writer's seeds at the format's current version (fuzz/web_face_seeds.h),
+// so `make fuzz-replay` reaches the parser; after a format change they must be written again.
+TEST(WebFaceFile, TheFuzzSeedsAreAtTheCurrentFormat) {
+  const std::string again = "(write them again: build/bin/write_web_face_seeds fuzz/corpus/fuzz_web_face)";
+  for (const fuzz::WebFaceSeed& s : fuzz::webFaceSeeds()) {
+    const std::string path = std::string(MYO_SOURCE_DIR) + "/fuzz/corpus/fuzz_web_face/current_" + s.name + ".myoweb";
+    std::ifstream in(path, std::ios::binary);
+    ASSERT_TRUE(in) << path << " is missing " << again;
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(messageOf(bytes), "") << path << " " << again;
+    const WebFace w = readWebFace(bytes, path);
+    EXPECT_EQ(w.muscles.size(), s.muscles.size()) << path << " " << again;
+    EXPECT_EQ(w.takes.size(), s.takes.size()) << path << " " << again;
+    EXPECT_EQ(w.facs.entries.size(), s.facs.entries.size()) << path << " " << again;
+    EXPECT_EQ(webFaceBytes(w.muscles, w.basisKey, w.basis, w.takes, w.facs), bytes) << path << ": written back";
   }
 }
 
