@@ -55,7 +55,7 @@ int runDrive(DriveArgs& a) {
   return runScene(scene, a.run);
 }
 
-static CommandRegistrar reg("drive", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerDrive("drive", [](CLI::App& app) -> std::function<int()> {
   auto a = std::make_shared<DriveArgs>();
   a->run.formats = {"glb"};  // before --format captures it as the default its help shows
   CLI::App* sub = app.add_subcommand(

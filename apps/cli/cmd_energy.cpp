@@ -52,7 +52,7 @@ int runEnergy(const EnergyArgs& args) {
 
 }  // namespace
 
-static CommandRegistrar reg("energy", [](CLI::App& app) {
+static CommandRegistrar registerEnergy("energy", [](CLI::App& app) {
   auto* sub = app.add_subcommand("energy", "Print the discrete-shell energy (thesis eq. 1-4) of a deformed pose");
   auto args = std::make_shared<EnergyArgs>();
   sub->add_option("rest", args->rest, "Rest mesh (OBJ)")->required();

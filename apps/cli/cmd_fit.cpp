@@ -219,7 +219,7 @@ int runFit(FitArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("fit", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerFit("fit", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<FitArgs>();
   CLI::App* sub = app.add_subcommand(
       "fit", "Find the activations in [0, 1] whose settled anatomical face best matches a target shape, a rig's "

@@ -197,7 +197,7 @@ int runFitRig(FitRigArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("fit-rig", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerFitRig("fit-rig", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<FitRigArgs>();
   CLI::App* sub = app.add_subcommand(
       "fit-rig", "Fit every ARKit-named shape of a glTF rig to activations and write the retargeting map that "

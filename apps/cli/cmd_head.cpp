@@ -206,7 +206,7 @@ int runHead(const HeadArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("head", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerHead("head", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<HeadArgs>();
   CLI::App* sub = app.add_subcommand(
       "head", "Load a head (the built-in default, an OBJ with or without a landmark file, or a folder like "

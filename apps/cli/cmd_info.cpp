@@ -99,7 +99,7 @@ int runInfo(const std::string& path, bool json) {
 
 }  // namespace
 
-static CommandRegistrar reg("info", [](CLI::App& app) {
+static CommandRegistrar registerInfo("info", [](CLI::App& app) {
   auto* sub = app.add_subcommand("info", "Print a mesh's statistics (Table 1) and every fault found");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);

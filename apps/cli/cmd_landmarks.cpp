@@ -187,7 +187,7 @@ int runLandmarks(const LandmarksArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("landmarks", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerLandmarks("landmarks", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<LandmarksArgs>();
   CLI::App* sub = app.add_subcommand(
       "landmarks", "Find a head's 68 Multi-PIE and named landmarks automatically (any pose and unit) and "

@@ -216,7 +216,7 @@ int runLive(const LiveArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("live", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerLive("live", [](CLI::App& app) -> std::function<int()> {
   auto a = std::make_shared<LiveArgs>();
   CLI::App* sub = app.add_subcommand(
       "live", "Drive the face from a tracker's live stream (VMC or Live Link Face over UDP), record what arrives and "

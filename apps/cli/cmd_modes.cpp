@@ -76,7 +76,7 @@ int runModes(const ModesArgs& args) {
 
 }  // namespace
 
-static CommandRegistrar reg("modes", [](CLI::App& app) {
+static CommandRegistrar registerModes("modes", [](CLI::App& app) {
   auto* sub = app.add_subcommand("modes", "Constrained modal analysis: the lowest eigenvalues of K phi = lambda M phi");
   auto args = std::make_shared<ModesArgs>();
   sub->add_option("mesh", args->mesh, "Shell mesh (OBJ)")->required();

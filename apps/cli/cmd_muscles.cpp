@@ -76,7 +76,7 @@ int runMuscles(MusclesArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("muscles", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerMuscles("muscles", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<MusclesArgs>();
   CLI::App* sub = app.add_subcommand(
       "muscles", "List a muscle library (name, side, FACS action units, linear or ring) and, with --head, place each "

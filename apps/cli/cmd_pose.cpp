@@ -318,7 +318,7 @@ int runPose(const PoseArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("pose", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerPose("pose", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<PoseArgs>();
   CLI::App* sub = app.add_subcommand(
       "pose", "Settle the anatomical face under fixed activations and gravity (its static equilibrium) and "

@@ -117,7 +117,7 @@ std::vector<int> sheetFrames(const std::vector<int>& frames, int count) {
   return out;
 }
 
-double median(std::vector<double> v) {
+double medianOf(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   const size_t m = v.size() / 2;
@@ -225,14 +225,14 @@ int runRender(const RenderCommandOptions& opt) {
     j["png"] = (out / "png").string();
     j["sheet"] = sheet.empty() ? nlohmann::json() : nlohmann::json(sheetPath.string());
     j["sheet_frames"] = onSheet;
-    j["render_ms_median"] = median(paintMs);
+    j["render_ms_median"] = medianOf(paintMs);
     if (video) j["video"] = {videoPath.string(), gifPath.string()};
     j["render_ms"] = paintMs;
     if (overlays.displacement) j["color_scale_cm"] = overlays.displacementScale;
     printJsonReport(j);
   } else {
     fmt::print("{}: {} frames drawn by {} at {}x{}, median {:.1f} ms per frame\n", scene.name, frames.size(),
-               painter->name(), width, height, median(paintMs));
+               painter->name(), width, height, medianOf(paintMs));
     fmt::print("wrote {}/png/{}_NNNN.png\n", out.string(), scene.name);
     if (!sheet.empty()) fmt::print("wrote {}\n", sheetPath.string());
     if (video) fmt::print("wrote {} and {}\n", videoPath.string(), gifPath.string());

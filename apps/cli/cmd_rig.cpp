@@ -79,7 +79,7 @@ int runRig(RigArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("rig", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerRig("rig", [](CLI::App& app) -> std::function<int()> {
   auto args = std::make_shared<RigArgs>();
   CLI::App* sub = app.add_subcommand(
       "rig", "Make an ARKit-named glTF blendshape rig for a head by settling each shape of a retargeting map on its "

@@ -112,7 +112,7 @@ int runSend(const SendArgs& a) {
   return kExitOk;
 }
 
-static CommandRegistrar reg("send", [](CLI::App& app) -> std::function<int()> {
+static CommandRegistrar registerSend("send", [](CLI::App& app) -> std::function<int()> {
   auto a = std::make_shared<SendArgs>();
   CLI::App* sub = app.add_subcommand(
       "send", "Replay a recorded performance of ARKit weights (Live Link Face CSV, MediaPipe) as VMC or Live Link "

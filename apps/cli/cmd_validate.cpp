@@ -80,7 +80,7 @@ int runValidate(const ValidateArgs& args) {
 
 }  // namespace
 
-static CommandRegistrar reg("validate", [](CLI::App& app) {
+static CommandRegistrar registerValidate("validate", [](CLI::App& app) {
   auto* sub = app.add_subcommand(
       "validate", "Accuracy cases: modal warping and linear modal vs the full-space nonlinear reference and beam theory");
   auto args = std::make_shared<ValidateArgs>();

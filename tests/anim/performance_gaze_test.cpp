@@ -20,7 +20,7 @@ namespace {
 
 constexpr double kDeg = 180.0 / M_PI;
 
-std::string errorOf(const std::string& text, const std::string& name = "p.csv") {
+std::string gazeErrorOf(const std::string& text, const std::string& name = "p.csv") {
   try {
     parsePerformance(text, name);
   } catch (const InputError& e) {
@@ -29,13 +29,13 @@ std::string errorOf(const std::string& text, const std::string& name = "p.csv") 
   return "(no error)";
 }
 
-OneEuroSettings off() {
+OneEuroSettings gazeFilterOff() {
   OneEuroSettings s;
   s.enabled = false;
   return s;
 }
 
-std::vector<std::string> faceMuscleNames() {
+std::vector<std::string> gazeMuscleNames() {
   std::vector<std::string> names;
   for (const MuscleDef& d : faceMuscleDefs()) names.push_back(d.name);
   return names;
@@ -102,17 +102,17 @@ TEST(PerformanceGaze, DroppedFramesBridgeTheGaze) {
 }
 
 TEST(PerformanceGaze, OpenFaceGazeErrorsNameTheFileLineAndColumn) {
-  EXPECT_EQ(errorOf("timestamp,gaze_angle_x,AU12_r\n0,0,0\n"),
+  EXPECT_EQ(gazeErrorOf("timestamp,gaze_angle_x,AU12_r\n0,0,0\n"),
             "p.csv:1: missing required column 'gaze_angle_y' (the gaze needs gaze_angle_x and gaze_angle_y)");
-  EXPECT_EQ(errorOf("timestamp,gaze_angle_y,AU12_r\n0,0,0\n"),
+  EXPECT_EQ(gazeErrorOf("timestamp,gaze_angle_y,AU12_r\n0,0,0\n"),
             "p.csv:1: missing required column 'gaze_angle_x' (the gaze needs gaze_angle_x and gaze_angle_y)");
-  EXPECT_EQ(errorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,0,0\n0.04,0,nan,0\n"),
+  EXPECT_EQ(gazeErrorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,0,0\n0.04,0,nan,0\n"),
             "p.csv:3: non-finite number 'nan' in column 'gaze_angle_y'");
-  EXPECT_EQ(errorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,inf,0,0\n"),
+  EXPECT_EQ(gazeErrorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,inf,0,0\n"),
             "p.csv:2: non-finite number 'inf' in column 'gaze_angle_x'");
-  EXPECT_EQ(errorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,0,0\n0.04,1.6,0,0\n"),
+  EXPECT_EQ(gazeErrorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,0,0\n0.04,1.6,0,0\n"),
             "p.csv:3: gaze_angle_x is 1.6 radians, outside (-π/2, π/2)");
-  EXPECT_EQ(errorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,abc,0\n"),
+  EXPECT_EQ(gazeErrorOf("timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,abc,0\n"),
             "p.csv:2: unreadable number 'abc' in column 'gaze_angle_y'");
 }
 
@@ -143,15 +143,15 @@ TEST(PerformanceGaze, LiveLinkEyeAnglesTurnEachEyeWithTheDocumentedSign) {
 }
 
 TEST(PerformanceGaze, LiveLinkEyeErrorsNameTheFileLineAndColumn) {
-  EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen,LeftEyeYaw,LeftEyePitch,RightEyeYaw\n"),
+  EXPECT_EQ(gazeErrorOf("Timecode,BlendShapeCount,JawOpen,LeftEyeYaw,LeftEyePitch,RightEyeYaw\n"),
             "p.csv:1: missing required column 'RightEyePitch' (the eyes' turn needs LeftEyePitch, LeftEyeYaw, "
             "RightEyePitch and RightEyeYaw)");
-  EXPECT_EQ(errorOf("Timecode,BlendShapeCount,JawOpen,LeftEyeYaw,LeftEyeYaw\n"),
+  EXPECT_EQ(gazeErrorOf("Timecode,BlendShapeCount,JawOpen,LeftEyeYaw,LeftEyeYaw\n"),
             "p.csv:1: column 'LeftEyeYaw' appears twice (columns 4 and 5)");
   const std::string header = "Timecode,BlendShapeCount,JawOpen,LeftEyeYaw,LeftEyePitch,RightEyeYaw,RightEyePitch\n";
-  EXPECT_EQ(errorOf(header + "00:00:00:00,5,0,0,1.5,0,0\n"),
+  EXPECT_EQ(gazeErrorOf(header + "00:00:00:00,5,0,0,1.5,0,0\n"),
             "p.csv:2: LeftEyePitch is 1.5, outside [-1, 1] (degrees / 180)");
-  EXPECT_EQ(errorOf(header + "00:00:00:00,5,0,0,0,nan,0\n"),
+  EXPECT_EQ(gazeErrorOf(header + "00:00:00:00,5,0,0,0,nan,0\n"),
             "p.csv:2: non-finite number 'nan' in column 'RightEyeYaw'");
   // The rolls alone are no gaze: read past, as before.
   EXPECT_TRUE(parsePerformance("Timecode,BlendShapeCount,JawOpen,LeftEyeRoll\n00:00:00:00,2,0,0.5\n00:00:00:01,2,0,0.5\n",
@@ -176,7 +176,7 @@ Performance arkitTake(PerformanceInput input, std::vector<PerformanceChannel> ch
 TEST(PerformanceGaze, WithoutAnglesTheEyeLookCurvesTurnTheEyes) {
   const Performance p = arkitTake(PerformanceInput::MediaPipe,
                                   {{"eyeLookUpLeft", {0.6}}, {"eyeLookInRight", {0.4}}, {"mouthSmileLeft", {0.5}}});
-  const MappedPerformance m = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), builtinRetargetMap(), off());
+  const MappedPerformance m = mapPerformance(p, gazeMuscleNames(), builtinFacsMap(), builtinRetargetMap(), gazeFilterOff());
   ASSERT_EQ(m.gaze.size(), 5u);
   EXPECT_DOUBLE_EQ(m.gaze[2].pitchDeg[1], 0.6 * 25.0);  // the left eye up
   EXPECT_DOUBLE_EQ(m.gaze[2].pitchDeg[0], 0.0);
@@ -184,7 +184,7 @@ TEST(PerformanceGaze, WithoutAnglesTheEyeLookCurvesTurnTheEyes) {
   EXPECT_DOUBLE_EQ(m.gaze[2].yawDeg[1], 0.0);
   EXPECT_TRUE(m.unmapped.empty()) << m.unmapped.front();
   const Performance au = arkitTake(PerformanceInput::OpenFace, {{"AU64", {0.5}}, {"AU61", {0.2}}});
-  const MappedPerformance a = mapPerformance(au, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off());
+  const MappedPerformance a = mapPerformance(au, gazeMuscleNames(), builtinFacsMap(), RetargetMap{}, gazeFilterOff());
   ASSERT_EQ(a.gaze.size(), 5u);
   for (size_t e = 0; e < 2; ++e) {
     EXPECT_DOUBLE_EQ(a.gaze[0].pitchDeg[e], -12.5);  // AU64: eyes down
@@ -193,8 +193,8 @@ TEST(PerformanceGaze, WithoutAnglesTheEyeLookCurvesTurnTheEyes) {
   EXPECT_TRUE(a.unmapped.empty());
   EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
   // Nothing that turns the eyes: no gaze at all.
-  EXPECT_TRUE(mapPerformance(arkitTake(PerformanceInput::OpenFace, {{"AU12", {0.5}}}), faceMuscleNames(),
-                             builtinFacsMap(), RetargetMap{}, off())
+  EXPECT_TRUE(mapPerformance(arkitTake(PerformanceInput::OpenFace, {{"AU12", {0.5}}}), gazeMuscleNames(),
+                             builtinFacsMap(), RetargetMap{}, gazeFilterOff())
                   .gaze.empty());
 }
 
@@ -207,7 +207,7 @@ TEST(PerformanceGaze, TheFileAnglesWinOverTheEyeLookCurves) {
   g.pitchDeg = {-4.0, 7.0};
   g.yawDeg = {2.0, 3.0};
   p.gaze.assign(5, g);
-  const MappedPerformance m = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), builtinRetargetMap(), off());
+  const MappedPerformance m = mapPerformance(p, gazeMuscleNames(), builtinFacsMap(), builtinRetargetMap(), gazeFilterOff());
   ASSERT_EQ(m.gaze.size(), 5u);
   EXPECT_EQ(m.gaze[3].pitchDeg, g.pitchDeg);
   EXPECT_EQ(m.gaze[3].yawDeg, g.yawDeg);
@@ -223,12 +223,12 @@ TEST(PerformanceGaze, AnglesAreFilteredAndClampedToTheEyesRange) {
     p.gaze[static_cast<size_t>(f)].pitchDeg = {f < 10 ? 0.0 : 30.0, 80.0};
     p.gaze[static_cast<size_t>(f)].yawDeg = {0.0, -60.0};
   }
-  const MappedPerformance raw = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off());
+  const MappedPerformance raw = mapPerformance(p, gazeMuscleNames(), builtinFacsMap(), RetargetMap{}, gazeFilterOff());
   EXPECT_DOUBLE_EQ(raw.gaze[5].pitchDeg[1], kGazeMaxDeg);
   EXPECT_DOUBLE_EQ(raw.gaze[5].yawDeg[1], -kGazeMaxDeg);
   EXPECT_DOUBLE_EQ(raw.gaze[10].pitchDeg[0], 30.0);
   const OneEuroSettings filter;
-  const MappedPerformance smooth = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, filter);
+  const MappedPerformance smooth = mapPerformance(p, gazeMuscleNames(), builtinFacsMap(), RetargetMap{}, filter);
   std::vector<double> pitch(20);
   for (int f = 0; f < 20; ++f) pitch[static_cast<size_t>(f)] = p.gaze[static_cast<size_t>(f)].pitchDeg[0];
   const std::vector<double> expected = oneEuroFilter(p.times, pitch, filter);
@@ -244,7 +244,7 @@ TEST(PerformanceGaze, TheSceneGetsGazeTracks) {
   EyeGaze g;
   g.pitchDeg = {0.0, 20.0};
   p.gaze.assign(26, g);
-  const MappedPerformance m = mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off());
+  const MappedPerformance m = mapPerformance(p, gazeMuscleNames(), builtinFacsMap(), RetargetMap{}, gazeFilterOff());
   SceneDesc scene;
   scene.gazePitch[1] = ScalarTrack({{0.0, 30.0, Interpolation::Linear}});
   addPerformanceToScene(scene, m);
@@ -254,7 +254,7 @@ TEST(PerformanceGaze, TheSceneGetsGazeTracks) {
   EXPECT_TRUE(scene.gazeYaw[0].empty() && scene.gazeYaw[1].empty());
   p.gaze.assign(26, EyeGaze{});
   SceneDesc still;
-  addPerformanceToScene(still, mapPerformance(p, faceMuscleNames(), builtinFacsMap(), RetargetMap{}, off()));
+  addPerformanceToScene(still, mapPerformance(p, gazeMuscleNames(), builtinFacsMap(), RetargetMap{}, gazeFilterOff()));
   EXPECT_FALSE(still.hasGaze());
 }
 

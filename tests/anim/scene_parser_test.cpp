@@ -8,7 +8,7 @@
 namespace myo {
 namespace {
 
-std::string errorOf(const std::string& text) {
+std::string sceneErrorOf(const std::string& text) {
   try {
     parseScene(text, "scene.json");
   } catch (const InputError& e) {
@@ -20,7 +20,7 @@ std::string errorOf(const std::string& text) {
 // The same scene under "model": "thesis", added last so every line and column stays where it was.
 std::string thesisErrorOf(std::string text) {
   text.insert(text.rfind('}'), ", \"model\": \"thesis\"");
-  return errorOf(text);
+  return sceneErrorOf(text);
 }
 
 TEST(SceneParser, DefaultsFillAnEmptyScene) {
@@ -69,28 +69,28 @@ TEST(SceneParser, ReadsEveryPart) {
 }
 
 TEST(SceneParser, ErrorsNameFileLineColumnAndKeyPath) {
-  EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dt\": -1}\n}"), "scene.json:2:22: key 'numerics.dt': must be > 0 (got -1)");
-  EXPECT_EQ(errorOf("{\n  \"numerics\": {\"dtt\": 0.1}\n}"),
+  EXPECT_EQ(sceneErrorOf("{\n  \"numerics\": {\"dt\": -1}\n}"), "scene.json:2:22: key 'numerics.dt': must be > 0 (got -1)");
+  EXPECT_EQ(sceneErrorOf("{\n  \"numerics\": {\"dtt\": 0.1}\n}"),
             "scene.json:2:16: key 'numerics.dtt': unknown key (did you mean 'numerics.dt'?)");
   // A misspelt key is suggested its spelling among the keys of its own mapping, present or not.
-  EXPECT_EQ(errorOf("{\"gravty\": {\"enabled\": false}}"),
+  EXPECT_EQ(sceneErrorOf("{\"gravty\": {\"enabled\": false}}"),
             "scene.json:1:2: key 'gravty': unknown key (did you mean 'gravity'?)");
-  EXPECT_EQ(errorOf("{\"skin\": {\"youngs_modulus\": 2e6}}"),
+  EXPECT_EQ(sceneErrorOf("{\"skin\": {\"youngs_modulus\": 2e6}}"),
             "scene.json:1:11: key 'skin.youngs_modulus': unknown key (did you mean 'skin.young_modulus'?)");
-  EXPECT_EQ(errorOf("{\"wobble\": 1}"), "scene.json:1:2: key 'wobble': unknown key");  // nothing close
-  EXPECT_EQ(errorOf("{\"duration\": \"2\"}"), "scene.json:1:14: key 'duration': must be a number");
+  EXPECT_EQ(sceneErrorOf("{\"wobble\": 1}"), "scene.json:1:2: key 'wobble': unknown key");  // nothing close
+  EXPECT_EQ(sceneErrorOf("{\"duration\": \"2\"}"), "scene.json:1:14: key 'duration': must be a number");
   EXPECT_EQ(thesisErrorOf("{\"roi_alpha\": 0.9}"), "scene.json:1:15: key 'roi_alpha': must be > 1 (got 0.9)");
   EXPECT_EQ(thesisErrorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": 1.5}]}}}"),
             "scene.json:1:55: key 'timeline.activations.m[0].value': must lie in [-1, 1] (got 1.5)");
   EXPECT_EQ(thesisErrorOf("{\"springs\": {\"model\": \"hooke\"}}"),
             "scene.json:1:23: key 'springs.model': must be \"thesis\" or \"displacement\" (got \"hooke\")");
-  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\"}]}"),
+  EXPECT_EQ(sceneErrorOf("{\"drags\": [{\"name\": \"d\"}]}"),
             "scene.json:1:12: key 'drags[0].landmark': give exactly one of 'landmark' and 'vertex'");
   EXPECT_EQ(thesisErrorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": 1}]}"),
             "scene.json:1:56: key 'drags[0].pin_landmarks': must be true or false");
-  EXPECT_EQ(errorOf("{\"timeline\": {\"drags\": {\"nope\": []}}}"),
+  EXPECT_EQ(sceneErrorOf("{\"timeline\": {\"drags\": {\"nope\": []}}}"),
             "scene.json:1:25: key 'timeline.drags.nope': no drag of that name in 'drags'");
-  const std::string syntax = errorOf("{\n  \"duration\": 1,,\n}");
+  const std::string syntax = sceneErrorOf("{\n  \"duration\": 1,,\n}");
   EXPECT_EQ(syntax.rfind("scene.json:2:", 0), 0u) << syntax;
   EXPECT_NE(syntax.find("syntax error"), std::string::npos) << syntax;
 }
@@ -117,10 +117,10 @@ TEST(SceneParser, RoundTripsThroughJson) {
 
 TEST(SceneParser, InterpOnATracksLastKeyIsAnErrorAtItsPlace) {
   // interp shapes the segment from its key to the next; the last key starts none.
-  EXPECT_EQ(errorOf("{\"timeline\": {\"gravity\": [{\"t\": 0, \"value\": 0}, {\"t\": 1, \"value\": 1, \"interp\": \"smooth\"}]}}"),
+  EXPECT_EQ(sceneErrorOf("{\"timeline\": {\"gravity\": [{\"t\": 0, \"value\": 0}, {\"t\": 1, \"value\": 1, \"interp\": \"smooth\"}]}}"),
             "scene.json:1:80: key 'timeline.gravity[1].interp': a track's last key starts no segment ('interp' says how "
             "the value goes from its key to the next; put it on the key that starts the eased segment)");
-  EXPECT_NE(errorOf("{\"timeline\": {\"drags\": {\"d\": [{\"t\": 0, \"value\": [0, 0, 0], \"interp\": \"linear\"}]}}, "
+  EXPECT_NE(sceneErrorOf("{\"timeline\": {\"drags\": {\"d\": [{\"t\": 0, \"value\": [0, 0, 0], \"interp\": \"linear\"}]}}, "
                     "\"drags\": [{\"name\": \"d\", \"vertex\": 1}]}")
                 .find("key 'timeline.drags.d[0].interp': a track's last key starts no segment"),
             std::string::npos);
@@ -152,14 +152,14 @@ TEST(SceneParser, PrintsWhatIsMeant) {
 }
 
 TEST(SceneParser, FramesCloserThanOneStepOrAShorterSceneAreErrorsNamingBothValues) {
-  EXPECT_EQ(errorOf("{\"numerics\": {\"dt\": 0.01},\n \"fps\": 200}"),
+  EXPECT_EQ(sceneErrorOf("{\"numerics\": {\"dt\": 0.01},\n \"fps\": 200}"),
             "scene.json:2:9: key 'fps': fps = 200 is above 1/dt = 100 (numerics.dt = 0.01 s): frames closer than one "
             "step would repeat; lower fps or dt");
   // Only dt written (fps 30 by default): the error sits at dt.
-  EXPECT_EQ(errorOf("{\"numerics\": {\"dt\": 0.05}}"),
+  EXPECT_EQ(sceneErrorOf("{\"numerics\": {\"dt\": 0.05}}"),
             "scene.json:1:21: key 'numerics.dt': fps = 30 is above 1/dt = 20 (numerics.dt = 0.05 s): frames closer than "
             "one step would repeat; lower fps or dt");
-  EXPECT_EQ(errorOf("{\"duration\": 0.001}"),
+  EXPECT_EQ(sceneErrorOf("{\"duration\": 0.001}"),
             "scene.json:1:14: key 'duration': duration = 0.001 s is shorter than one step (numerics.dt = 0.00416667 s): "
             "the face would not move; lengthen duration or lower dt");
   // fps = 1/dt and duration = dt are the limits, and pass.
@@ -222,23 +222,23 @@ namespace {
 TEST(SceneParser, TheModelKeyAndKeysOfOneModelOnly) {
   EXPECT_EQ(parseScene("{}").modelKind, FaceModelKind::Anatomical);
   EXPECT_EQ(parseScene("{\"model\": \"thesis\"}").modelKind, FaceModelKind::Thesis);
-  EXPECT_EQ(errorOf("{\"model\": \"bone\"}"),
+  EXPECT_EQ(sceneErrorOf("{\"model\": \"bone\"}"),
             "scene.json:1:11: key 'model': must be \"anatomical\" or \"thesis\" (got \"bone\")");
   const std::string tail = ": only \"model\": \"thesis\" uses it (this scene's model is anatomical, the default)";
-  EXPECT_EQ(errorOf("{\n  \"roi_alpha\": 5\n}"), "scene.json:2:16: key 'roi_alpha'" + tail);
-  EXPECT_EQ(errorOf("{\"springs\": {\"stiffness\": 3}}"), "scene.json:1:13: key 'springs'" + tail);
-  EXPECT_EQ(errorOf("{\"head\": {\"obj\": \"h.obj\", \"landmarks\": \"l.json\", \"gravity_pins\": \"p.json\"}}"),
+  EXPECT_EQ(sceneErrorOf("{\n  \"roi_alpha\": 5\n}"), "scene.json:2:16: key 'roi_alpha'" + tail);
+  EXPECT_EQ(sceneErrorOf("{\"springs\": {\"stiffness\": 3}}"), "scene.json:1:13: key 'springs'" + tail);
+  EXPECT_EQ(sceneErrorOf("{\"head\": {\"obj\": \"h.obj\", \"landmarks\": \"l.json\", \"gravity_pins\": \"p.json\"}}"),
             "scene.json:1:66: key 'head.gravity_pins'" + tail);
-  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pins\": \"p.json\"}]}"),
+  EXPECT_EQ(sceneErrorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pins\": \"p.json\"}]}"),
             "scene.json:1:47: key 'drags[0].pins'" + tail);
-  EXPECT_EQ(errorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": false}]}"),
+  EXPECT_EQ(sceneErrorOf("{\"drags\": [{\"name\": \"d\", \"vertex\": 3, \"pin_landmarks\": false}]}"),
             "scene.json:1:56: key 'drags[0].pin_landmarks'" + tail);
-  EXPECT_EQ(errorOf("{\"skin\": {\"k_a\": 100}}"), "scene.json:1:18: key 'skin.k_a'" + tail);
-  EXPECT_EQ(errorOf("{\"numerics\": {\"stepper\": \"exact\"}}"), "scene.json:1:26: key 'numerics.stepper'" + tail);
-  EXPECT_EQ(errorOf("{\"muscle_material\": {\"damping_ratio\": 1}}"),
+  EXPECT_EQ(sceneErrorOf("{\"skin\": {\"k_a\": 100}}"), "scene.json:1:18: key 'skin.k_a'" + tail);
+  EXPECT_EQ(sceneErrorOf("{\"numerics\": {\"stepper\": \"exact\"}}"), "scene.json:1:26: key 'numerics.stepper'" + tail);
+  EXPECT_EQ(sceneErrorOf("{\"muscle_material\": {\"damping_ratio\": 1}}"),
             "scene.json:1:39: key 'muscle_material.damping_ratio'" + tail);
   // Relaxing is the thesis's.
-  EXPECT_EQ(errorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": -0.5}]}}}"),
+  EXPECT_EQ(sceneErrorOf("{\"timeline\": {\"activations\": {\"m\": [{\"t\": 0, \"value\": -0.5}]}}}"),
             "scene.json:1:55: key 'timeline.activations.m[0].value': must lie in [0, 1] under the anatomical model "
             "(relaxing, a < 0, needs \"model\": \"thesis\") (got -0.5)");
   // The anatomical model's own keys are errors under the thesis.
@@ -259,7 +259,7 @@ TEST(SceneParser, TheResponseKey) {
   EXPECT_EQ(f.anatomical.response, SkinResponse::Follow);
   EXPECT_EQ(parseScene(sceneToJson(f)).anatomical.response, SkinResponse::Follow);
   EXPECT_NE(sceneToJson(parseScene("{}")).find("\"response\": \"dynamic\""), std::string::npos);
-  EXPECT_EQ(errorOf("{\"numerics\": {\"response\": \"instant\"}}"),
+  EXPECT_EQ(sceneErrorOf("{\"numerics\": {\"response\": \"instant\"}}"),
             "scene.json:1:27: key 'numerics.response': must be \"dynamic\" or \"follow\" (got \"instant\")");
 }
 
@@ -270,10 +270,10 @@ TEST(SceneParser, ExtraMusclesKeysOfOneModelOnly) {
   const std::string muscle = R"({"muscles": {"extra": [{"name": "m", "origin": {"landmark": "nose_tip"}, )"
                              R"("insertion": {"landmark": "chin_menton"}, )";
   const std::string thesisOnly = ": only \"model\": \"thesis\" uses it (this scene's model is anatomical, the default)";
-  EXPECT_EQ(errorOf(muscle + R"("roi_alpha": 4}]}})"), "scene.json:1:129: key 'muscles.extra[0].roi_alpha'" + thesisOnly);
-  EXPECT_EQ(errorOf(muscle + R"("spring_stiffness": 40}]}})"),
+  EXPECT_EQ(sceneErrorOf(muscle + R"("roi_alpha": 4}]}})"), "scene.json:1:129: key 'muscles.extra[0].roi_alpha'" + thesisOnly);
+  EXPECT_EQ(sceneErrorOf(muscle + R"("spring_stiffness": 40}]}})"),
             "scene.json:1:136: key 'muscles.extra[0].spring_stiffness'" + thesisOnly);
-  EXPECT_EQ(errorOf(muscle + R"("contraction": 0.2}]}})"), "scene.json:1:131: key 'muscles.extra[0].contraction'" + thesisOnly);
+  EXPECT_EQ(sceneErrorOf(muscle + R"("contraction": 0.2}]}})"), "scene.json:1:131: key 'muscles.extra[0].contraction'" + thesisOnly);
   EXPECT_EQ(thesisErrorOf(muscle + R"("coupling": {"belly_modulus": 0}}]}})"),
             "scene.json:1:128: key 'muscles.extra[0].coupling': only \"model\": \"anatomical\" uses it (this scene's "
             "model is thesis)");
@@ -282,7 +282,7 @@ TEST(SceneParser, ExtraMusclesKeysOfOneModelOnly) {
                    6e5);
   EXPECT_DOUBLE_EQ(parseScene(muscle + R"("roi_alpha": 4}]}, "model": "thesis"})").extraMuscles[0].roiAlpha, 4.0);
   // A profile out of order names the muscle and the field.
-  EXPECT_EQ(errorOf(muscle + R"("coupling": {"origin_end": 0.4, "belly_start": 0.3}}]}})"),
+  EXPECT_EQ(sceneErrorOf(muscle + R"("coupling": {"origin_end": 0.4, "belly_start": 0.3}}]}})"),
             "scene.json:1:143: key 'muscles.extra[0].coupling.origin_end': origin_end (0.4) must be < belly_start (0.3) "
             "in muscle 'm'");
 }
@@ -303,7 +303,7 @@ TEST(SceneParser, AttachmentAndCouplingRoundTrip) {
   EXPECT_EQ(sceneToJson(b), once);
   EXPECT_EQ(b.skinAttachment, "lips.json");
   EXPECT_EQ(*b.extraMuscles[0].coupling, expected);
-  EXPECT_EQ(errorOf(R"({"skin": {"attachment": ""}})"),
+  EXPECT_EQ(sceneErrorOf(R"({"skin": {"attachment": ""}})"),
             "scene.json:1:25: key 'skin.attachment': must name a file of attachment overrides");
 }
 
@@ -364,17 +364,17 @@ TEST(SceneParser, PerformanceKeyReadsItsOptionsAndRoundTrips) {
 }
 
 TEST(SceneParser, PerformanceKeyErrors) {
-  EXPECT_EQ(errorOf(R"({"performance": {"input": "openface"}})"),
+  EXPECT_EQ(sceneErrorOf(R"({"performance": {"input": "openface"}})"),
             "scene.json:1:17: key 'performance.file': missing required key");
-  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv", "input": "kinect"}})"),
+  EXPECT_EQ(sceneErrorOf(R"({"performance": {"file": "a.csv", "input": "kinect"}})"),
             "scene.json:1:44: key 'performance.input': unknown performance input 'kinect' (use openface, livelink "
             "or mediapipe)");
-  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv"}, "duration": 3})"),
+  EXPECT_EQ(sceneErrorOf(R"({"performance": {"file": "a.csv"}, "duration": 3})"),
             "scene.json:1:48: key 'duration': comes from the performance (key 'performance'): its duration and frame "
             "rate are the scene's");
-  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv", "filter": {"beta": -1}}})"),
+  EXPECT_EQ(sceneErrorOf(R"({"performance": {"file": "a.csv", "filter": {"beta": -1}}})"),
             "scene.json:1:54: key 'performance.filter.beta': must be ≥ 0 (got -1)");
-  EXPECT_EQ(errorOf(R"({"performance": {"file": "a.csv", "start": 4, "end": 2}})"),
+  EXPECT_EQ(sceneErrorOf(R"({"performance": {"file": "a.csv", "start": 4, "end": 2}})"),
             "scene.json:1:54: key 'performance.end': must be > 4 (got 2)");
   EXPECT_EQ(thesisErrorOf(R"({"performance": {"file": "a.csv"}})"),
             "scene.json:1:17: key 'performance': only \"model\": \"anatomical\" uses it (this scene's model is thesis)");

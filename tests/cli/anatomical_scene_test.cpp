@@ -34,7 +34,7 @@ const char* kScene = R"({
     "drags": {"cheek": [{"t": 0, "value": [0, 0, 0]}, {"t": 0.15, "value": [2000, 500, 0]}]}}
 })";
 
-fs::path scratch() {
+fs::path sceneScratch() {
   static const fs::path dir = [] {
     const fs::path d = fs::temp_directory_path() / ("myo_anatomical_scene_" + std::to_string(::getpid()));
     fs::remove_all(d);
@@ -46,7 +46,7 @@ fs::path scratch() {
 }
 
 TEST(AnatomicalScene, RunGivesTheHandSteppedSkinBitForBit) {
-  const fs::path dir = scratch();
+  const fs::path dir = sceneScratch();
   const auto r = test::runCli("run '" + (dir / "scene.json").string() + "' --out '" + (dir / "out").string() +
                               "' --format pc2 --json --cache '" + (dir / "cache").string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.merged;
@@ -99,7 +99,7 @@ TEST(AnatomicalScene, RunGivesTheHandSteppedSkinBitForBit) {
 }
 
 TEST(AnatomicalScene, FaceDownHeadPoseMovesTheFaceAlongItsFrameZ) {
-  const fs::path dir = scratch();
+  const fs::path dir = sceneScratch();
   SceneDesc scene = readScene((dir / "scene.json").string());
   scene.activations.clear();
   scene.dragForces.clear();
@@ -123,7 +123,7 @@ TEST(AnatomicalScene, FaceDownHeadPoseMovesTheFaceAlongItsFrameZ) {
 }
 
 TEST(AnatomicalScene, TheCliRefusesThesisKeysAndRelaxingNamingTheModel) {
-  const fs::path dir = scratch();
+  const fs::path dir = sceneScratch();
   std::ofstream(dir / "roi.json") << "{\n  \"roi_alpha\": 5\n}\n";
   auto r = test::runCli("check '" + (dir / "roi.json").string() + "'");
   EXPECT_EQ(r.exitCode, 2);

@@ -22,7 +22,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path autoScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_autolm_" + name);
   fs::remove_all(p);
   fs::create_directories(p);
@@ -38,7 +38,7 @@ nlohmann::json headOf(const std::string& out) {
 }
 
 TEST(AutoLandmarksCli, AnObjWithoutLandmarksIsFoundKeptInTheCacheAndReused) {
-  const fs::path dir = scratch("head");
+  const fs::path dir = autoScratch("head");
   ASSERT_EQ(test::runCli("head --write-obj h.obj", dir).exitCode, 0);
   const std::string cache = (dir / "cache").string();
 
@@ -80,7 +80,7 @@ TEST(AutoLandmarksCli, AnObjWithoutLandmarksIsFoundKeptInTheCacheAndReused) {
 }
 
 TEST(AutoLandmarksCli, ASceneWithoutHeadLandmarksFindsThem) {
-  const fs::path dir = scratch("scene");
+  const fs::path dir = autoScratch("scene");
   ASSERT_EQ(test::runCli("head --write-obj h.obj", dir).exitCode, 0);
   std::ofstream(dir / "s.json") << R"({"name": "s", "head": {"obj": "h.obj"}, "duration": 0.1})";
   const test::CliResult r =
@@ -99,7 +99,7 @@ TEST(AutoLandmarksCli, ASceneWithoutHeadLandmarksFindsThem) {
 // after the landmarks, before the face's build.
 TEST(AutoLandmarksCli, AGltfRigsBaseWithoutLandmarksIsFoundKeptAndReused) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("rig_base");
+  const fs::path dir = autoScratch("rig_base");
   const std::string rig = (test::sharedDataDir() / "ict" / "ict_arkit_rig.glb").string();
   const std::string args = "fit-rig '" + rig + "' --library missing.json --cache cache";
   const test::CliResult first = test::runCli(args, dir);
@@ -129,7 +129,7 @@ TEST(AutoLandmarksCli, AGltfRigsBaseWithoutLandmarksIsFoundKeptAndReused) {
 // A head folder (head_skin.obj beside landmarks_multipie68.json, as ../shared/data/ict) without its
 // landmark file gets them found; with a file, the file is checked as a given one.
 TEST(AutoLandmarksCli, AHeadFolderWithoutItsLandmarkFileFindsThemAndAGivenOneIsChecked) {
-  const fs::path dir = scratch("folder");
+  const fs::path dir = autoScratch("folder");
   fs::create_directories(dir / "h");
   ASSERT_EQ(test::runCli("head --write-obj h/head_skin.obj", dir).exitCode, 0);
   const test::CliResult found = test::runCli("head h --json --cache cache", dir);

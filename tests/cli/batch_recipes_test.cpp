@@ -23,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string readFile(const fs::path& p) {
+std::string readRecipeFile(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -84,8 +84,8 @@ class BatchRecipes : public ::testing::Test {
       for (int k = 0; k < 4; ++k) {
         const fs::path d = out / head / ("take" + std::to_string(k));
         SCOPED_TRACE(d.string());
-        ASSERT_TRUE(fs::exists(d / "job.json")) << readFile(d / "job.log");
-        const nlohmann::json j = nlohmann::json::parse(readFile(d / "job.json"));
+        ASSERT_TRUE(fs::exists(d / "job.json")) << readRecipeFile(d / "job.log");
+        const nlohmann::json j = nlohmann::json::parse(readRecipeFile(d / "job.json"));
         EXPECT_GT(j.at("peak_rss_mb").get<double>(), 1.0);
         EXPECT_EQ(j.at("frames"), 8 + 2 * k);
         ASSERT_TRUE(fs::exists(d / ("take" + std::to_string(k) + ".pc2")));
@@ -105,7 +105,7 @@ class BatchRecipes : public ::testing::Test {
                                              " " + kDriveArgs + " --out " + q(dir_ / ("direct_" + head)) +
                                              " --cache " + q(out / "cache"));
       ASSERT_EQ(r.exitCode, 0) << r.merged;
-      EXPECT_EQ(readFile(out / head / "take3" / "take3.pc2"), readFile(dir_ / ("direct_" + head) / "take3.pc2")) << head;
+      EXPECT_EQ(readRecipeFile(out / head / "take3" / "take3.pc2"), readRecipeFile(dir_ / ("direct_" + head) / "take3.pc2")) << head;
     }
   }
 
@@ -162,7 +162,7 @@ TEST_F(BatchRecipes, GnuParallelDrivesFourPerformancesOnTwoHeadsBuildingTheCache
                        q(dir_ / "heads.txt") + " " + q(dir_ / "bad_out") + " -- " + kDriveArgs);
   EXPECT_EQ(bad.exitCode, 1) << bad.out;
   EXPECT_THAT(bad.out, HasSubstr("failed jobs"));
-  EXPECT_THAT(readFile(dir_ / "bad_out" / "default" / "broken" / "job.log"), HasSubstr("broken.csv"));
+  EXPECT_THAT(readRecipeFile(dir_ / "bad_out" / "default" / "broken" / "job.log"), HasSubstr("broken.csv"));
 }
 
 // A private single-node Slurm cluster (its own munge key and socket, ports, state folder), stopped
@@ -198,7 +198,7 @@ class MiniSlurm {
   }
   ~MiniSlurm() {  // stops the daemons and waits (up to 10 s each) until they are gone
     for (const char* pidFile : {"d.pid", "ctld.pid", "munge/pid"}) {
-      const std::string pid = readFile(dir_ / pidFile);
+      const std::string pid = readRecipeFile(dir_ / pidFile);
       if (pid.empty()) continue;
       const pid_t p = std::stoi(pid);
       ::kill(p, SIGTERM);
@@ -207,7 +207,7 @@ class MiniSlurm {
   }
   bool started() const { return started_; }
   std::string env() const { return "SLURM_CONF='" + (dir_ / "slurm.conf").string() + "' "; }
-  std::string log() const { return readFile(dir_ / "ctld.log") + readFile(dir_ / "d.log"); }
+  std::string log() const { return readRecipeFile(dir_ / "ctld.log") + readRecipeFile(dir_ / "d.log"); }
 
  private:
   fs::path dir_;

@@ -31,14 +31,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
+struct GazeDir {
   fs::path path;
-  explicit TempDir(const std::string& tag)
+  explicit GazeDir(const std::string& tag)
       : path(fs::temp_directory_path() / ("myo_drive_gaze_" + tag + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path);
     fs::create_directories(path);
   }
-  ~TempDir() { fs::remove_all(path); }
+  ~GazeDir() { fs::remove_all(path); }
 };
 
 const Head& builtInHead() {
@@ -65,7 +65,7 @@ MatX3 restAt(const EyeGaze& gaze) {
   return out;
 }
 
-PointCache drive(const fs::path& take, const fs::path& out, const std::string& extra = "") {
+PointCache driveGaze(const fs::path& take, const fs::path& out, const std::string& extra = "") {
   const auto r = test::runCli("drive '" + take.string() + "' --filter off --format pc2 " + extra + " --out '" +
                               out.string() + "'");
   EXPECT_EQ(r.exitCode, 0) << r.merged;
@@ -89,13 +89,13 @@ int upperMid(int eye) {
 // muscle acting. Every frame after the first is the rest placed at pitch 0.35 rad on both eyes; the
 // upper lids rise, as the rig's eyeLookUpLeft lifts the left one.
 TEST(DriveGaze, OpenFaceLookingUpLiftsTheUpperLids) {
-  TempDir dir("up");
+  GazeDir dir("up");
   {
     std::ofstream csv(dir.path / "up.csv");
     csv << "timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n";
     for (int f = 0; f <= 10; ++f) csv << f * 0.04 << ",0,-0.35,0\n";
   }
-  const PointCache pc = drive(dir.path / "up.csv", dir.path / "out");
+  const PointCache pc = driveGaze(dir.path / "up.csv", dir.path / "out");
   ASSERT_EQ(pc.samples.size(), 11u);
   ASSERT_NE(builtInPlacement().lids(), nullptr);
   EyeGaze gaze;
@@ -126,7 +126,7 @@ TEST(DriveGaze, OpenFaceLookingUpLiftsTheUpperLids) {
 
 // Zero gaze columns (and no head pose) play byte for byte as the same take without them.
 TEST(DriveGaze, ZeroGazeColumnsLeaveTheOutputByteIdentical) {
-  TempDir dir("zero");
+  GazeDir dir("zero");
   {
     std::ofstream with(dir.path / "with.csv"), without(dir.path / "without.csv");
     with << "timestamp,confidence,success,gaze_angle_x,gaze_angle_y,AU12_r,AU45_r\n";
@@ -156,14 +156,14 @@ TEST(DriveGaze, ZeroGazeColumnsLeaveTheOutputByteIdentical) {
 // about the face's left looks down); the take's EyeLookUpLeft at 1 (25° through the map) is not
 // added to it: the angles win. The right eye, at 0, does not move.
 TEST(DriveGaze, LiveLinkEyeAnglesTurnTheLeftEyeUp) {
-  TempDir dir("livelink");
+  GazeDir dir("livelink");
   {
     std::ofstream csv(dir.path / "take.csv");
     csv << "Timecode,BlendShapeCount,EyeLookUpLeft,JawOpen,LeftEyeYaw,LeftEyePitch,LeftEyeRoll,RightEyeYaw,"
            "RightEyePitch,RightEyeRoll\n";
     for (int f = 0; f <= 10; ++f) csv << "00:00:00:" << (f < 10 ? "0" : "") << f << ",8,1,0,0,-0.1,0,0,0,0\n";
   }
-  const PointCache pc = drive(dir.path / "take.csv", dir.path / "out", "--input-fps 30");
+  const PointCache pc = driveGaze(dir.path / "take.csv", dir.path / "out", "--input-fps 30");
   ASSERT_EQ(pc.samples.size(), 11u);
   EyeGaze gaze;
   gaze.pitchDeg[1] = 18.0;
@@ -179,7 +179,7 @@ TEST(DriveGaze, LiveLinkEyeAnglesTurnTheLeftEyeUp) {
 // On a head without eye openings (the thesis model's built-in head, its eyes closed) the gaze has
 // no lids to turn: drive says so, and plays the rest of the take.
 TEST(DriveGaze, AHeadWithoutEyeOpeningsIsToldTheGazeMovesNothing) {
-  TempDir dir("closed_eyes");
+  GazeDir dir("closed_eyes");
   const auto head = test::runCli("head --closed-eyes --levels 0 --write-obj '" + (dir.path / "h.obj").string() +
                                  "' --write-landmarks '" + (dir.path / "h.json").string() + "'");
   ASSERT_EQ(head.exitCode, 0) << head.merged;
@@ -203,7 +203,7 @@ TEST(DriveGaze, AHeadWithoutEyeOpeningsIsToldTheGazeMovesNothing) {
 
 // A non-finite gaze is the reader's InputError naming the file, the line and the column.
 TEST(DriveGaze, ANonFiniteGazeIsRefusedWithItsLineAndColumn) {
-  TempDir dir("nan");
+  GazeDir dir("nan");
   {
     std::ofstream csv(dir.path / "nan_gaze.csv");
     csv << "timestamp,gaze_angle_x,gaze_angle_y,AU12_r\n0,0,0,0\n0.04,0.1,-inf,0\n";
@@ -220,7 +220,7 @@ TEST(DriveGaze, ANonFiniteGazeIsRefusedWithItsLineAndColumn) {
 // (gaze_angle_y 0.17–0.45 rad), so the upper lids stand lower.
 TEST(DriveGaze, TheDemoTakeDrivesTheLidsWithItsGaze) {
   MYO_REQUIRE_SHARED_DATA();
-  TempDir dir("demo");
+  GazeDir dir("demo");
   const fs::path demo = test::sharedDataDir() / "openface" / "facsvatar_demo.csv";
   const Performance perf = readPerformanceFile(demo.string());
   ASSERT_EQ(perf.gaze.size(), 490u);

@@ -23,14 +23,14 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path fitScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_fit_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
   fs::create_directories(p);
   return p;
 }
 
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string fitQuoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // Three muscles in three regions of the face (mouth corner, brow, lower lip) at known activations.
 const std::vector<std::pair<std::string, double>> kTruth = {
@@ -41,7 +41,7 @@ fs::path makeTarget(const fs::path& dir) {
   std::string sets;
   for (const auto& [name, a] : kTruth) sets += " --set " + name + "=" + std::to_string(a);
   const fs::path target = dir / "target.obj";
-  const test::CliResult r = test::runCli("pose --gravity off" + sets + " --out " + quoted(target));
+  const test::CliResult r = test::runCli("pose --gravity off" + sets + " --out " + fitQuoted(target));
   EXPECT_EQ(r.exitCode, 0) << r.merged;
   return target;
 }
@@ -55,15 +55,15 @@ MatX3 poseOf(const nlohmann::json& activations, const fs::path& out, const TriMe
     value << a.get<double>();
     sets += " --set " + name + "=" + value.str();
   }
-  const test::CliResult r = test::runCli("pose --gravity off" + sets + " --out " + quoted(out));
+  const test::CliResult r = test::runCli("pose --gravity off" + sets + " --out " + fitQuoted(out));
   EXPECT_EQ(r.exitCode, 0) << r.merged;
   return readObj(out.string()).V - rest.V;
 }
 
 TEST(Fit, RecoversKnownActivationsOfThreeMusclesFromTheirShape) {
-  const fs::path dir = scratch("recover");
+  const fs::path dir = fitScratch("recover");
   const fs::path target = makeTarget(dir);
-  const test::CliResult r = test::runCli("fit " + quoted(target) + " --lambda 0 --json --out " + quoted(dir / "fit.json"));
+  const test::CliResult r = test::runCli("fit " + fitQuoted(target) + " --lambda 0 --json --out " + fitQuoted(dir / "fit.json"));
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   const auto j = nlohmann::json::parse(r.out);
   // The file holds what was printed.
@@ -89,7 +89,7 @@ TEST(Fit, RecoversKnownActivationsOfThreeMusclesFromTheirShape) {
   RecordProperty("fit_seconds", std::to_string(j["fit_seconds"].get<double>()));
 
   // Fitting one muscle only leaves the others at zero.
-  const test::CliResult one = test::runCli("fit " + quoted(target) + " --muscles zygomaticus_major_left --json");
+  const test::CliResult one = test::runCli("fit " + fitQuoted(target) + " --muscles zygomaticus_major_left --json");
   ASSERT_EQ(one.exitCode, 0) << one.merged;
   const auto k = nlohmann::json::parse(one.out);
   for (const auto& [name, value] : k["activations"].items())
@@ -98,7 +98,7 @@ TEST(Fit, RecoversKnownActivationsOfThreeMusclesFromTheirShape) {
 }
 
 TEST(Fit, SixtyEightMovedAndTurnedMarkersFitAlmostAsWellAsTheWholeShape) {
-  const fs::path dir = scratch("markers");
+  const fs::path dir = fitScratch("markers");
   const fs::path target = makeTarget(dir);
   const Head head = loadDefaultHead();
   const TriMesh shape = readObj(target.string());
@@ -116,9 +116,9 @@ TEST(Fit, SixtyEightMovedAndTurnedMarkersFitAlmostAsWellAsTheWholeShape) {
   ASSERT_EQ(markers["markers"].size(), 68u);
   std::ofstream(dir / "markers.json") << markers.dump(1);
 
-  const test::CliResult dense = test::runCli("fit " + quoted(target) + " --json");
+  const test::CliResult dense = test::runCli("fit " + fitQuoted(target) + " --json");
   ASSERT_EQ(dense.exitCode, 0) << dense.merged;
-  const test::CliResult sparse = test::runCli("fit " + quoted(dir / "markers.json") + " --align rigid --json");
+  const test::CliResult sparse = test::runCli("fit " + fitQuoted(dir / "markers.json") + " --align rigid --json");
   ASSERT_EQ(sparse.exitCode, 0) << sparse.merged;
   const auto jd = nlohmann::json::parse(dense.out), jm = nlohmann::json::parse(sparse.out);
   EXPECT_EQ(jm["kind"], "markers");
@@ -138,11 +138,11 @@ TEST(Fit, SixtyEightMovedAndTurnedMarkersFitAlmostAsWellAsTheWholeShape) {
 }
 
 TEST(Fit, BadArgumentsFailBeforeTheBuildWithTheirMessage) {
-  const fs::path dir = scratch("bad");
+  const fs::path dir = fitScratch("bad");
   std::ofstream(dir / "three.json") << R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, 0, 0]},
     {"vertex": 2, "position": [0, 1, 0]}, {"vertex": 3, "position": [1, 0, 0]}]})";
   std::ofstream(dir / "far.json") << R"({"units": "cm", "markers": [{"vertex": 99999999, "position": [0, 0, 0]}]})";
-  const std::string three = quoted(dir / "three.json");
+  const std::string three = fitQuoted(dir / "three.json");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"fit " + three + " --align affine", "myoshell: error: --align: 'affine' is not one of none, rigid, similarity\n"},
       {"fit " + three + " --lambda -1", "myoshell: error: --lambda: '-1' is not a number ≥ 0\n"},
@@ -150,9 +150,9 @@ TEST(Fit, BadArgumentsFailBeforeTheBuildWithTheirMessage) {
       {"fit " + three + " --muscles a,,b", "myoshell: error: --muscles 'a,,b': an empty name (names are separated by single commas)\n"},
       {"fit " + three + " --align similarity",
        "myoshell: error: " + (dir / "three.json").string() + ": --align similarity needs at least 4 markers; the file has 3\n"},
-      {"fit " + quoted(dir / "none.obj"),
+      {"fit " + fitQuoted(dir / "none.obj"),
        "myoshell: error: " + (dir / "none.obj").string() + ": no such target file: give an OBJ of the head, RIG.glb#shape or a marker file\n"},
-      {"fit " + three + " --out " + quoted(dir / "no" / "fit.json"), "myoshell: error: --out: no such folder '" + (dir / "no").string() + "'\n"},
+      {"fit " + three + " --out " + fitQuoted(dir / "no" / "fit.json"), "myoshell: error: --out: no such folder '" + (dir / "no").string() + "'\n"},
   };
   for (const auto& [args, message] : cases) {
     const test::CliResult r = test::runCli(args);
@@ -163,7 +163,7 @@ TEST(Fit, BadArgumentsFailBeforeTheBuildWithTheirMessage) {
   const test::CliResult unknown = test::runCli("fit " + three + " --muscles orbicularis_oris");
   EXPECT_EQ(unknown.exitCode, 2);
   EXPECT_THAT(unknown.err, HasSubstr("--muscles: unknown muscle 'orbicularis_oris' (the anatomical model's muscles: "));
-  const test::CliResult far = test::runCli("fit " + quoted(dir / "far.json"));
+  const test::CliResult far = test::runCli("fit " + fitQuoted(dir / "far.json"));
   EXPECT_EQ(far.exitCode, 2);
   EXPECT_THAT(far.err, HasSubstr("far.json:1:40: key 'markers[0].vertex': vertex 99999999 is outside [0, "));
   EXPECT_FALSE(fs::exists(dir / "no"));

@@ -25,7 +25,7 @@ test::CliResult runIn(const fs::path& dir, const std::string& args, bool mergeSt
   return r;
 }
 
-fs::path scratch(const std::string& name) {
+fs::path headScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_head_" + name);
   fs::remove_all(p);
   fs::create_directories(p);
@@ -33,7 +33,7 @@ fs::path scratch(const std::string& name) {
 }
 
 TEST(HeadCommand, DefaultHeadFromAnyFolder) {
-  const fs::path dir = scratch("default");
+  const fs::path dir = headScratch("default");
   const test::CliResult r = runIn(dir, "head --json --render face.png --size 128", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
@@ -57,7 +57,7 @@ TEST(HeadCommand, DefaultHeadFromAnyFolder) {
 }
 
 TEST(HeadCommand, ClosedEyesGiveTheThesisModelsHead) {
-  const fs::path dir = scratch("closed_eyes");
+  const fs::path dir = headScratch("closed_eyes");
   const test::CliResult r = runIn(dir, "head --closed-eyes --json", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
@@ -72,7 +72,7 @@ TEST(HeadCommand, ClosedEyesGiveTheThesisModelsHead) {
 }
 
 TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
-  const fs::path dir = scratch("pictures");
+  const fs::path dir = headScratch("pictures");
   for (const char* view : {"front", "three-quarter", "profile", "back"}) {
     const test::CliResult r =
         runIn(dir, std::string("head --levels 0 --wire --pins-marked --size 96 --view ") + view +
@@ -95,7 +95,7 @@ TEST(HeadCommand, PicturesHaveTheAskedSizeAndBadPathsAreBadInput) {
 }
 
 TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
-  const fs::path dir = scratch("roundtrip");
+  const fs::path dir = headScratch("roundtrip");
   ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj --write-landmarks lm.json").exitCode, 0);
   const test::CliResult r = runIn(dir, "head h.obj --landmarks lm.json --json", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
@@ -110,7 +110,7 @@ TEST(HeadCommand, WritesTheDefaultLandmarkFileAndReadsItBack) {
 TEST(HeadCommand, IctFolder) {
   MYO_REQUIRE_SHARED_DATA();
   const test::CliResult r =
-      runIn(scratch("ict"), "head '" + (test::sharedDataDir() / "ict").string() + "' --json", false);
+      runIn(headScratch("ict"), "head '" + (test::sharedDataDir() / "ict").string() + "' --json", false);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["vertices"], 11248);
@@ -120,7 +120,7 @@ TEST(HeadCommand, IctFolder) {
 }
 
 TEST(HeadCommand, LandmarkErrorsAreBadInput) {
-  const fs::path dir = scratch("errors");
+  const fs::path dir = headScratch("errors");
   ASSERT_EQ(runIn(dir, "head --levels 0 --write-obj h.obj").exitCode, 0);
   std::ofstream(dir / "lm.json") << "{\"nose_tip\": 4}";
   test::CliResult r = runIn(dir, "head h.obj --landmarks lm.json");

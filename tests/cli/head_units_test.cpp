@@ -25,7 +25,7 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path unitsScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_head_units_" + name);
   fs::remove_all(p);
   fs::create_directories(p);
@@ -81,7 +81,7 @@ double relativeDifference(const std::vector<double>& a, const std::vector<double
 
 TEST(HeadUnits, IctInMetresIsRefusedThenAcceptedWithUnitsM) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("ict_m");
+  const fs::path dir = unitsScratch("ict_m");
   writeScaledObj(ictDir() / "head_skin.obj", dir / "ict_m.obj", 0.01);
   const std::string lm = " --landmarks '" + (ictDir() / "landmarks_multipie68.json").string() + "'";
 
@@ -108,7 +108,7 @@ TEST(HeadUnits, IctInMetresIsRefusedThenAcceptedWithUnitsM) {
 
 TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("ict_motion");
+  const fs::path dir = unitsScratch("ict_motion");
   writeScaledObj(ictDir() / "head_skin.obj", dir / "ict_m.obj", 0.01);
   auto scene = [&](const std::string& obj, const std::string& units) {
     nlohmann::json j = {
@@ -175,7 +175,7 @@ TEST(HeadUnits, IctInMetresMovesAsInCentimetres) {
 // cm × 0.01 — each frame's largest displacement from the file's rest, × 100, is the cm figure
 // stats.json reports for it — and the OBJ frames and the PC2 hold the same positions.
 TEST(HeadUnits, DriveWithUnitsMWritesObjAndPc2InMetres) {
-  const fs::path dir = scratch("drive_m");
+  const fs::path dir = unitsScratch("drive_m");
   const Head head = loadDefaultHead();
   const MatX3 metres = head.mesh.V * 0.01;
   writeObj((dir / "head_m.obj").string(), head.mesh, &metres);
@@ -211,7 +211,7 @@ TEST(HeadUnits, DriveWithUnitsMWritesObjAndPc2InMetres) {
 
 TEST(HeadUnits, TheBuiltInLandmarksOnTheIctMeshAreRefused) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("builtin_lm");
+  const fs::path dir = unitsScratch("builtin_lm");
   ASSERT_EQ(test::runCli("head --write-landmarks '" + (dir / "builtin.json").string() + "'").exitCode, 0);
   const test::CliResult r = test::runCli("head '" + (ictDir() / "head_skin.obj").string() + "' --landmarks '" +
                                          (dir / "builtin.json").string() + "'");

@@ -22,7 +22,7 @@ using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 // The CLI's stdout and stderr together.
-test::CliResult runCli(const std::string& args) {
+test::CliResult runInfoCli(const std::string& args) {
   test::CliResult r = test::runCli(args);
   r.out = r.merged;
   return r;
@@ -45,7 +45,7 @@ TEST(InfoCommand, IctHeadLibraryNumbers) {
 
 TEST(InfoCommand, IctHeadJson) {
   MYO_REQUIRE_SHARED_DATA();
-  const test::CliResult r = runCli("info --json '" + ictHead() + "'");
+  const test::CliResult r = runInfoCli("info --json '" + ictHead() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"vertices", "triangles", "edges", "interior_edges", "boundary_edges",
@@ -68,7 +68,7 @@ TEST(InfoCommand, IctHeadJson) {
 
 TEST(InfoCommand, IctHeadTable) {
   MYO_REQUIRE_SHARED_DATA();
-  const test::CliResult r = runCli("info '" + ictHead() + "'");
+  const test::CliResult r = runInfoCli("info '" + ictHead() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("11248"));
   EXPECT_THAT(r.out, HasSubstr("22288"));
@@ -78,7 +78,7 @@ TEST(InfoCommand, IctHeadTable) {
 // An OBJ has no unit: info printed "bbox (cm)" for a head in metres. It must claim none.
 TEST(InfoCommand, TheTableClaimsNoUnitForAnObj) {
   const std::string metres = (test::sourceDir() / "tests" / "bad_inputs" / "head_in_metres.obj").string();
-  const test::CliResult r = runCli("info '" + metres + "'");
+  const test::CliResult r = runInfoCli("info '" + metres + "'");
   EXPECT_THAT(r.out, HasSubstr("(the file's units)")) << r.out;
   EXPECT_THAT(r.out, ::testing::Not(HasSubstr("cm"))) << r.out;
 }
@@ -87,7 +87,7 @@ TEST(InfoCommand, FaultyMeshReportsEveryFaultAndExitsThree) {
   const fs::path path = fs::temp_directory_path() / ("myo_info_faulty_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 1 zz 0\n"
                          "f 1 2 3\nf 1 2 4\nf 1 2 9\nf 2 1 3\n";
-  const test::CliResult r = runCli("info --json '" + path.string() + "'");
+  const test::CliResult r = runInfoCli("info --json '" + path.string() + "'");
   fs::remove(path);
   ASSERT_EQ(r.exitCode, 3) << r.out;
   const auto j = nlohmann::json::parse(r.out);
@@ -103,7 +103,7 @@ TEST(InfoCommand, FaultyMeshReportsEveryFaultAndExitsThree) {
 }
 
 TEST(InfoCommand, MissingFileExitsTwoWithMessage) {
-  const test::CliResult r = runCli("info /nonexistent/head.obj");
+  const test::CliResult r = runInfoCli("info /nonexistent/head.obj");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.out, HasSubstr("myoshell: error: /nonexistent/head.obj: cannot open"));
 }

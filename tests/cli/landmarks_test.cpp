@@ -17,7 +17,7 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path landmarksScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_landmarks_" + name);
   fs::remove_all(p);
   fs::create_directories(p);
@@ -26,7 +26,7 @@ fs::path scratch(const std::string& name) {
 
 TEST(LandmarksCommand, IctFileIsUsableAsLandmarksAndComparesWithTheGivenOne) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("ict");
+  const fs::path dir = landmarksScratch("ict");
   const fs::path ict = test::sharedDataDir() / "ict";
   const std::string obj = (ict / "head_skin.obj").string();
   const test::CliResult r = test::runCli("landmarks '" + obj + "' --out lm.json --picture lm.png --json --compare '" +
@@ -59,7 +59,7 @@ TEST(LandmarksCommand, IctFileIsUsableAsLandmarksAndComparesWithTheGivenOne) {
 }
 
 TEST(LandmarksCommand, NotAHeadExitsTwoAndWritesNothing) {
-  const fs::path dir = scratch("plane");
+  const fs::path dir = landmarksScratch("plane");
   const std::string obj = (test::sourceDir() / "tests" / "bad_inputs" / "not_a_head_plane.obj").string();
   const test::CliResult r = test::runCli("landmarks '" + obj + "' --out lm.json", dir);
   EXPECT_EQ(r.exitCode, 2);

@@ -27,7 +27,7 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path poseScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_pose_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
   fs::create_directories(p);
@@ -36,7 +36,7 @@ fs::path scratch(const std::string& name) {
 
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
-std::string readText(const fs::path& p) {
+std::string readPoseText(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -45,7 +45,7 @@ std::string readText(const fs::path& p) {
 
 // The lines of an OBJ that are not vertex positions (faces, UVs, groups, comments), in order.
 std::vector<std::string> nonPositionLines(const fs::path& p) {
-  std::istringstream in(readText(p));
+  std::istringstream in(readPoseText(p));
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);)
     if (line.rfind("v ", 0) != 0 && line.rfind("# written by myoshell", 0) != 0) lines.push_back(line);
@@ -63,7 +63,7 @@ double peakRow(const MatX3& u, int& vertex) {
 const std::string kZygomaticusLeft = "zygomaticus_major_left";
 
 TEST(Pose, NoLoadsGiveTheRestMeshExactly) {
-  const fs::path dir = scratch("rest");
+  const fs::path dir = poseScratch("rest");
   const test::CliResult r = test::runCli("pose --gravity off --json --out " + quoted(dir / "rest.obj"));
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   const Head head = loadDefaultHead();
@@ -80,7 +80,7 @@ TEST(Pose, NoLoadsGiveTheRestMeshExactly) {
 }
 
 TEST(Pose, ZygomaticusLeftIsLinearAgreesWithItsJsonAndKeepsTheHeadsUnits) {
-  const fs::path dir = scratch("zygomaticus");
+  const fs::path dir = poseScratch("zygomaticus");
   const Head head = loadDefaultHead();
   const int n = head.mesh.vertexCount();
   // The built-in head as an OBJ in metres, with its landmark file.
@@ -164,7 +164,7 @@ TEST(Pose, ZygomaticusLeftIsLinearAgreesWithItsJsonAndKeepsTheHeadsUnits) {
 }
 
 TEST(Pose, FaceDownGravityPullsTheFaceOutOfItsPlane) {
-  const fs::path dir = scratch("face_down");
+  const fs::path dir = poseScratch("face_down");
   const test::CliResult r = test::runCli("pose --head-pose 90,0,0 --json --out " + quoted(dir / "down.obj"));
   ASSERT_EQ(r.exitCode, 0) << r.merged;
   const Head head = loadDefaultHead();
@@ -186,7 +186,7 @@ TEST(Pose, FaceDownGravityPullsTheFaceOutOfItsPlane) {
 
 TEST(Pose, IctFolderKeepsTheFilesFacesAndUvs) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("ict");
+  const fs::path dir = poseScratch("ict");
   const fs::path ict = test::sharedDataDir() / "ict";
   const test::CliResult r = test::runCli("pose --head " + quoted(ict) + " --gravity off --set " + kZygomaticusLeft +
                                          "=1 --json --out " + quoted(dir / "smile.obj"));
@@ -211,7 +211,7 @@ TEST(Pose, IctFolderKeepsTheFilesFacesAndUvs) {
 // no muscle is active: the shape is the jawed rest, turned about the pivot the landmarks give.
 TEST(Pose, IctJawOpenMatchesIctsJawOpen) {
   MYO_REQUIRE_SHARED_DATA();
-  const fs::path dir = scratch("jaw");
+  const fs::path dir = poseScratch("jaw");
   const fs::path ict = test::sharedDataDir() / "ict";
   const test::CliResult r =
       test::runCli("pose --head " + quoted(ict) + " --jaw 25.3 --json --out " + quoted(dir / "open.obj"));
@@ -232,7 +232,7 @@ TEST(Pose, IctJawOpenMatchesIctsJawOpen) {
 
 // Bad input: exit 2 with the message, before the model is built, and no file written.
 TEST(Pose, BadInputIsRefusedBeforeAnyWork) {
-  const fs::path dir = scratch("bad");
+  const fs::path dir = poseScratch("bad");
   const std::string out = " --out " + quoted(dir / "shape.obj");
   const std::string names =
       "zygomaticus_major_right, zygomaticus_major_left, corrugator_supercilii_right, corrugator_supercilii_left, "
@@ -286,7 +286,7 @@ TEST(Pose, BadInputIsRefusedBeforeAnyWork) {
 // With --scene the scene's muscles are the model's: a muscle it leaves out is unknown (checked
 // before the build).
 TEST(Pose, SceneMusclesAreTheModels) {
-  const fs::path dir = scratch("scene");
+  const fs::path dir = poseScratch("scene");
   std::ofstream(dir / "one_muscle.json") << R"({"name": "one", "muscles": {"use": ["zygomaticus_major_left"]}})";
   const test::CliResult r =
       test::runCli("pose --scene " + quoted(dir / "one_muscle.json") + " --set depressor_anguli_oris_left=1");
@@ -300,7 +300,7 @@ TEST(Pose, SceneMusclesAreTheModels) {
 // is only in the whole face: it lifts the skin above the brows (+y of the built-in head, cm), and
 // the built-in ten (--library builtin) do not know it.
 TEST(Pose, TheWholeFaceIsTheDefaultAndBuiltinIsTheTen) {
-  const fs::path dir = scratch("library");
+  const fs::path dir = poseScratch("library");
   const test::CliResult face = test::runCli("pose --set frontalis_medial_left=1 --gravity off --json --out " +
                                             quoted(dir / "brow.obj"));
   ASSERT_EQ(face.exitCode, 0) << face.merged;

@@ -34,17 +34,17 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path rigScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_rig_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
   fs::create_directories(p);
   return p;
 }
 
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string rigQuoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 void writeText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
-std::string readText(const fs::path& p) {
+std::string readRigText(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -107,10 +107,10 @@ void expectPairsMirror(const RigFile& rig, const std::string& what, const std::m
 }
 
 TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
-  const fs::path dir = scratch("roundtrip");
+  const fs::path dir = rigScratch("roundtrip");
   writeText(dir / "map.json", kMap);
   const test::CliResult made =
-      test::runCli("rig --head default --map " + quoted(dir / "map.json") + " --out " + quoted(dir / "rig.glb") + " --json");
+      test::runCli("rig --head default --map " + rigQuoted(dir / "map.json") + " --out " + rigQuoted(dir / "rig.glb") + " --json");
   ASSERT_EQ(made.exitCode, 0) << made.merged;
   const nlohmann::json report = nlohmann::json::parse(made.out);
   EXPECT_EQ(report["shapes_made"], 8);
@@ -118,9 +118,9 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
 
   // The shapes are settled side by side (every core by default): on one thread the rig is the same bytes.
   const test::CliResult serialRig =
-      test::runCli("rig --head default --map " + quoted(dir / "map.json") + " --threads 1 --out " + quoted(dir / "rig1.glb"));
+      test::runCli("rig --head default --map " + rigQuoted(dir / "map.json") + " --threads 1 --out " + rigQuoted(dir / "rig1.glb"));
   ASSERT_EQ(serialRig.exitCode, 0) << serialRig.merged;
-  EXPECT_TRUE(readText(dir / "rig1.glb") == readText(dir / "rig.glb"));
+  EXPECT_TRUE(readRigText(dir / "rig1.glb") == readRigText(dir / "rig.glb"));
 
   const RigFile rig = readRig((dir / "rig.glb").string());
   EXPECT_EQ(rig.names, arkitNames());
@@ -149,8 +149,8 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
   EXPECT_EQ(rig.delta("cheekPuff").cwiseAbs().maxCoeff(), 0.0);
 
   // fit-rig on the physics-made rig, no sparsity: every activation back to 1e-3.
-  const test::CliResult fitted = test::runCli("fit-rig " + quoted(dir / "rig.glb") + " --head default --lambda 0 --out " +
-                                              quoted(dir / "back.json") + " --report " + quoted(dir / "report") + " --json");
+  const test::CliResult fitted = test::runCli("fit-rig " + rigQuoted(dir / "rig.glb") + " --head default --lambda 0 --out " +
+                                              rigQuoted(dir / "back.json") + " --report " + rigQuoted(dir / "report") + " --json");
   ASSERT_EQ(fitted.exitCode, 0) << fitted.merged;
   const nlohmann::json j = nlohmann::json::parse(fitted.out);
   ASSERT_EQ(j["shapes"].size(), 43u);  // the rig's 52 but the 8 eye turns and cheekPuff, derived, not fitted
@@ -194,10 +194,10 @@ TEST(CliRig, AMapBecomesAnArkitRigAndFitRigGivesTheMapBack) {
   EXPECT_TRUE(fs::exists(dir / "report" / "mouthSmileLeft.png"));
   EXPECT_FALSE(fs::exists(dir / "report" / "eyeLookInLeft.png"));
   // The shapes are fitted side by side (every core by default): on one thread the map is the same bytes.
-  const test::CliResult serial = test::runCli("fit-rig " + quoted(dir / "rig.glb") + " --head default --lambda 0 --threads 1 --out " +
-                                              quoted(dir / "back1.json"));
+  const test::CliResult serial = test::runCli("fit-rig " + rigQuoted(dir / "rig.glb") + " --head default --lambda 0 --threads 1 --out " +
+                                              rigQuoted(dir / "back1.json"));
   ASSERT_EQ(serial.exitCode, 0) << serial.merged;
-  EXPECT_EQ(readText(dir / "back1.json"), readText(dir / "back.json"));
+  EXPECT_EQ(readRigText(dir / "back1.json"), readRigText(dir / "back.json"));
   fs::remove_all(dir);
 }
 
@@ -259,15 +259,15 @@ TEST(CliRig, TheShippedIctMapNamesOnlyTheModelsMusclesAndEveryReachableShapeIsFi
 // its corrective mouthClose rides on the same jaw, jawLeft shifts the chin to the subject's left; the
 // forehead stays put.
 TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
-  const fs::path dir = scratch("jaw");
-  const test::CliResult made = test::runCli("rig --head default --json --out " + quoted(dir / "rig.glb"));
+  const fs::path dir = rigScratch("jaw");
+  const test::CliResult made = test::runCli("rig --head default --json --out " + rigQuoted(dir / "rig.glb"));
   ASSERT_EQ(made.exitCode, 0) << made.merged;
   EXPECT_EQ(nlohmann::json::parse(made.out).at("map"), "assets/retarget/arkit_ict_face.json");
   const test::CliResult named = test::runCli("rig --head default --library face --map " +
-                                             quoted(test::sourceDir() / "assets/retarget/arkit_ict_face.json") + " --out " +
-                                             quoted(dir / "named.glb"));
+                                             rigQuoted(test::sourceDir() / "assets/retarget/arkit_ict_face.json") + " --out " +
+                                             rigQuoted(dir / "named.glb"));
   ASSERT_EQ(named.exitCode, 0) << named.merged;
-  EXPECT_TRUE(readText(dir / "rig.glb") == readText(dir / "named.glb"));
+  EXPECT_TRUE(readRigText(dir / "rig.glb") == readRigText(dir / "named.glb"));
   const RigFile made_ = readRig((dir / "rig.glb").string());
   {
     // Every target moves at least 1 mm but tongueOut (no tongue).
@@ -341,16 +341,16 @@ TEST(CliRig, TheShippedFaceMapIsTheDefaultAndItsJawShapesMoveTheJaw) {
 // (whole face; the frown's fit uses the lower ring at 0.078), mouthLeft 0.117, mouthUpperUp 0.139,
 // mouthPress 0.073 (built-in ten).
 TEST(CliRig, TheShippedMapsPairsMirrorOnBothHeads) {
-  const fs::path dir = scratch("mirror");
+  const fs::path dir = rigScratch("mirror");
   auto make = [&](const std::string& head, const std::string& library) {
     const fs::path out = dir / (library + ".glb");
-    const test::CliResult r = test::runCli("rig --head " + head + " --library " + library + " --out " + quoted(out));
+    const test::CliResult r = test::runCli("rig --head " + head + " --library " + library + " --out " + rigQuoted(out));
     EXPECT_EQ(r.exitCode, 0) << r.merged;
     return readRig(out.string());
   };
   expectPairsMirror(make("default", "builtin"), "built-in head, built-in ten");
   MYO_REQUIRE_SHARED_DATA();
-  const std::string ict = quoted(test::sharedDataDir() / "ict");
+  const std::string ict = rigQuoted(test::sharedDataDir() / "ict");
   // The mouth's rings are their own mirror images (docs/muscles.md, "A midline ring is its own
   // mirror"): every pair within 5 % on ICT too (mouthPress was 0.079, mouthFrown 0.051 before).
   expectPairsMirror(make(ict, "face"), "ICT, whole face");
@@ -359,49 +359,49 @@ TEST(CliRig, TheShippedMapsPairsMirrorOnBothHeads) {
 }
 
 TEST(CliRig, BadArgumentsFailBeforeTheBuildWithExactMessages) {
-  const fs::path dir = scratch("bad");
+  const fs::path dir = rigScratch("bad");
   writeText(dir / "map.json", kMap);
   writeText(dir / "unknown_muscle.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "jawOpen", "activations": {"masseter": 1}}]})");
   auto run = [&](const std::string& args) { return test::runCli(args); };
-  test::CliResult r = run("rig --head default --map " + quoted(dir / "map.json") + " --out " + quoted(dir / "rig.obj"));
+  test::CliResult r = run("rig --head default --map " + rigQuoted(dir / "map.json") + " --out " + rigQuoted(dir / "rig.obj"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("--out: a rig is written as a glTF binary; give a file name ending in .glb"));
-  r = run("rig --head default --map " + quoted(dir / "map.json") + " --out " + quoted(dir / "nowhere" / "rig.glb"));
+  r = run("rig --head default --map " + rigQuoted(dir / "map.json") + " --out " + rigQuoted(dir / "nowhere" / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("--out: no such folder"));
-  r = run("rig --head default --map " + quoted(dir / "unknown_muscle.json") + " --out " + quoted(dir / "rig.glb"));
+  r = run("rig --head default --map " + rigQuoted(dir / "unknown_muscle.json") + " --out " + rigQuoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("unknown_muscle.json:1:98: key 'shapes[0].activations.masseter': unknown muscle 'masseter'"));
   writeText(dir / "bad_jaw.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "jawOpen", "activations": {}, "jaw": {"twist": 3}}]})");
-  r = run("rig --head default --map " + quoted(dir / "bad_jaw.json") + " --out " + quoted(dir / "rig.glb"));
+  r = run("rig --head default --map " + rigQuoted(dir / "bad_jaw.json") + " --out " + rigQuoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("bad_jaw.json: shape jawOpen: jaw value 'twist' is not open, forward or lateral"));
   writeText(dir / "wide_jaw.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "jawOpen", "activations": {}, "jaw": {"open": 70}}]})");
-  r = run("rig --head default --map " + quoted(dir / "wide_jaw.json") + " --out " + quoted(dir / "rig.glb"));
+  r = run("rig --head default --map " + rigQuoted(dir / "wide_jaw.json") + " --out " + rigQuoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("shape jawOpen: jaw: open 70 degrees is outside [0, 40] degrees"));
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
   writeText(dir / "face_map.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "shapes": [{"name": "mouthShrugLower", "activations": {"mentalis_left": 1}}]})");
-  r = run("rig --head default --library builtin --map " + quoted(dir / "face_map.json") + " --out " + quoted(dir / "rig.glb"));
+  r = run("rig --head default --library builtin --map " + rigQuoted(dir / "face_map.json") + " --out " + rigQuoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("face_map.json: the map uses the whole face's muscles (mentalis_left, …): give --library face"));
   // A map that records its library is refused for another, naming both (before any muscle name).
   writeText(dir / "recorded_face_map.json",
             R"({"format": "myoshell-retarget-map", "version": 1, "library": "face", "shapes": [{"name": "mouthSmileLeft", "activations": {"zygomaticus_major_left": 1}}]})");
-  r = run("rig --head default --library builtin --map " + quoted(dir / "recorded_face_map.json") + " --out " + quoted(dir / "rig.glb"));
+  r = run("rig --head default --library builtin --map " + rigQuoted(dir / "recorded_face_map.json") + " --out " + rigQuoted(dir / "rig.glb"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("recorded_face_map.json: the map is for the muscle library 'face', and the head's is 'builtin': "
                                "give --library face"));
   EXPECT_FALSE(fs::exists(dir / "rig.glb"));
-  r = run("fit-rig " + quoted(dir / "missing.glb") + " --head default");
+  r = run("fit-rig " + rigQuoted(dir / "missing.glb") + " --head default");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("missing.glb"));
-  r = run("fit-rig " + quoted(dir / "map.json") + " --head default --lambda -1");
+  r = run("fit-rig " + rigQuoted(dir / "map.json") + " --head default --lambda -1");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_THAT(r.err, HasSubstr("--lambda: '-1' is not a number ≥ 0"));
   fs::remove_all(dir);

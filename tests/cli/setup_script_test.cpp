@@ -36,7 +36,7 @@ struct ScriptRun {
   std::string err;
 };
 
-std::string readFile(const fs::path& p) {
+std::string readScriptFile(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -102,12 +102,12 @@ class SetupScript : public ::testing::Test {
     const int status = std::system(cmd.c_str());
     ScriptRun r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readFile(out);
-    r.err = readFile(err);
+    r.out = readScriptFile(out);
+    r.err = readScriptFile(err);
     return r;
   }
   // What the stand-ins were asked to do since the test began ("" when nothing called them).
-  static std::string calls() { return fs::exists(dir_ / "calls.txt") ? readFile(dir_ / "calls.txt") : ""; }
+  static std::string calls() { return fs::exists(dir_ / "calls.txt") ? readScriptFile(dir_ / "calls.txt") : ""; }
 
   // A --list run's packages, checked: exit 0, nothing on stderr, no stand-in called, one Debian
   // package name a line (Debian Policy 5.6.1: lower-case letters, digits, + - and ., at least two
@@ -175,7 +175,7 @@ ScriptRun makeDryRun(const std::string& target) {
   const int status = std::system(cmd.c_str());
   ScriptRun r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = readFile(out);
+  r.out = readScriptFile(out);
   fs::remove(out);
   return r;
 }

@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string readFile(const fs::path& p) {
+std::string readCacheFile(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -100,7 +100,7 @@ TEST_F(SharedCache, EightColdProcessesKilledAndRestartedAtRandomComputeEachBasis
   for (const auto& e : fs::directory_iterator(dir_ / "ref"))
     if (e.path().extension() == ".pc2") refPc2 = e.path();
   ASSERT_FALSE(refPc2.empty());
-  const std::string refBytes = readFile(refPc2);
+  const std::string refBytes = readCacheFile(refPc2);
   ASSERT_GT(refBytes.size(), 100u);
 
   // Eight at once on one cold cache; four of them killed at random moments within the cold start's
@@ -179,14 +179,14 @@ TEST_F(SharedCache, EightColdProcessesKilledAndRestartedAtRandomComputeEachBasis
     std::map<std::string, int> statuses;
     for (int i = 0; i < kJobs; ++i) {
       ASSERT_TRUE(WIFEXITED(jobs[i].status) && WEXITSTATUS(jobs[i].status) == 0)
-          << "job " << i << ": " << readFile(errOf(i));
-      const nlohmann::json j = nlohmann::json::parse(readFile(jsonOf(i)));
-      EXPECT_EQ(readFile(dir_ / ("out" + std::to_string(i)) / refPc2.filename()), refBytes) << "job " << i;
+          << "job " << i << ": " << readCacheFile(errOf(i));
+      const nlohmann::json j = nlohmann::json::parse(readCacheFile(jsonOf(i)));
+      EXPECT_EQ(readCacheFile(dir_ / ("out" + std::to_string(i)) / refPc2.filename()), refBytes) << "job " << i;
       fs::remove_all(dir_ / ("out" + std::to_string(i)));  // the next round starts with no output either
       statuses[j.at("basis_cache").get<std::string>()]++;
       for (const std::string& k : j.at("basis_cache_computed")) computedBy[k]++;
       EXPECT_GT(j.at("peak_rss_mb").get<double>(), 1.0);
-      EXPECT_EQ(j.at("basis_cache_counts").at("rejected"), 0) << "no half-written entry was met: " << readFile(errOf(i));
+      EXPECT_EQ(j.at("basis_cache_counts").at("rejected"), 0) << "no half-written entry was met: " << readCacheFile(errOf(i));
     }
     for (const auto& [key, n] : computedBy) EXPECT_EQ(n, 1) << "basis " << key << " computed by " << n << " runs";
     for (const auto& [key, n] : computedBy)
@@ -202,7 +202,7 @@ TEST_F(SharedCache, EightColdProcessesKilledAndRestartedAtRandomComputeEachBasis
       const std::string hex = e.path().stem().string();
       std::string why;
       EXPECT_TRUE(readBasisFile(e.path(), keyFromHex(hex), &why).has_value()) << name << ": " << why;
-      EXPECT_EQ(readFile(e.path()), readFile(dir_ / "ref_cache" / name)) << name;
+      EXPECT_EQ(readCacheFile(e.path()), readCacheFile(dir_ / "ref_cache" / name)) << name;
       entries.insert(hex);
     }
     EXPECT_EQ(entries, std::set<std::string>(refKeys.begin(), refKeys.end()));
@@ -247,7 +247,7 @@ TEST_F(SharedCache, AReadOnlyCacheFolderIsReadWithoutLocksAndNeverWritten) {
   EXPECT_EQ(j.at("basis_cache"), "hit");
   EXPECT_EQ(j.at("basis_cache_counts").at("read_only"), true);
   EXPECT_EQ(hit.err.find("warning"), std::string::npos) << hit.err;
-  EXPECT_EQ(readFile(dir_ / "hit" / "take.pc2"), readFile(dir_ / "warm" / "take.pc2"));
+  EXPECT_EQ(readCacheFile(dir_ / "hit" / "take.pc2"), readCacheFile(dir_ / "warm" / "take.pc2"));
 
   // The whole face's muscles: other bases, computed and not kept.
   std::string args = driveArgs(dir_, dir_ / "miss", cache);

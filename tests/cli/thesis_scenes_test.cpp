@@ -89,7 +89,7 @@ double restInsertionToOrigin(const FaceModel& model, int m) {
 // Every scene file is valid (`myoshell check`), and one runs end to end through `myoshell run`.
 
 // The CLI's stdout and stderr together.
-test::CliResult runCli(const std::string& args) {
+test::CliResult runThesisCli(const std::string& args) {
   test::CliResult r = test::runCli(args);
   r.out = r.merged;
   return r;
@@ -106,7 +106,7 @@ TEST(ThesisScenes, EverySceneChecks) {
                   test::sharedDataDir().string().c_str());
       continue;
     }
-    const test::CliResult r = runCli("check '" + scenePath(n) + "'");
+    const test::CliResult r = runThesisCli("check '" + scenePath(n) + "'");
     EXPECT_EQ(r.exitCode, 0) << n << ": " << r.out;
   }
 }
@@ -115,7 +115,7 @@ TEST(ThesisScenes, Fig17RunsThroughTheCli) {
   const fs::path out = fs::path(testing::TempDir()) / "myo_thesis_run_fig17";
   fs::remove_all(out);
   const test::CliResult r =
-      runCli("run '" + scenePath("fig17_contract") + "' --out '" + out.string() + "' --json --cache '" +
+      runThesisCli("run '" + scenePath("fig17_contract") + "' --out '" + out.string() + "' --json --cache '" +
              cacheDir().string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);

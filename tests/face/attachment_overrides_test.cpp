@@ -9,7 +9,7 @@
 namespace myo {
 namespace {
 
-std::string errorOf(const std::string& text, int vertexCount = 468) {
+std::string attachmentErrorOf(const std::string& text, int vertexCount = 468) {
   try {
     parseAttachmentOverrides(text, vertexCount, "att.json");
   } catch (const InputError& e) {
@@ -36,30 +36,30 @@ TEST(AttachmentOverrides, EachEntrySetsItsVerticesInOrder) {
 }
 
 TEST(AttachmentOverrides, ErrorsNameTheFileLineColumnAndFault) {
-  EXPECT_EQ(errorOf("{\"overrides\": [\n  {\"vertices\": [1, 468], \"k_att\": 1e5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [\n  {\"vertices\": [1, 468], \"k_att\": 1e5}]}"),
             "att.json:2:20: key 'overrides[0].vertices[1]': vertex 468 is outside [0, 468) of the head");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": -5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": -5}]}"),
             "att.json:1:43: key 'overrides[0].k_att': must be > 0 (got -5)");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": 0}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": 0}]}"),
             "att.json:1:43: key 'overrides[0].k_att': must be > 0 (got 0)");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": 5, \"held\": 1}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": 5, \"held\": 1}]}"),
             "att.json:1:46: key 'overrides[0].held': unknown key");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": \"1\", \"k_att\": 5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": \"1\", \"k_att\": 5}]}"),
             "att.json:1:29: key 'overrides[0].vertices': must be a list of vertex indices");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": \"5\"}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [1], \"k_att\": \"5\"}]}"),
             "att.json:1:43: key 'overrides[0].k_att': must be a number");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [1.5], \"k_att\": 5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [1.5], \"k_att\": 5}]}"),
             "att.json:1:30: key 'overrides[0].vertices[0]': must be an integer ≥ 0 (got 1.5)");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [-1], \"k_att\": 5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [-1], \"k_att\": 5}]}"),
             "att.json:1:30: key 'overrides[0].vertices[0]': must be an integer ≥ 0 (got -1)");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [], \"k_att\": 5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [], \"k_att\": 5}]}"),
             "att.json:1:29: key 'overrides[0].vertices': must name at least one vertex");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [2], \"k_att\": 5}, {\"vertices\": [2], \"k_att\": 6}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [2], \"k_att\": 5}, {\"vertices\": [2], \"k_att\": 6}]}"),
             "att.json:1:61: key 'overrides[1].vertices[0]': vertex 2 is already set by overrides[0]");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"k_att\": 5}]}"), "att.json:1:16: key 'overrides[0].vertices': missing required key");
-  EXPECT_EQ(errorOf("{\"overrides\": {\"vertices\": [1]}}"), "att.json:1:15: key 'overrides': must be a list of {vertices, k_att}");
-  EXPECT_EQ(errorOf("[1, 2]"), "att.json:1:1: key '(document)': must be an object");
-  EXPECT_EQ(errorOf("{\"overrides\": [{\"vertices\": [1e300], \"k_att\": 5}]}"),
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"k_att\": 5}]}"), "att.json:1:16: key 'overrides[0].vertices': missing required key");
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": {\"vertices\": [1]}}"), "att.json:1:15: key 'overrides': must be a list of {vertices, k_att}");
+  EXPECT_EQ(attachmentErrorOf("[1, 2]"), "att.json:1:1: key '(document)': must be an object");
+  EXPECT_EQ(attachmentErrorOf("{\"overrides\": [{\"vertices\": [1e300], \"k_att\": 5}]}"),
             "att.json:1:30: key 'overrides[0].vertices[0]': vertex 1e300 is outside [0, 468) of the head");
 }
 

@@ -31,13 +31,13 @@
 namespace myo {
 namespace {
 
-std::string sci(double v) {
+std::string penaltySci(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.3g", v);
   return b;
 }
 
-bool isMouthMuscle(const std::string& name) {
+bool isPenaltyMouthMuscle(const std::string& name) {
   for (const char* part : {"oris", "zygomaticus", "risorius", "buccinator", "depressor_anguli", "depressor_labii",
                            "mentalis_left", "mentalis_right", "platysma", "levator_labii_superioris_left", "levator_labii_superioris_right"})
     if (name.find(part) != std::string::npos) return true;
@@ -62,7 +62,7 @@ std::vector<Pose> contactSweep(const AnatomicalFace& face) {
   std::vector<std::vector<int>> cases = {{}};
   std::vector<int> all;
   for (int m = 0; m < face.muscleCount(); ++m)
-    if (isMouthMuscle(face.muscleName(m))) cases.push_back({m}), all.push_back(m);
+    if (isPenaltyMouthMuscle(face.muscleName(m))) cases.push_back({m}), all.push_back(m);
   cases.push_back(all);
   for (double open : {0.0, 10.0, 20.0, 30.0})
     for (const std::vector<int>& active : cases) {
@@ -120,7 +120,7 @@ TEST_F(ContactPenaltyIct, TheBasisHoldsTheContactPatternsAndThePenaltyItsCandida
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-6);
   }
-  RecordProperty("pattern_response_relative_error", sci(worst));
+  RecordProperty("pattern_response_relative_error", penaltySci(worst));
 }
 
 TEST_F(ContactPenaltyIct, TheReducedPenaltyForceIsTheGradientOfItsEnergy) {
@@ -160,7 +160,7 @@ TEST_F(ContactPenaltyIct, TheReducedPenaltyForceIsTheGradientOfItsEnergy) {
     worst = std::max(worst, std::abs(fd - an) / std::abs(an));
     EXPECT_NEAR(fd, an, 1e-5 * std::abs(an)) << "trial " << trial;
   }
-  RecordProperty("fd_relative_error", sci(worst));
+  RecordProperty("fd_relative_error", penaltySci(worst));
   // The Gauss–Newton stiffness is symmetric and positive semidefinite, and it is the derivative of
   // the force along q up to the constraints' curvature (small against 1 where δ ≪ the radius).
   EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
@@ -271,7 +271,7 @@ TEST_F(ContactPenaltyIct, TheLinearlyImplicitPenaltyInTheStepSettlesWhereTheStat
   runToRest(skin, p, static_cast<int>(1.5 / skin->settings().dt), &peak, &u);
   ASSERT_TRUE(std::isfinite(peak) && peak < 100.0) << "the step blew up";
   const double err = (u - settled.u).norm() / settled.u.norm();
-  RecordProperty("step_vs_settle_relative_difference", sci(err));
+  RecordProperty("step_vs_settle_relative_difference", penaltySci(err));
   EXPECT_LT(err, 0.02);
   // And the contact the run leaves before projection is the settle's, not the free shape's.
   MatX3 P;
@@ -312,7 +312,7 @@ TEST(ContactPenaltyOnTheBuiltInHead, ALipMeetingTheTeethInMotionDoesNotBounce) {
     face.placeSkin(s.u, smile.jaw, smile.activations, settled);
     const MatX3& rest = face.head().mesh.V;
     const double error = (stepped - settled).norm() / (settled - rest).norm();
-    RecordProperty("stepped_vs_settled", sci(error));
+    RecordProperty("stepped_vs_settled", penaltySci(error));
     EXPECT_LT(error, 1e-3);
   }
 }

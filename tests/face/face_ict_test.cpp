@@ -19,7 +19,7 @@
 namespace myo {
 namespace {
 
-Head ictHead() {
+Head thesisIctHead() {
   const auto dir = test::sharedDataDir() / "ict";
   return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string(),
                   (dir / "rigid_vertices.json").string());
@@ -33,7 +33,7 @@ FaceModelSettings ictSettings() {
 }
 
 std::shared_ptr<const FaceModel> ictFace() {
-  static const auto model = std::make_shared<const FaceModel>(ictHead(), thesisMuscleDefs(), ictSettings(), test::sharedBasisCache());
+  static const auto model = std::make_shared<const FaceModel>(thesisIctHead(), thesisMuscleDefs(), ictSettings(), test::sharedBasisCache());
   return model;
 }
 
@@ -141,7 +141,7 @@ TEST(IctFace, DepressorLabiiLowersTheLowerLipAndCorrugatorPullsTheBrowDownAndIn)
 
 TEST(IctFace, WithTheSkullMuscleOriginsSitOnTheBone) {
   MYO_REQUIRE_SHARED_DATA();
-  Head head = ictHead();
+  Head head = thesisIctHead();
   head.skull = readObj((test::sharedDataDir() / "skull" / "skull_in_ict_head.obj").string());
   const MatX3 skullNormals = vertexNormals(head.skull.V, head.skull.F);
   for (const MuscleDef& def : thesisMuscleDefs()) {
@@ -167,7 +167,7 @@ TEST(IctFace, MusclesAndFieldsMoveWithTheHeadAndItsUnits) {
   const double s = 0.01;
   const Mat3 R = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Vec3(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
   const Vec3 t(0.3, -1.2, 2.5);
-  Head moved = ictHead();
+  Head moved = thesisIctHead();
   for (Eigen::Index v = 0; v < moved.mesh.V.rows(); ++v)
     moved.mesh.V.row(v) = (s * R * Vec3(moved.mesh.V.row(v)) + t).transpose();
   FaceModelSettings a = ictSettings(), b = ictSettings();
@@ -178,7 +178,7 @@ TEST(IctFace, MusclesAndFieldsMoveWithTheHeadAndItsUnits) {
     m->density /= s * s * s * s;
   }
   const std::vector<MuscleDef> defs = {thesisMuscleDefs()[0], thesisMuscleDefs()[6]};
-  const auto original = std::make_shared<const FaceModel>(ictHead(), defs, a);
+  const auto original = std::make_shared<const FaceModel>(thesisIctHead(), defs, a);
   const auto transformed = std::make_shared<const FaceModel>(moved, defs, b);
   for (size_t m = 0; m < defs.size(); ++m) {
     const MatX3& x = original->muscles()[m].muscle.mesh.V;

@@ -146,7 +146,7 @@ TEST(FacsMap, YamlReadsAndOpenfaceDefaultsToOpenFacesList) {
   EXPECT_EQ(map.entries[1].muscles[0].second, 0.5);
 }
 
-std::string error(const std::string& text, const std::vector<std::string>& muscles = {}) {
+std::string facsError(const std::string& text, const std::vector<std::string>& muscles = {}) {
   try {
     parseFacsMap(text, "map.json", muscles);
   } catch (const InputError& e) {
@@ -156,67 +156,67 @@ std::string error(const std::string& text, const std::vector<std::string>& muscl
 }
 
 TEST(FacsMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1}}], "version": 1})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1}}], "version": 1})"),
             "map.json:1:57: key 'version': unknown key");
-  EXPECT_EQ(error(R"({"note": "x"})"), "map.json:1:1: key 'aus': missing required key");
-  EXPECT_EQ(error(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {"pitch": 50}}]})"),
+  EXPECT_EQ(facsError(R"({"note": "x"})"), "map.json:1:1: key 'aus': missing required key");
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {"pitch": 50}}]})"),
             "map.json:1:67: key 'aus[0].gaze.pitch': must lie in [-45, 45] (got 50)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {"roll": 5}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {"roll": 5}}]})"),
             "map.json:1:58: key 'aus[0].gaze.roll': unknown key");
-  EXPECT_EQ(error(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 63, "name": "x", "muscles": {}, "gaze": {}}]})"),
             "map.json:1:57: key 'aus[0].gaze': turns nothing: give pitch or yaw, or leave the key out");
-  EXPECT_EQ(error(R"({"aus": []})"), "map.json:1:9: key 'aus': must hold at least one action unit");
-  EXPECT_EQ(error(R"({"aus": {"au": 1}})"), "map.json:1:9: key 'aus': must be a list of {au, name, muscles, …}");
-  EXPECT_EQ(error(R"({"aus": [{"au": 0, "name": "x", "muscles": {"a": 1}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": []})"), "map.json:1:9: key 'aus': must hold at least one action unit");
+  EXPECT_EQ(facsError(R"({"aus": {"au": 1}})"), "map.json:1:9: key 'aus': must be a list of {au, name, muscles, …}");
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 0, "name": "x", "muscles": {"a": 1}}]})"),
             "map.json:1:17: key 'aus[0].au': must be a positive integer up to 999 (got 0)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 1.5, "name": "x", "muscles": {"a": 1}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 1.5, "name": "x", "muscles": {"a": 1}}]})"),
             "map.json:1:17: key 'aus[0].au': must be a positive integer up to 999 (got 1.5)");
-  EXPECT_EQ(error(R"({"aus": [{"au": "12", "name": "x", "muscles": {"a": 1}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": "12", "name": "x", "muscles": {"a": 1}}]})"),
             "map.json:1:17: key 'aus[0].au': must be a number");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "a", "muscles": {"a": 1}},)"
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "a", "muscles": {"a": 1}},)"
                   "\n"
                   R"(         {"au": 12.0, "name": "b", "muscles": {"b": 1}}]})"),
             "map.json:2:17: key 'aus[1].au': AU12 is already given by aus[0]");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "", "muscles": {"a": 1}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "", "muscles": {"a": 1}}]})"),
             "map.json:1:29: key 'aus[0].name': must name the action unit (FACS's name, e.g. \"lip corner puller\")");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "openface": false, "muscles": {"a": 1}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "openface": false, "muscles": {"a": 1}}]})"),
             "map.json:1:46: key 'aus[0].openface': AU12 is one of OpenFace 2.0's intensity AUs: write true");
-  EXPECT_EQ(error(R"({"aus": [{"au": 11, "name": "x", "openface": true, "muscles": {"a": 1}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 11, "name": "x", "openface": true, "muscles": {"a": 1}}]})"),
             "map.json:1:46: key 'aus[0].openface': OpenFace 2.0 estimates no intensity for AU11 (its AUs: AU1, AU2, "
             "AU4, AU5, AU6, AU7, AU9, AU10, AU12, AU14, AU15, AU17, AU20, AU23, AU25, AU26, AU45)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1.5}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1.5}}]})"),
             "map.json:1:51: key 'aus[0].muscles.a': weight 1.5 is outside [0, 1]");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": -0.25}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": -0.25}}]})"),
             "map.json:1:51: key 'aus[0].muscles.a': weight -0.25 is outside [0, 1]");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"": 0.5}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"": 0.5}}]})"),
             "map.json:1:46: key 'aus[0].muscles.': a muscle name cannot be empty");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 0.5, "a": 0.5}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 0.5, "a": 0.5}}]})"),
             "map.json:1:56: key 'aus[0].muscles.a': is given twice");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"zygomaticus_major": 1}}]})",
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"zygomaticus_major": 1}}]})",
                   {"zygomaticus_major_left", "zygomaticus_major_right", "procerus"}),
             "map.json:1:46: key 'aus[0].muscles.zygomaticus_major': unknown muscle 'zygomaticus_major' (did you mean "
             "zygomaticus_major_left, zygomaticus_major_right?)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"frontalis": 1}}]})", {"procerus", "mentalis_left"}),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"frontalis": 1}}]})", {"procerus", "mentalis_left"}),
             "map.json:1:46: key 'aus[0].muscles.frontalis': unknown muscle 'frontalis' (the muscles: procerus, "
             "mentalis_left)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {"a": 1}, "needs": "jaw"}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 26, "name": "x", "muscles": {"a": 1}, "needs": "jaw"}]})"),
             "map.json:1:64: key 'aus[0].needs': an AU with muscles, a jaw or a gaze needs nothing more: give those, or needs, not "
             "both");
-  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 26, "name": "x", "muscles": {}}]})"),
             "map.json:1:45: key 'aus[0].muscles': drives no muscle: list its muscles, give its jaw or gaze, or say in 'needs' "
             "what the model lacks");
-  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 50}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 50}}]})"),
             "map.json:1:65: key 'aus[0].jaw.open': must lie in [0, 40] (got 50)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {}}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {}}]})"),
             "map.json:1:56: key 'aus[0].jaw': moves nothing: give open, forward or lateral, or leave the key out");
-  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 5}, "needs": "lids"}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "jaw": {"open": 5}, "needs": "lids"}]})"),
             "map.json:1:78: key 'aus[0].needs': an AU with muscles, a jaw or a gaze needs nothing more: give those, or needs, "
             "not both");
-  EXPECT_EQ(error(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "needs": ""}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 26, "name": "x", "muscles": {}, "needs": ""}]})"),
             "map.json:1:58: key 'aus[0].needs': must say what the model lacks (e.g. \"lids\")");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": [1]}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": [1]}]})"),
             "map.json:1:45: key 'aus[0].muscles': must be an object of muscle: weight ({} when the AU drives none yet)");
-  EXPECT_EQ(error(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1}, "weight": 1}]})"),
+  EXPECT_EQ(facsError(R"({"aus": [{"au": 12, "name": "x", "muscles": {"a": 1}, "weight": 1}]})"),
             "map.json:1:55: key 'aus[0].weight': unknown key");
 }
 

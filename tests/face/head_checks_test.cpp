@@ -18,7 +18,7 @@ namespace {
 
 // The message of the InputError `f` throws ("" when it throws none).
 template <class F>
-std::string errorOf(F&& f) {
+std::string headCheckErrorOf(F&& f) {
   try {
     f();
   } catch (const InputError& e) {
@@ -83,7 +83,7 @@ TEST(LengthUnit, ParsesNamesAndScales) {
   EXPECT_EQ(centimetresPer(LengthUnit::m), 100.0);
   EXPECT_EQ(centimetresPer(LengthUnit::mm), 0.1);
   EXPECT_EQ(centimetresPer(LengthUnit::cm), 1.0);
-  EXPECT_EQ(errorOf([] { parseLengthUnit("inch", "scene.json:4:14"); }),
+  EXPECT_EQ(headCheckErrorOf([] { parseLengthUnit("inch", "scene.json:4:14"); }),
             "scene.json:4:14: unknown length unit 'inch' (use m, mm or cm)");
 }
 
@@ -116,7 +116,7 @@ TEST(HeadChecks, HeadInMetresIsRefusedWithTheUnitsProposal) {
   s.mesh.V *= 0.01;  // the same face written in metres
   // The landmark checks are in face-frame coordinates: a scaled head still fits its landmarks.
   EXPECT_NO_THROW(checkLandmarksFitMesh(s.mesh, s.landmarks));
-  EXPECT_EQ(errorOf([&] { checkHeadScale(s.mesh, s.landmarks); }),
+  EXPECT_EQ(headCheckErrorOf([&] { checkHeadScale(s.mesh, s.landmarks); }),
             "synthetic.obj: head scale: outer-canthus distance (right_eye_outer to left_eye_outer) is 0.09 "
             "cm with the mesh read in cm, outside the 5-15 cm of a human face (in m it would be 9 cm, in "
             "mm it would be 0.009 cm); give the mesh's unit with --units m|mm|cm (scene key head.units): "
@@ -128,12 +128,12 @@ TEST(HeadChecks, HeadInMetresIsRefusedWithTheUnitsProposal) {
 TEST(HeadChecks, HeadInMillimetresProposesMm) {
   SyntheticFace s = syntheticFace();
   s.mesh.V *= 10.0;
-  const std::string e = errorOf([&] { checkHeadScale(s.mesh, s.landmarks); });
+  const std::string e = headCheckErrorOf([&] { checkHeadScale(s.mesh, s.landmarks); });
   EXPECT_NE(e.find("is 90 cm with the mesh read in cm"), std::string::npos) << e;
   EXPECT_NE(e.find("in mm it would be 9 cm"), std::string::npos) << e;
   EXPECT_NE(e.find("probably --units mm"), std::string::npos) << e;
   // The wrong unit given: a head in mm read as m measures 900 cm; the message says so.
-  const std::string wrong = errorOf([&] { checkHeadScale(s.mesh, s.landmarks, LengthUnit::m); });
+  const std::string wrong = headCheckErrorOf([&] { checkHeadScale(s.mesh, s.landmarks, LengthUnit::m); });
   EXPECT_NE(wrong.find("is 90 cm with the mesh read in m"), std::string::npos) << wrong;
   EXPECT_NE(wrong.find("in cm it would be 0.9 cm"), std::string::npos) << wrong;
   EXPECT_NE(wrong.find("in mm it would be 0.09 cm"), std::string::npos) << wrong;
@@ -142,7 +142,7 @@ TEST(HeadChecks, HeadInMillimetresProposesMm) {
 TEST(HeadChecks, AScaleNoUnitExplainsHasNoProposal) {
   SyntheticFace s = syntheticFace();
   s.mesh.V *= 2.0;  // an 18 cm eye distance: no unit makes it a human face
-  const std::string e = errorOf([&] { checkHeadScale(s.mesh, s.landmarks); });
+  const std::string e = headCheckErrorOf([&] { checkHeadScale(s.mesh, s.landmarks); });
   EXPECT_NE(e.find("is 18 cm"), std::string::npos) << e;
   EXPECT_EQ(e.find("probably"), std::string::npos) << e;
 }
@@ -150,7 +150,7 @@ TEST(HeadChecks, AScaleNoUnitExplainsHasNoProposal) {
 TEST(HeadChecks, SwappedEyesAreRefusedNamingTheLandmark) {
   SyntheticFace s = syntheticFace();
   swapLandmarks(s.landmarks, "right_eye_outer", "left_eye_outer");
-  EXPECT_EQ(errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); }),
+  EXPECT_EQ(headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); }),
             "synthetic.json: landmark 'right_eye_inner' (vertex " +
                 std::to_string(s.landmarks.vertex("right_eye_inner")) +
                 ") does not fit mesh synthetic.obj: the inner eye corners lie between the outer ones, so "
@@ -164,7 +164,7 @@ TEST(HeadChecks, MirroredLandmarkFileIsRefused) {
     swapLandmarks(s.landmarks, std::string("right_") + side, std::string("left_") + side);
   swapLandmarks(s.landmarks, "mouth_corner_right", "mouth_corner_left");
   // Every pair swapped: each one is consistent with the flipped x, but z = x × y points into the head.
-  const std::string e = errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
+  const std::string e = headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
   EXPECT_NE(e.find("synthetic.json: landmark 'nose_tip'"), std::string::npos) << e;
   EXPECT_NE(e.find("the nose tip must be in front of the eye and mouth corners"), std::string::npos) << e;
 }
@@ -174,7 +174,7 @@ TEST(HeadChecks, MouthAboveTheEyesIsRefused) {
   auto lift = [&](const char* name) { s.landmarks.named[name] += 14 * 33; };  // 7 cm up the grid
   lift("mouth_corner_right");
   lift("mouth_corner_left");
-  const std::string e = errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
+  const std::string e = headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
   EXPECT_NE(e.find("landmark 'mouth_corner_right'"), std::string::npos) << e;
   EXPECT_NE(e.find("the mouth corners must be below the eyes"), std::string::npos) << e;
 }
@@ -183,7 +183,7 @@ TEST(HeadChecks, ChinAboveTheEyesIsRefused) {
   SyntheticFace s = syntheticFace();
   swapLandmarks(s.landmarks, "chin_menton", "nasion_approx");
   // The frame's y now points down the face: the brows come out below the eyes.
-  const std::string e = errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
+  const std::string e = headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
   EXPECT_NE(e.find("landmark 'right_brow_outer'"), std::string::npos) << e;
   EXPECT_NE(e.find("the brows must be above the eye corners"), std::string::npos) << e;
 }
@@ -193,7 +193,7 @@ TEST(HeadChecks, InwardFacingMeshIsRefusedByTheNormalCheck) {
   s.mesh.F.col(1).swap(s.mesh.F.col(2));  // every triangle wound the other way: normals into the head
   const HeadFitMeasures m = measureHeadFit(s.mesh, s.landmarks);
   EXPECT_GT(m.frameNormalAngleDeg, 170.0);
-  const std::string e = errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
+  const std::string e = headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); });
   EXPECT_NE(e.find("synthetic.json: landmarks right_eye_outer, left_eye_outer, chin_menton do not fit mesh "
                    "synthetic.obj: the face frame's z (out of the face) makes "),
             std::string::npos)
@@ -214,11 +214,11 @@ TEST(HeadChecks, LandmarkOffTheSurfaceIsRefused) {
   s.mesh.F.conservativeResize(s.mesh.F.rows() + 1, 3);
   s.mesh.F.row(s.mesh.F.rows() - 1) << n + 1, n + 2, n + 3;
   s.landmarks.named["upper_lip_top"] = n;
-  EXPECT_EQ(errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); }),
+  EXPECT_EQ(headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); }),
             "synthetic.json: landmark 'upper_lip_top' (vertex " + std::to_string(n) +
                 ") does not fit mesh synthetic.obj: it is off the surface: the vertex is on no triangle");
   s.landmarks.named["upper_lip_top"] = n + 1;
-  EXPECT_EQ(errorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); }),
+  EXPECT_EQ(headCheckErrorOf([&] { checkLandmarksFitMesh(s.mesh, s.landmarks); }),
             "synthetic.json: landmark 'upper_lip_top' (vertex " + std::to_string(n + 1) +
                 ") does not fit mesh synthetic.obj: it is off the surface: it lies on another connected "
                 "piece of the mesh than nose_tip (vertex " +
@@ -249,7 +249,7 @@ TEST(HeadChecks, DefaultHeadPasses) {
   }
 }
 
-Head ictHead() {
+Head checkedIctHead() {
   const auto dir = test::sharedDataDir() / "ict";
   return loadHead((dir / "head_skin.obj").string(), (dir / "landmarks_multipie68.json").string(),
                   (dir / "rigid_vertices.json").string());
@@ -257,7 +257,7 @@ Head ictHead() {
 
 TEST(HeadChecks, IctHeadPasses) {
   MYO_REQUIRE_SHARED_DATA();
-  const Head head = ictHead();
+  const Head head = checkedIctHead();
   EXPECT_NO_THROW(checkLoadedHead(head));
   const HeadFitMeasures m = measureHeadFit(head.mesh, head.landmarks);
   EXPECT_NEAR(m.outerCanthusDistance, 8.9, 0.2);
@@ -266,11 +266,11 @@ TEST(HeadChecks, IctHeadPasses) {
 
 TEST(HeadChecks, DefaultHeadLandmarksOnTheIctMeshAreRefused) {
   MYO_REQUIRE_SHARED_DATA();
-  Head ict = ictHead();
+  Head ict = checkedIctHead();
   const Landmarks builtIn = parseLandmarks(defaultHeadLandmarkJson(), ict.mesh.vertexCount(),
                                            "landmarks_multipie68.json");
   ict.landmarks = builtIn;
-  const std::string e = errorOf([&] { checkLoadedHead(ict); });
+  const std::string e = headCheckErrorOf([&] { checkLoadedHead(ict); });
   EXPECT_EQ(e.rfind("landmarks_multipie68.json: landmark", 0), 0u) << e;
   EXPECT_NE(e.find("does not fit mesh " + ict.mesh.sourcePath), std::string::npos) << e;
 }

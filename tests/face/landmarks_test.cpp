@@ -11,7 +11,7 @@
 namespace myo {
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
+std::string landmarkErrorOf(const std::function<void()>& f) {
   try {
     f();
   } catch (const InputError& e) {
@@ -52,16 +52,16 @@ TEST(Landmarks, AcceptsTheIctLayoutAndAPlainMap) {
 }
 
 TEST(Landmarks, MissingFileIsNamed) {
-  const std::string msg = errorOf([] { readLandmarks("/nonexistent/lm.json", 10); });
+  const std::string msg = landmarkErrorOf([] { readLandmarks("/nonexistent/lm.json", 10); });
   EXPECT_EQ(msg, "/nonexistent/lm.json: cannot open landmark file");
 }
 
 TEST(Landmarks, VertexIdOutOfRangeNamesTheLandmark) {
-  EXPECT_EQ(errorOf([] { parseLandmarks(R"({"nose_tip": 12})", 10, "lm.json"); }),
+  EXPECT_EQ(landmarkErrorOf([] { parseLandmarks(R"({"nose_tip": 12})", 10, "lm.json"); }),
             "lm.json: landmark 'nose_tip': vertex id 12 out of range [0, 10)");
-  EXPECT_EQ(errorOf([] { parseLandmarks(R"({"named": {"chin_menton": {"vertex": -1}}})", 10, "lm.json"); }),
+  EXPECT_EQ(landmarkErrorOf([] { parseLandmarks(R"({"named": {"chin_menton": {"vertex": -1}}})", 10, "lm.json"); }),
             "lm.json: landmark 'chin_menton': vertex id -1 out of range [0, 10)");
-  EXPECT_EQ(errorOf([] { parseLandmarks(R"({"multipie68": [1, 2]})", 10, "lm.json"); }),
+  EXPECT_EQ(landmarkErrorOf([] { parseLandmarks(R"({"multipie68": [1, 2]})", 10, "lm.json"); }),
             "lm.json: multipie68 must hold 68 vertex ids, got 2");
 }
 
@@ -69,14 +69,14 @@ TEST(Landmarks, MissingRequiredNameIsNamed) {
   std::string text = plainMapAll();
   text.replace(text.find("\"nose_tip\""), 10, "\"nose_tipp\"");
   const Landmarks lm = parseLandmarks(text, 100, "mine.json");
-  EXPECT_EQ(errorOf([&] { lm.requireAll(); }),
+  EXPECT_EQ(landmarkErrorOf([&] { lm.requireAll(); }),
             "mine.json: missing landmark 'nose_tip' (give it under \"named\" or as Multi-PIE point "
             "30 in \"multipie68\")");
 }
 
 TEST(Landmarks, BadJsonNamesTheLine) {
   const std::string text = "{\n  \"nose_tip\": 3,\n  \"chin_menton\" 4\n}\n";
-  const std::string msg = errorOf([&] { parseLandmarks(text, 10, "bad.json"); });
+  const std::string msg = landmarkErrorOf([&] { parseLandmarks(text, 10, "bad.json"); });
   EXPECT_EQ(msg.rfind("bad.json:3:", 0), 0u) << msg;
   EXPECT_NE(msg.find("bad JSON in landmark file: syntax error"), std::string::npos) << msg;
 }
@@ -86,11 +86,11 @@ TEST(Landmarks, LoadHeadReportsLandmarkErrorsWithTheFile) {
   const auto obj = (test::sharedDataDir() / "ict" / "head_skin.obj").string();
   const std::string path = testing::TempDir() + "/partial_landmarks.json";
   std::ofstream(path) << R"({"named": {"nose_tip": {"vertex": 4857}}})";
-  EXPECT_EQ(errorOf([&] { loadHead(obj, path); }),
+  EXPECT_EQ(landmarkErrorOf([&] { loadHead(obj, path); }),
             path + ": missing landmark 'right_eye_outer' (give it under \"named\" or as Multi-PIE "
                    "point 36 in \"multipie68\")");
   std::ofstream(path) << R"({"nose_tip": 11248})";
-  EXPECT_EQ(errorOf([&] { loadHead(obj, path); }),
+  EXPECT_EQ(landmarkErrorOf([&] { loadHead(obj, path); }),
             path + ": landmark 'nose_tip': vertex id 11248 out of range [0, 11248)");
 }
 

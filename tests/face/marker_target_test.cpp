@@ -8,7 +8,7 @@
 namespace myo {
 namespace {
 
-std::string errorOf(const std::string& text, int vertexCount = 68) {
+std::string markerErrorOf(const std::string& text, int vertexCount = 68) {
   try {
     parseMarkerTarget(text, vertexCount, "m.json");
   } catch (const InputError& e) {
@@ -32,26 +32,26 @@ TEST(MarkerTarget, PositionsAreConvertedToCentimetresInTheFilesOrder) {
 }
 
 TEST(MarkerTarget, ErrorsNameTheFileLineColumnAndFault) {
-  EXPECT_EQ(errorOf(R"({"markers": [{"vertex": 1, "position": [0, 0, 0]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"markers": [{"vertex": 1, "position": [0, 0, 0]}]})"),
             "m.json:1:1: key 'units': missing required key");
-  EXPECT_EQ(errorOf(R"({"units": "inch", "markers": [{"vertex": 1, "position": [0, 0, 0]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "inch", "markers": [{"vertex": 1, "position": [0, 0, 0]}]})"),
             "m.json:1:11: key 'units': unknown length unit 'inch' (use cm, mm or m)");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": []})"), "m.json:1:28: key 'markers': must hold at least one marker");
-  EXPECT_EQ(errorOf("{\"units\": \"cm\", \"markers\": [\n  {\"vertex\": 68, \"position\": [0, 0, 0]}]}"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": []})"), "m.json:1:28: key 'markers': must hold at least one marker");
+  EXPECT_EQ(markerErrorOf("{\"units\": \"cm\", \"markers\": [\n  {\"vertex\": 68, \"position\": [0, 0, 0]}]}"),
             "m.json:2:14: key 'markers[0].vertex': vertex 68 is outside [0, 68) of the head");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": [{"vertex": 3, "position": [0, 0, 0]}, {"vertex": 3, "position": [1, 1, 1]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": [{"vertex": 3, "position": [0, 0, 0]}, {"vertex": 3, "position": [1, 1, 1]}]})"),
             "m.json:1:78: key 'markers[1].vertex': vertex 3 is already placed by markers[0]");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": [{"vertex": 1.5, "position": [0, 0, 0]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": [{"vertex": 1.5, "position": [0, 0, 0]}]})"),
             "m.json:1:40: key 'markers[0].vertex': must be an integer ≥ 0 (got 1.5)");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, 0]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, 0]}]})"),
             "m.json:1:55: key 'markers[0].position': must be three numbers [x, y, z]");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, ".5", 0]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, ".5", 0]}]})"),
             "m.json:1:59: key 'markers[0].position[1]': must be a number");
-  EXPECT_EQ(errorOf(R"({"units": "m", "markers": [{"vertex": 1, "position": [0, 1e307, 0]}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "m", "markers": [{"vertex": 1, "position": [0, 1e307, 0]}]})"),
             "m.json:1:58: key 'markers[0].position[1]': is too large (1e307)");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, 0, 0], "weight": 2}]})"),
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": [{"vertex": 1, "position": [0, 0, 0], "weight": 2}]})"),
             "m.json:1:66: key 'markers[0].weight': unknown key");
-  EXPECT_EQ(errorOf(R"({"units": "cm", "markers": {"vertex": 1}})"), "m.json:1:28: key 'markers': must be a list of {vertex, position}");
+  EXPECT_EQ(markerErrorOf(R"({"units": "cm", "markers": {"vertex": 1}})"), "m.json:1:28: key 'markers': must be a list of {vertex, position}");
 }
 
 }  // namespace

@@ -19,7 +19,7 @@
 namespace myo {
 namespace {
 
-const Head& builtInHead() {
+const Head& bedBuiltInHead() {
   static const Head head = loadDefaultHead();
   return head;
 }
@@ -71,7 +71,7 @@ double insertionShortening(const CoupledMuscle& m, bool onBed) {
 // next test), and the insertion moves σ × length along the fibres' direction on the skin. The pinned
 // tube's own shape moves it σ × length along the chord.
 TEST(MuscleBed, EveryNodeKeepsItsDepthAndTheInsertionStillShortensBySigma) {
-  const Head& head = builtInHead();
+  const Head& head = bedBuiltInHead();
   const MuscleCouplingSettings settings;
   ASSERT_TRUE(settings.slideOverBed) << "the default";
   MuscleCouplingSettings pinned;
@@ -108,7 +108,7 @@ TEST(MuscleBed, EveryNodeKeepsItsDepthAndTheInsertionStillShortensBySigma) {
 // nodes lie straight under the brow's skin) against the same muscle without it, which keeps its
 // depth (above). The library marks both parts of the frontalis and nothing else.
 TEST(MuscleBed, AThickeningMuscleRisesByItsColumnsGrowth) {
-  const Head& head = builtInHead();
+  const Head& head = bedBuiltInHead();
   const MuscleCouplingSettings settings;
   std::vector<std::string> thickening;
   for (const MuscleDef& d : faceMuscleDefs())
@@ -163,7 +163,7 @@ void expectAContraction(const Head& head, const std::string& headName) {
   }
 }
 
-TEST(MuscleBed, TheSlidShapeIsAContractionOnTheBuiltInHead) { expectAContraction(builtInHead(), "builtin"); }
+TEST(MuscleBed, TheSlidShapeIsAContractionOnTheBuiltInHead) { expectAContraction(bedBuiltInHead(), "builtin"); }
 
 TEST(MuscleBed, TheSlidShapeIsAContractionOnIct) {
   MYO_REQUIRE_SHARED_DATA();
@@ -174,7 +174,7 @@ TEST(MuscleBed, TheSlidShapeIsAContractionOnIct) {
 // the masseter's fascia round the cheek to the mouth corner) and the platysma drive their middle
 // nodes deep into the cheek. With it they stay at their depth, and the motion left is along the face.
 TEST(MuscleBed, ACurvedMuscleNoLongerCutsIntoTheFace) {
-  const Head& head = builtInHead();
+  const Head& head = bedBuiltInHead();
   MuscleCouplingSettings pinned;
   pinned.slideOverBed = false;
   for (const std::string name : {"risorius_left", "platysma_left", "buccinator_left"}) {
@@ -196,7 +196,7 @@ TEST(MuscleBed, ACurvedMuscleNoLongerCutsIntoTheFace) {
 // muscles twice as far in the same shape. (With the material fixed, the tube's own form changed by
 // 6–10 % at twice the size.)
 TEST(MuscleBed, TheSlidShapeMovesTurnsAndScalesWithTheHead) {
-  const Head& head = builtInHead();
+  const Head& head = bedBuiltInHead();
   const Mat3 R = Eigen::AngleAxisd(0.6, Vec3(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
   const Vec3 t(0.3, -1.2, 2.5);
   for (const double s : {1.0, 2.0}) {

@@ -74,7 +74,7 @@ TEST(RetargetMap, TheOnlyUnreachableShapeIsTheTongue) {
   EXPECT_FALSE(unreachableReason("jawOpen").has_value());  // the jaw is fitted: nothing else is excluded
 }
 
-std::string error(const std::string& text, const std::vector<std::string>& muscles = {}) {
+std::string mapError(const std::string& text, const std::vector<std::string>& muscles = {}) {
   try {
     parseRetargetMap(text, "map.json", muscles);
   } catch (const InputError& e) {
@@ -95,44 +95,44 @@ TEST(RetargetMap, AGazeReadsBackAndABadOneIsNamed) {
                                                     R"("activations": {}, "mouth_pressure_kpa": 2.5}]})", "map.json");
   EXPECT_EQ(puff.shapes[0].mouthPressureKpa, 2.5);
   EXPECT_EQ(parseRetargetMap(serialiseRetargetMap(puff), "back.json").shapes[0].mouthPressureKpa, 2.5);
-  EXPECT_THAT(error(kHead + R"("shapes": [{"name": "cheekPuff", "mouth_pressure_kpa": 12}]})"),
+  EXPECT_THAT(mapError(kHead + R"("shapes": [{"name": "cheekPuff", "mouth_pressure_kpa": 12}]})"),
               ::testing::HasSubstr("key 'shapes[0].mouth_pressure_kpa': must lie in [0, 10] (got 12)"));
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "gaze": {"left_roll": 5}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "gaze": {"left_roll": 5}}]})"),
             "map.json:1:97: key 'shapes[0].gaze.left_roll': 'left_roll' is not left_pitch, left_yaw, right_pitch or right_yaw");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "gaze": {"left_pitch": 60}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "gaze": {"left_pitch": 60}}]})"),
             "map.json:1:111: key 'shapes[0].gaze.left_pitch': turn 60 degrees is outside [-45, 45]");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "reachable": false, "reason": "r", "gaze": {"left_pitch": 5}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "eyeLookUpLeft", "reachable": false, "reason": "r", "gaze": {"left_pitch": 5}}]})"),
             "map.json:1:131: key 'shapes[0].gaze': an unreachable shape has no activations, jaw, gaze, air or base");
 }
 
 TEST(RetargetMap, EveryFaultIsRefusedWithItsPlaceAndWhatIsWrong) {
-  EXPECT_EQ(error(R"({"format": "x", "version": 1, "shapes": []})"),
+  EXPECT_EQ(mapError(R"({"format": "x", "version": 1, "shapes": []})"),
             "map.json:1:12: key 'format': must be \"myoshell-retarget-map\" (got \"x\")");
-  EXPECT_EQ(error(R"({"format": "myoshell-retarget-map", "version": 2, "shapes": []})"),
+  EXPECT_EQ(mapError(R"({"format": "myoshell-retarget-map", "version": 2, "shapes": []})"),
             "map.json:1:48: key 'version': this Myoshell reads version 1");
-  EXPECT_EQ(error(kHead + R"("shapes": []})"), "map.json:1:61: key 'shapes': must hold at least one shape");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "mouthSmil_L", "activations": {}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": []})"), "map.json:1:61: key 'shapes': must hold at least one shape");
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "mouthSmil_L", "activations": {}}]})"),
             "map.json:1:71: key 'shapes[0].name': unknown blendshape name 'mouthSmil_L' (did you mean mouthSmile_L, "
             "mouthSmile_R?)");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "mouthSmile_L"}, {"name": "mouthSmileLeft"}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "mouthSmile_L"}, {"name": "mouthSmileLeft"}]})"),
             "map.json:1:97: key 'shapes[1].name': 'mouthSmileLeft' is mouthSmileLeft, already given by shapes[0]");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"a": 1.5}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"a": 1.5}}]})"),
             "map.json:1:103: key 'shapes[0].activations.a': activation 1.5 is outside [0, 1]");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"a": 0.5}}, {"name": "mouthClose", )"
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"a": 0.5}}, {"name": "mouthClose", )"
                           R"("corrective_of": "jawOpen", "activations": {"a": -0.75}}]})"),
             "map.json:1:176: key 'shapes[1].activations': with its base jawOpen, a reaches -0.250000, outside [0, 1]");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "mouthClose", "corrective_of": "jawOpen", "activations": {}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "mouthClose", "corrective_of": "jawOpen", "activations": {}}]})"),
             "map.json:1:102: key 'shapes[0].corrective_of': the base jawOpen must be a reachable shape of the map that "
             "is not itself a corrective");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookIn_L", "reachable": false}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "eyeLookIn_L", "reachable": false}]})"),
             "map.json:1:62: key 'shapes[0].reason': an unreachable shape needs a reason (why muscles cannot make it)");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "eyeLookIn_L", "reachable": false, "reason": "eyes", "activations": {"a": 0.5}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "eyeLookIn_L", "reachable": false, "reason": "eyes", "activations": {"a": 0.5}}]})"),
             "map.json:1:139: key 'shapes[0].activations': an unreachable shape has no activations, jaw, gaze, air or base");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"frontalis": 0.5}}]})", {"a", "b"}),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "jawOpen", "activations": {"frontalis": 0.5}}]})", {"a", "b"}),
             "map.json:1:98: key 'shapes[0].activations.frontalis': unknown muscle 'frontalis' (the model's muscles: a, b)");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "weight": 1}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "jawOpen", "weight": 1}]})"),
             "map.json:1:82: key 'shapes[0].weight': unknown key");
-  EXPECT_EQ(error(kHead + R"("shapes": [{"name": "jawOpen", "jaw": {"open": "wide"}}]})"),
+  EXPECT_EQ(mapError(kHead + R"("shapes": [{"name": "jawOpen", "jaw": {"open": "wide"}}]})"),
             "map.json:1:98: key 'shapes[0].jaw.open': must be a number");
 }
 

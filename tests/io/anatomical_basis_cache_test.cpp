@@ -21,14 +21,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
+struct AnatomicalCacheDir {
   fs::path path;
-  TempDir() {
+  AnatomicalCacheDir() {
     std::random_device rd;
     path = fs::temp_directory_path() / ("myo_anatomical_cache_test_" + std::to_string(rd()));
     fs::create_directories(path);
   }
-  ~TempDir() {
+  ~AnatomicalCacheDir() {
     std::error_code ec;
     fs::remove_all(path, ec);
   }
@@ -87,7 +87,7 @@ void expectSameSteps(const std::shared_ptr<const AnatomicalSkin>& a, const std::
 }
 
 TEST(AnatomicalBasisCache, AHitIsTheFreshBuildBitForBit) {
-  TempDir dir;
+  AnatomicalCacheDir dir;
   FileBasisCache cache(dir.path);
   const Head head = loadDefaultHead();
   auto fresh = std::make_shared<AnatomicalSkin>(head, twoMuscles(), smallSettings(), kDrag, &cache);
@@ -203,18 +203,18 @@ TEST(AnatomicalBasisCache, EveryInputOfTheBasisChangesTheKey) {
   EXPECT_EQ(keyOf(head, muscles, s), ref);
 }
 
-std::vector<char> readAll(const fs::path& p) {
+std::vector<char> readCacheBytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(AnatomicalBasisCache, ACorruptOrTruncatedFileIsAMissThatRebuilds) {
-  TempDir dir;
+  AnatomicalCacheDir dir;
   FileBasisCache cache(dir.path);
   const Head head = loadDefaultHead();
   const AnatomicalSkin first(head, twoMuscles(), smallSettings(), kDrag, &cache);
   const fs::path releasedFile = cache.pathFor(first.releasedBasisKey()), heldFile = cache.pathFor(first.basisKey());
-  const std::vector<char> good = readAll(releasedFile), goodHeld = readAll(heldFile);
+  const std::vector<char> good = readCacheBytes(releasedFile), goodHeld = readCacheBytes(heldFile);
   ASSERT_GT(good.size(), 1000u);
   {  // truncated: as a run killed while another wrote it (the atomic writer prevents it; a copy may not)
     std::ofstream out(releasedFile, std::ios::binary | std::ios::trunc);
@@ -226,7 +226,7 @@ TEST(AnatomicalBasisCache, ACorruptOrTruncatedFileIsAMissThatRebuilds) {
   EXPECT_EQ(cache.stats().rejected, 1);
   EXPECT_NE(cache.lastRejection().find("payload is"), std::string::npos) << cache.lastRejection();
   expectSameBasis(*first.basis(), *remade.basis());
-  EXPECT_EQ(readAll(releasedFile), good);  // written back whole
+  EXPECT_EQ(readCacheBytes(releasedFile), good);  // written back whole
 
   std::vector<char> flipped = goodHeld;  // one byte inside the held basis's Φ, and no released file
   flipped[goodHeld.size() / 2] ^= 0x04;
@@ -240,8 +240,8 @@ TEST(AnatomicalBasisCache, ACorruptOrTruncatedFileIsAMissThatRebuilds) {
   EXPECT_EQ(cache.stats().rejected, 2);
   EXPECT_NE(cache.lastRejection().find("checksum mismatch"), std::string::npos) << cache.lastRejection();
   expectSameBasis(*first.basis(), *again.basis());
-  EXPECT_EQ(readAll(heldFile), goodHeld);
-  EXPECT_EQ(readAll(releasedFile), good);
+  EXPECT_EQ(readCacheBytes(heldFile), goodHeld);
+  EXPECT_EQ(readCacheBytes(releasedFile), good);
 }
 
 }  // namespace

@@ -25,14 +25,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
+struct CacheDir {
   fs::path path;
-  TempDir() {
+  CacheDir() {
     std::random_device rd;
     path = fs::temp_directory_path() / ("myo_basis_cache_test_" + std::to_string(rd()));
     fs::create_directories(path);
   }
-  ~TempDir() {
+  ~CacheDir() {
     std::error_code ec;
     fs::remove_all(path, ec);
   }
@@ -68,7 +68,7 @@ void writeAll(const fs::path& p, const std::vector<char>& data) {
 }
 
 TEST(BasisCache, RoundTripIsBitIdenticalAndSkipsTheSolve) {
-  TempDir dir;
+  CacheDir dir;
   FileBasisCache cache(dir.path / "cache");
   const DiscreteShell shell = stripShell();
   ModalSettings s;
@@ -99,7 +99,7 @@ TEST(BasisCache, RoundTripIsBitIdenticalAndSkipsTheSolve) {
 TEST(BasisCache, AStoreFailingForTheSystemIsNotFatalAndKeepsItsReason) {
   // A file-size limit (as a full disk): the store fails with EFBIG, the basis is still returned,
   // the reason is kept and no temporary file is left.
-  TempDir dir;
+  CacheDir dir;
   FileBasisCache cache(dir.path / "cache");
   const DiscreteShell shell = stripShell();
   ModalSettings s;
@@ -122,7 +122,7 @@ TEST(BasisCache, AStoreFailingForTheSystemIsNotFatalAndKeepsItsReason) {
 }
 
 TEST(BasisCache, CorruptTruncatedAndForeignFilesAreRebuilt) {
-  TempDir dir;
+  CacheDir dir;
   FileBasisCache cache(dir.path);
   const DiscreteShell shell = stripShell();
   ModalSettings s;
@@ -190,7 +190,7 @@ bool lockIsFree(const fs::path& path) {
 }
 
 TEST(BasisCache, AMissHoldsTheKeysLockUntilTheStore) {
-  TempDir dir;
+  CacheDir dir;
   FileBasisCache cache(dir.path);
   const DiscreteShell shell = stripShell();
   ModalSettings s;
@@ -210,7 +210,7 @@ TEST(BasisCache, AMissHoldsTheKeysLockUntilTheStore) {
 }
 
 TEST(BasisCache, ACacheDestroyedAfterAMissWithoutStoringReleasesTheLock) {
-  TempDir dir;
+  CacheDir dir;
   const BasisKey key = KeyHasher().str("never stored").key();
   fs::path lockPath;
   {
@@ -247,7 +247,7 @@ pid_t missingChild(const fs::path& dir, const BasisKey& key, const ModalBasis* b
 }
 
 TEST(BasisCache, AWaiterReadsWhatTheHolderStoredInsteadOfComputingIt) {
-  TempDir dir;
+  CacheDir dir;
   const DiscreteShell shell = stripShell();
   ModalSettings s;
   s.modeCount = 6;
@@ -268,7 +268,7 @@ TEST(BasisCache, AWaiterReadsWhatTheHolderStoredInsteadOfComputingIt) {
 }
 
 TEST(BasisCache, AHolderKilledMidComputationHandsTheKeyOnAndItsTemporaryIsRemoved) {
-  TempDir dir;
+  CacheDir dir;
   const DiscreteShell shell = stripShell();
   ModalSettings s;
   s.modeCount = 6;
@@ -291,7 +291,7 @@ TEST(BasisCache, AHolderKilledMidComputationHandsTheKeyOnAndItsTemporaryIsRemove
 }
 
 TEST(BasisCache, TwoCacheObjectsOfOneProcessDoNotWaitForEachOther) {
-  TempDir dir;
+  CacheDir dir;
   const BasisKey key = KeyHasher().str("one process").key();
   FileBasisCache a(dir.path), b(dir.path);
   EXPECT_FALSE(a.load(key).has_value());
@@ -303,7 +303,7 @@ TEST(BasisCache, TwoCacheObjectsOfOneProcessDoNotWaitForEachOther) {
 TEST(BasisCache, WithoutALockTheCacheStillComputesAndStoresWholeEntries) {
   // The lock file cannot be made (a folder in its place; on a network file system flock itself may
   // fail, EOPNOTSUPP or ENOLCK, and takes the same path): atomic rename alone.
-  TempDir dir;
+  CacheDir dir;
   const DiscreteShell shell = stripShell();
   ModalSettings s;
   s.modeCount = 6;
@@ -320,7 +320,7 @@ TEST(BasisCache, WithoutALockTheCacheStillComputesAndStoresWholeEntries) {
 }
 
 TEST(BasisCache, AReadOnlyCacheReadsWithoutLocksAndNeverWrites) {
-  TempDir dir;
+  CacheDir dir;
   const DiscreteShell shell = stripShell();
   ModalSettings s;
   s.modeCount = 6;

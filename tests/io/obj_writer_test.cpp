@@ -20,15 +20,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
+class ObjDir {
  public:
-  TempDir() {
+  ObjDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = fs::temp_directory_path() /
             (std::string("myo_objw_") + info->test_suite_name() + "_" + info->name() + "_" + std::to_string(::getpid()));
     fs::create_directories(path_);
   }
-  ~TempDir() {
+  ~ObjDir() {
     std::error_code ec;
     fs::remove_all(path_, ec);
   }
@@ -44,7 +44,7 @@ class TempDir {
 };
 
 TEST(WriteObj, RoundTripKeepsQuadsUvsAndExactPositions) {
-  TempDir dir;
+  ObjDir dir;
   const std::string src = dir.write(
       "quad.obj",
       "v 0.1 0.2 0.3\nv 1.0000000000000002 0 0\nv 1 1 1e-300\nv 0 1 0\nv 2 0.5 0\n"
@@ -74,7 +74,7 @@ TEST(WriteObj, RoundTripKeepsQuadsUvsAndExactPositions) {
 }
 
 TEST(WriteObjLikeFile, ReplacesOnlyThePositions) {
-  TempDir dir;
+  ObjDir dir;
   // Seam UVs (vertex 2 has two), a quad, a group, a comment, CRLF lines, a vertex colour, tabs.
   const std::string before = "# my head\r\nv 0.1 0.2 0.3 1 0 0\r\nv\t1 0 0\r\n  v 1 1 0\r\nv 0 1 0\r\nv 2 0.5 0\r\n"
                              "vt 0 0\r\nvt 1 0\r\nvt 1 1\r\nvt 0 1\r\nvt 0.9 0.9\r\ng skin\r\n"
@@ -113,7 +113,7 @@ TEST(WriteObjLikeFile, ReplacesOnlyThePositions) {
 // A mesh read from an OBJ with UV seams is written with its corners' own texture coordinates (the
 // distinct ones, in order of first appearance), so reading it back gives the same corner UVs.
 TEST(WriteObj, KeepsUvSeams) {
-  TempDir dir;
+  ObjDir dir;
   const TriMesh m = readObjFromString(test::kUvSeamObj, "seam.obj");
   const std::string out = (dir.path() / "seam.obj").string();
   writeObj(out, m);

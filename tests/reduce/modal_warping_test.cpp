@@ -17,7 +17,7 @@ namespace {
 
 constexpr int kNx = 20, kNy = 4;
 
-DiscreteShell makeShell(const MatX3& V, const MatX3i& F) {
+DiscreteShell makeWarpingShell(const MatX3& V, const MatX3i& F) {
   return DiscreteShell(V, F, buildEdgeTable(F, static_cast<int>(V.rows())), ShellMaterial{});
 }
 
@@ -40,7 +40,7 @@ std::shared_ptr<const ModalBasis> stripBasis(int d, const MatX3& V, const MatX3i
   s.modeCount = d;
   s.solver = EigenSolverKind::Dense;
   s.denseMaxDofs = 100000;
-  return std::make_shared<const ModalBasis>(computeModalBasis(makeShell(V, F), clampedColumns(), s));
+  return std::make_shared<const ModalBasis>(computeModalBasis(makeWarpingShell(V, F), clampedColumns(), s));
 }
 
 // A tip load (dyn) in direction dir on the last column, as a free f×3 field.
@@ -182,7 +182,7 @@ TEST(ModalWarping, FreeShellStaysPutWithoutForces) {
   const TriMesh m = icosphere(2.0, 2);
   ModalSettings ms;
   ms.modeCount = 12;
-  auto b = std::make_shared<const ModalBasis>(computeModalBasis(makeShell(m.V, m.F), {}, ms));
+  auto b = std::make_shared<const ModalBasis>(computeModalBasis(makeWarpingShell(m.V, m.F), {}, ms));
   for (ModalPrecision p : {ModalPrecision::Float, ModalPrecision::Double}) {
     ModalWarpingSettings s;
     s.precision = p;
@@ -402,7 +402,7 @@ TEST(ModalWarping, StaticSolvesNeedAConstrainedBasis) {
   const TriMesh m = icosphere(1.0, 1);
   ModalSettings ms;
   ms.modeCount = 8;
-  const ModalBasis b = computeModalBasis(makeShell(m.V, m.F), {}, ms);
+  const ModalBasis b = computeModalBasis(makeWarpingShell(m.V, m.F), {}, ms);
   const MatX3 F = MatX3::Ones(b.freeCount(), 3);
   EXPECT_THROW(solveStaticLinear(b, F), NumericalError);
   EXPECT_THROW(solveStaticWarped(b, F), NumericalError);

@@ -44,7 +44,7 @@ ViewerSession& session() {  // built once: the eigen-solves are the slow part
   return s;
 }
 
-fs::path scratch(const std::string& name) {
+fs::path sessionScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_viewer_" + name);
   fs::remove_all(p);
   fs::create_directories(p);
@@ -214,7 +214,7 @@ TEST(ViewerSession, LetGoTheFaceFallsStillWithTheContactOnAsWithItOff) {
 
 TEST(ViewerSession, KeysFromSlidersSaveAndReloadAndExportAGlb) {
   ViewerSession s(smallScene(), nullptr);
-  const fs::path dir = scratch("authoring");
+  const fs::path dir = sessionScratch("authoring");
   s.seek(0.4);
   s.setSlider("depressor_anguli_oris_left", 0.6);
   EXPECT_EQ(s.setKeysAtPlayhead(), 3);

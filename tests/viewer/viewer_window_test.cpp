@@ -33,7 +33,7 @@ struct ViewerRun {
   std::string output;  // stdout and stderr
 };
 
-fs::path scratch(const std::string& name) {
+fs::path windowScratch(const std::string& name) {
   const fs::path p = fs::path(testing::TempDir()) / ("myo_view_" + name);
   fs::remove_all(p);
   fs::create_directories(p);
@@ -74,7 +74,7 @@ const char* kXvfb = "xvfb-run -a -s '-screen 0 1280x1024x24'";
 
 TEST(ViewerWindow, AScriptedSmileChangesTheFaceAndThePanelIsDrawn) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup --test installs xvfb and xauth)";
-  const fs::path dir = scratch("smile");
+  const fs::path dir = windowScratch("smile");
   std::ofstream(dir / "neutral.txt") << "show muscles off\nadvance 10\nscreenshot neutral.png\n";
   std::ofstream(dir / "smile.txt") << "# the left zygomaticus, full\nset zygomaticus_major_left 1\nadvance 10\n"
                                       "screenshot smile.png\n";
@@ -107,7 +107,7 @@ TEST(ViewerWindow, AScriptedSmileChangesTheFaceAndThePanelIsDrawn) {
 // screenshot byte-identical. The grabbed corner must move along the pull, and `release` let it go.
 TEST(ViewerWindow, AScriptedDragMovesTheGrabbedSkinAlongThePull) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
-  const fs::path dir = scratch("drag");
+  const fs::path dir = windowScratch("drag");
   std::ofstream(dir / "drag.txt") << "show panel off\nadvance 2\nscreenshot before.png\n"
                                      "grab mouth_corner_left\npull 200000 0 0\nadvance 30\n"
                                      "probe mouth_corner_left\nscreenshot after.png\n"
@@ -137,7 +137,7 @@ TEST(ViewerWindow, AScriptedDragMovesTheGrabbedSkinAlongThePull) {
 // in the whole face) lifts the inner brow; with a scene, --library is refused before any display.
 TEST(ViewerWindow, LibraryFaceGivesTheWholeFacesSliders) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
-  const fs::path dir = scratch("library");
+  const fs::path dir = windowScratch("library");
   std::ofstream(dir / "brow.txt") << "show panel off\nset frontalis_medial_left 1\nadvance 90\nprobe left_brow_inner\n";
   const ViewerRun run = runViewer(kXvfb, "--size 320x240 --library face --script brow.txt", dir);
   ASSERT_EQ(run.exitCode, 0) << run.output;
@@ -161,7 +161,7 @@ TEST(ViewerWindow, LibraryFaceGivesTheWholeFacesSliders) {
 // object": it must say that the viewer takes a scene and how to write one for the OBJ, before any
 // display is needed.
 TEST(ViewerWindow, AnObjHeadIsRefusedWithHowToMakeItsScene) {
-  const fs::path dir = scratch("obj");
+  const fs::path dir = windowScratch("obj");
   std::ofstream(dir / "my_head.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", "my_head.obj", dir);
   EXPECT_EQ(run.exitCode, 2) << run.output;
@@ -173,7 +173,7 @@ TEST(ViewerWindow, AnObjHeadIsRefusedWithHowToMakeItsScene) {
 
 TEST(ViewerWindow, ScreenshotModeWritesThePictureAndExits) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
-  const fs::path dir = scratch("screenshot");
+  const fs::path dir = windowScratch("screenshot");
   const ViewerRun run = runViewer(kXvfb, "--size 640x480 --screenshot shot.png --frames 5", dir);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("wrote shot.png"), std::string::npos) << run.output;
@@ -183,7 +183,7 @@ TEST(ViewerWindow, ScreenshotModeWritesThePictureAndExits) {
 }
 
 TEST(ViewerWindow, WithoutADisplayItSaysSoAndExitsCleanly) {
-  const fs::path dir = scratch("nodisplay");
+  const fs::path dir = windowScratch("nodisplay");
   const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", "--screenshot never.png", dir);
   EXPECT_EQ(run.exitCode, 1) << run.output;
   EXPECT_NE(run.output.find("myoshell-view: error: cannot open a window:"), std::string::npos) << run.output;
@@ -193,7 +193,7 @@ TEST(ViewerWindow, WithoutADisplayItSaysSoAndExitsCleanly) {
 
 TEST(ViewerWindow, ABadScriptNamesItsLineAndLeavesNoPicture) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
-  const fs::path dir = scratch("badscript");
+  const fs::path dir = windowScratch("badscript");
   std::ofstream(dir / "bad.txt") << "set zygomaticus_major_left 1\nset buccinator 0.5\nscreenshot out.png\n";
   const ViewerRun run = runViewer(kXvfb, "--size 320x240 --script bad.txt", dir);
   EXPECT_EQ(run.exitCode, 2) << run.output;
@@ -208,7 +208,7 @@ TEST(ViewerWindow, ABadScriptNamesItsLineAndLeavesNoPicture) {
 
 // --live SPEC: a bad spec and a port in use are refused (exit 2) before any display is needed.
 TEST(ViewerWindow, ABadLiveSpecOrAPortInUseIsRefused) {
-  const fs::path dir = scratch("live_bad");
+  const fs::path dir = windowScratch("live_bad");
   for (const char* spec : {"osc", "livelink:", "vmc:70000", "livelink:12a", "LiveLink"}) {
     const ViewerRun run = runViewer("env -u DISPLAY -u WAYLAND_DISPLAY", std::string("--live ") + spec, dir);
     EXPECT_EQ(run.exitCode, 2) << spec << ": " << run.output;
@@ -231,7 +231,7 @@ TEST(ViewerWindow, ABadLiveSpecOrAPortInUseIsRefused) {
 // takes the frames, the sliders of the muscles it maps and the jaw show them, and it counts them.
 TEST(ViewerWindow, ALiveStreamDrivesTheSliders) {
   if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
-  const fs::path dir = scratch("live");
+  const fs::path dir = windowScratch("live");
   const myo::Performance take =
       myo::readPerformanceFile(std::string(MYO_SOURCE_DIR) + "/tests/anim/performances/livelink_take.csv");
   std::vector<myo::LiveFrame> frames(take.times.size());
