@@ -54,6 +54,13 @@ struct AutoLandmarkOptions {
   // not the outer eye corners' alone. Off: decimated ICT 3.09 / 10.58 → 2.82 / 10.12 mm, but three of
   // ICT's posed copies 6.95 → 8.22 mm at most (docs/heads.md, "Method", step 9).
   bool jawFrameFromMirrorPairs = false;
+  // The outline's frame turned so that its x axis runs between the centres of the two eye openings
+  // (their boundary loops' length-weighted centroids), where the mesh has both, rather than between
+  // the outer eye corners' vertices (origin and unit kept). A remeshing that drops a corner's vertex
+  // moves the corner to the next vertex along the lid, but barely moves the loop's centre: decimated
+  // ICT 3.09 / 10.58 → 2.73 / 8.69 mm; ICT, its posed copies, Loop once and the built-in heads
+  // unchanged (search version 6; docs/heads.md, "Method", step 9).
+  bool jawFrameFromEyeOpenings = true;
   // On a mask (a mesh with an open boundary round the face), where the outline march runs off the
   // front-facing surface with the boundary within 0.1 eye widths, the point goes onto the boundary:
   // the visible outline of a mask is its rim (search version 5).
