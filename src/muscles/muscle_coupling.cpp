@@ -252,7 +252,7 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
     if (ring.hoop) {
       // A band held at both ends and pressed round the dental arch by its own tension (a string
       // under a uniform load): its deflection towards the arch's centre of curvature h, in the
-      // face's x–z plane, runs as 4ξ(1 − ξ) along it, nothing at the held ends (the corners stay),
+      // face's x–z plane, runs as 4ξ(1 − ξ) along it, nothing at the held ends,
       // σ of its distance at the middle. The lip it presses on the teeth keeps its volume: with
       // `lip_body` it grows in height by 1/√(1 − ε) about its axis, ε = σ·4ξ(1 − ξ) the local
       // squeeze (docs/muscles.md, "The marginal part rolls the lower lip in").
