@@ -199,11 +199,15 @@ struct Template {
   std::vector<std::pair<int, int>> edges;
 };
 
-Template makeTemplate(int levels) {
+Template makeTemplate(int levels, const Head* custom) {
   Template t;
-  DefaultHeadOptions o;
-  o.subdivisionLevels = levels;
-  t.head = loadDefaultHead(o);
+  if (custom) {
+    t.head = *custom;
+  } else {
+    DefaultHeadOptions o;
+    o.subdivisionLevels = levels;
+    t.head = loadDefaultHead(o);
+  }
   t.V = t.head.mesh.V;
   t.N = vertexNormals(t.V, t.head.mesh.F);
   const MatX3i& F = t.head.mesh.F;
@@ -363,6 +367,29 @@ EyeFrame eyeFrame(const Vec3& r, const Vec3& l, const Vec3& mouthR, const Vec3& 
   return f;
 }
 
+// The frame's x axis from every mirror pair of the points found off the jaw line (Multi-PIE 17–67,
+// multipieMirror), not from the outer eye corners alone: the sum of the pairs' right-to-left
+// differences, so that one corner a few mm off (decimated ICT's 45: 2.6 mm high, the eye opening's
+// coarse end) no longer turns the frame (1.6°, the chin 4 mm aside and the jaw's spokes along the
+// outline). y is re-orthogonalised; origin and units are kept.
+EyeFrame withSymmetricAxis(EyeFrame f, const std::vector<Vec3>& p68) {
+  if (!f.ok) return f;
+  Vec3 sum = Vec3::Zero();
+  for (int k = 17; k < 68; ++k) {
+    const int m = multipieMirror(k);
+    if (m <= k) continue;
+    Vec3 d = p68[static_cast<size_t>(m)] - p68[static_cast<size_t>(k)];
+    if (d.dot(f.ex) < 0) d = -d;
+    sum += d;
+  }
+  if (!(sum.norm() > 0.0)) return f;
+  f.ex = sum.normalized();
+  Vec3 ey = f.ey - f.ey.dot(f.ex) * f.ex;
+  f.ey = ey.normalized();
+  f.ez = f.ex.cross(f.ey);
+  return f;
+}
+
 // The share of the angle from the jaw line's end (point 0 or 16) to the chin (8) at which each jaw
 // point lies, seen from the outer eye corners' midpoint in a frontal view, on the mean face of
 // dlib's 68-point (iBUG 300-W) annotations: OpenFace's normalised template (Amos, Ludwiczuk &
@@ -402,9 +429,14 @@ std::optional<Vec3> frontmostAlong(const Target& tg, const Vec3& a, const Vec3& 
 // each side to the midline; 9 points per half go on it, by angle (byAngle: the mean face's shares,
 // kJawAngleShare) or at equal arc length. False (the fit's points kept) when too little outline is
 // found.
-bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
+bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool symmetricAxis, bool onRim) {
   const auto at = [&](int v) { return Vec3(tg.V.row(v).transpose()); };
-  const EyeFrame fr = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]));
+  EyeFrame fr = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]));
+  if (symmetricAxis) {
+    std::vector<Vec3> p68;
+    for (int k = 0; k < 68; ++k) p68.push_back(at(lm68[static_cast<size_t>(k)]));
+    fr = withSymmetricAxis(fr, p68);
+  }
   if (!fr.ok) return false;
   const Vec3 &o = fr.o, &ex = fr.ex, &ey = fr.ey, &ez = fr.ez;
   const double s = fr.s;
@@ -416,6 +448,9 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
     const Vec3 nv = tg.N.row(v).transpose();
     NQ.row(v) << nv.dot(ex), nv.dot(ey), nv.dot(ez);
   }
+  std::vector<int> rimIds;  // the skin's open boundary
+  for (int v : tg.skinIds)
+    if (tg.boundary[static_cast<size_t>(v)]) rimIds.push_back(v);
   // Depth map: the front-facing triangle nearest the viewer per cell.
   const double H = 0.01, X0 = -1.4, X1 = 1.4, Y0 = -2.2, Y1 = 0.8;
   const int W = static_cast<int>((X1 - X0) / H) + 1, Hh = static_cast<int>((Y1 - Y0) / H) + 1;
@@ -478,12 +513,16 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
       if (std::abs(-q.x() * u.y() + q.y() * u.x()) < 0.15) r = std::max(r, q.dot(u) + 0.08);
     }
     bool have = false, prevOk = false;
+    bool leftTheSurface = false;  // no front-facing surface beyond: the march ran off it
     Vec3 last = Vec3::Zero(), prevN = Vec3::Zero();
     double prevZ = 0.0;
     for (; r < 2.5; r += step) {
       double z;
       Vec3 nrm;
-      if (!sample(r * u.x(), r * u.y(), z, nrm)) break;
+      if (!sample(r * u.x(), r * u.y(), z, nrm)) {
+        leftTheSurface = true;
+        break;
+      }
       if (prevOk && z < prevZ - drop) break;
       if (nrm.dot(view) <= turned) {
         if (prevOk && prevN.dot(view) > turned) {
@@ -499,6 +538,23 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle) {
       prevZ = z;
     }
     if (!have) return false;  // a gap in the outline
+    // A mask's rim: the march left the front-facing surface (neither turned away nor dropped
+    // behind) with the mesh's open boundary near, within the depth band of an outline (0.1 eye
+    // widths): there the visible outline is the rim, and the point goes onto its nearest vertex
+    // (the built-in head: 223 of 241 spokes, the front-facing part ending 4–6 mm short of the rim
+    // where it wraps round the sides).
+    if (onRim && leftTheSurface) {
+      int bestB = -1;
+      double bestD = 0.1 * 0.1;
+      for (int b : rimIds) {
+        const double d = (Vec3(Q.row(b).transpose()) - last).squaredNorm();
+        if (d < bestD) {
+          bestD = d;
+          bestB = b;
+        }
+      }
+      if (bestB >= 0) last = Q.row(bestB).transpose();
+    }
     raw.push_back(last);
   }
   const int m = static_cast<int>(raw.size()), sm = 10;
@@ -632,9 +688,19 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   const MatX3 Pcm = P * cmPer;
 
   // Template and its coarse sample: MediaPipe's 468 original vertices (ids 0–467 at every level).
-  const Template tp = makeTemplate(options.templateLevels);
+  const Template tp = makeTemplate(options.templateLevels, options.templateHead);
   const int coarseN = 468;
-  const MatX3 Xc = tp.V.topRows(coarseN), Nc = tp.N.topRows(coarseN);
+  if (tp.V.rows() < coarseN)
+    throw InputError(fmt::format("the template head has {} vertices; it needs at least {}", tp.V.rows(), coarseN),
+                     tp.head.mesh.sourcePath);
+  // The built-in template's first 468 vertices are MediaPipe's, spread evenly over the face; of
+  // another template, 468 at an even stride through its vertex order.
+  MatX3 Xc(coarseN, 3), Nc(coarseN, 3);
+  for (int i = 0; i < coarseN; ++i) {
+    const long v = options.templateHead ? static_cast<long>(i) * tp.V.rows() / coarseN : i;
+    Xc.row(i) = tp.V.row(v);
+    Nc.row(i) = tp.N.row(v);
+  }
   const Vec3 noseT = tp.V.row(tp.head.landmarks.vertex("nose_tip")).transpose();
 
   // Candidate orientations: the 24 axis-aligned ones (meshes come Y-up or Z-up, facing an axis)
@@ -764,7 +830,7 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
     lm68[28] = labelVertex(tg, nasion + (tip - nasion) / 3.0);
     lm68[29] = labelVertex(tg, nasion + 2.0 * (tip - nasion) / 3.0);
   }
-  const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68, options.jawByAngle);
+  const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68, options.jawByAngle, options.jawFrameFromMirrorPairs, options.jawOnRim);
 
   // The brows (17-26) seen from the front: across, at the mean 68-point face's positions in the eye
   // frame (kMeanFaceBrowX); up, at the template's; in depth, on the skin a frontal view sees there

@@ -28,6 +28,11 @@ struct AutoLandmarkOptions {
   // Loop levels of the built-in head used as the template (1: 1,790 vertices). Level 2 (6,990)
   // gave the same landmarks on ICT within 0.3 mm at 4× the time.
   int templateLevels = 1;
+  // Another labelled head as the template instead of the built-in one (templateLevels then
+  // unused): in cm, +y up, facing +z like the built-in head, one piece, at least 468 vertices,
+  // every name the built-in file has. For measuring (the built-in head found with a remeshed copy
+  // of itself, docs/heads.md); not owned, must outlive the call.
+  const Head* templateHead = nullptr;
   // Move the eye corners and lid points onto the eye openings' boundary loops, the inner lip
   // points onto the mouth's (when the mesh has them). Off: ICT's given points lie on the visible
   // lid and lip lines, not on its loops (which turn into the sockets); on ICT snapping raised the
@@ -44,6 +49,15 @@ struct AutoLandmarkOptions {
   // The jaw line (Multi-PIE 0-16) placed on the head's frontal outline (frontalJawLine in
   // auto_landmarks.cpp) instead of the template's jaw labels, which are its rim.
   bool jawOnOutline = true;
+  // The outline's frame (its spokes' directions and the midline) turned so that its x axis is the
+  // mean right-to-left direction of every mirror pair found off the jaw line (Multi-PIE 17–67),
+  // not the outer eye corners' alone. Off: decimated ICT 3.09 / 10.58 → 2.82 / 10.12 mm, but three of
+  // ICT's posed copies 6.95 → 8.22 mm at most (docs/heads.md, "Method", step 9).
+  bool jawFrameFromMirrorPairs = false;
+  // On a mask (a mesh with an open boundary round the face), where the outline march runs off the
+  // front-facing surface with the boundary within 0.1 eye widths, the point goes onto the boundary:
+  // the visible outline of a mask is its rim (search version 5).
+  bool jawOnRim = true;
   // Along that outline, the points at the mean 68-point face's angles (seen from the eye corners'
   // midpoint) rather than at equal arc length.
   bool jawByAngle = true;
