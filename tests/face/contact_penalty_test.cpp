@@ -74,6 +74,14 @@ std::vector<Pose> contactSweep(const AnatomicalFace& face) {
   return poses;
 }
 
+// The muscles a pose of the sweep activates, for a failure's message.
+std::string activeNames(const AnatomicalFace& face, const Pose& p) {
+  std::string names;
+  for (int m = 0; m < face.muscleCount(); ++m)
+    if (p.activations(m) != 0.0) names += face.muscleName(m) + " ";
+  return names;
+}
+
 SkinLoads loadsOf(const AnatomicalSkin& skin, const Pose& p, bool contact) {
   SkinLoads loads;
   loads.activations = p.activations;
@@ -193,7 +201,8 @@ TEST_F(ContactPenaltyIct, PenaltiesCutThePenetrationBeforeProjectionOverTheConta
     double deepest[2] = {0.0, 0.0};
     for (bool contact : {false, true}) {
       const SettledSkin s = skin.settle(loadsOf(skin, p, contact), false);
-      ASSERT_TRUE(s.converged) << "pose " << k << ", residual " << s.residual << " after " << s.contactIterations;
+      ASSERT_TRUE(s.converged) << "pose " << k << " (" << activeNames(*face_, p) << "jaw " << p.jaw.openDeg << "°), residual "
+                               << s.residual << " after " << s.contactIterations;
       MatX3 P;
       const ContactReport r = face_->placeSkin(s.u, p.jaw, p.activations, P);
       deepest[contact] = r.maxPenetrationBefore;
