@@ -29,7 +29,7 @@ def main():
     args = parser.parse_args()
 
     cache = tempfile.mkdtemp(prefix="myo_pybench_")
-    face = myoshell.Face(cache=cache)  # the built-in head, the whole face's 39 muscles
+    face = myoshell.Face(cache=cache)  # the built-in head, the whole face's 40 muscles
     sim = myoshell.Simulator(face)
     sim.set_activations({"zygomaticus_major_left": 0.7, "corrugator_supercilii_right": 0.4})
     n = args.steps

@@ -17,7 +17,7 @@
 // cache of their own), the cached start (built again from it) and the mean phases of a step
 // (StepTimings: muscles, springs / force assembly, skin channels) and `read_us`, what an output frame
 // pays besides its steps (one skinPositions after a step). Row `whole_face` does the same for
-// the anatomical model with the whole face's 39 muscles, 37 of them driven (scenes/bench/whole_face.json);
+// the anatomical model with the whole face's 40 muscles, 37 of them driven (scenes/bench/whole_face.json);
 // `whole_face_follow` the same scene with the follow response (whole_face_follow.json).
 //
 // Every row also reports, beside steps/s (docs/PERFORMANCE.md, "Ratios"):
@@ -99,14 +99,14 @@ struct BenchRow {
 };
 
 // The two models side by side: 8 muscles + gravity + one drag, [0, 1) s of scenes/bench/*; and the
-// anatomical model with the whole face's 39 muscles, 37 of them driven (issue 16).
+// anatomical model with the whole face's 40 muscles, 37 of them driven (issue 16).
 std::vector<BenchRow> fullRows() {
   std::vector<BenchRow> r;
   r.push_back({"full", "thesis_full", "8 muscles + gravity + drag, model: thesis", "full_thesis.json", {}, 0.0, 1.0,
                false, 0, "bench"});
   r.push_back({"full", "anatomical_full", "8 muscles + gravity + drag, model: anatomical", "full_anatomical.json", {},
                0.0, 1.0, false, 0, "bench"});
-  r.push_back({"full", "whole_face", "the whole face's 39 muscles (6 rings), 37 at 0.5 (the levators rest) + gravity + drag, model: anatomical",
+  r.push_back({"full", "whole_face", "the whole face's 40 muscles (7 rings), 37 at 0.5 (the levators and the lower lip's marginal part rest) + gravity + drag, model: anatomical",
                "whole_face.json", {}, 0.0, 1.0, false, 0, "bench"});
   r.push_back({"full", "whole_face_follow", "whole_face with numerics.response: follow (docs/live.md, \"Lag\")",
                "whole_face_follow.json", {}, 0.0, 1.0, false, 0, "bench"});

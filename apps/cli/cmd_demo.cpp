@@ -23,7 +23,7 @@ const CommandRegistrar registrar("demo", [](CLI::App& app) {
   opt->outDir = "out/demo";
   opt->render = true;
   opt->renderEvery = 3;
-  // The skin alone: the whole face's 39 muscles drawn through it hide the expressions they make
+  // The skin alone: the whole face's 40 muscles drawn through it hide the expressions they make
   // (`myoshell run scenes/demo.json --render --muscles` shows them).
   opt->showMuscles = false;
   opt->formats = {"glb", "pc2", "obj"};

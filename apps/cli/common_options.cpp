@@ -42,7 +42,7 @@ FitHeadOptions fitHeadOptions(const HeadOptions& head, const std::string& librar
 
 void addLibraryOption(CLI::App& sub, std::string& library) {
   sub.add_option("--library", library,
-                 "Muscles: face (the whole face's 39, docs/muscles.md), builtin (the built-in ten: the thesis's "
+                 "Muscles: face (the whole face's 40, docs/muscles.md), builtin (the built-in ten: the thesis's "
                  "eight, placed anatomically, and the lips' two rings) or a library file; default: " + library);
 }
 

@@ -85,10 +85,10 @@ int main(int argc, char** argv) {
   myo::viewer::ViewerOptions options;
   app.add_option("scene", scenePath, "scene file (JSON or YAML), or a performance (.csv: OpenFace or Live Link Face; "
                                     ".jsonl: MediaPipe) played on the built-in head; default: the built-in head and "
-                                    "the whole face's 39 muscles");
+                                    "the whole face's 40 muscles");
   std::string library;
   app.add_option("--library", library,
-                 "muscles of the built-in head or a performance: face (the whole face's 39, the default), builtin "
+                 "muscles of the built-in head or a performance: face (the whole face's 40, the default), builtin "
                  "(the built-in ten) or a library file; a scene names its own");
   app.add_option("--script", options.script, "run this script (commands in docs/viewer.md), then exit");
   app.add_option("--screenshot", options.screenshot, "draw --frames frames, save this PNG and exit");

@@ -11,7 +11,7 @@ import myoshell
 # The skin's basis is kept where the command line keeps it: a second run skips the basis computation.
 cache = os.environ.get("MYOSHELL_CACHE") or os.path.expanduser("~/.cache/myoshell")
 head = myoshell.load_head()                      # the built-in head, cm
-face = myoshell.Face(head, cache=cache)          # the anatomical face with the whole face's 39 muscles
+face = myoshell.Face(head, cache=cache)          # the anatomical face with the whole face's 40 muscles
 print("muscles:", ", ".join(face.muscle_names))
 
 # Both zygomatici at 0.8 (activations lie in [0, 1]); the settled shape is an (n, 3) array in cm.

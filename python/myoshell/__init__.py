@@ -4,7 +4,7 @@ Lengths are in cm, angles in degrees, activations in [0, 1]; arrays are NumPy co
 positions float64 (n, 3), triangles int32 (m, 3).
 
     import myoshell
-    face = myoshell.Face(cache="cache")              # the built-in head, the whole face's 39 muscles
+    face = myoshell.Face(cache="cache")              # the built-in head, the whole face's 40 muscles
     smile = face.pose({"zygomaticus_major_left": 0.8, "zygomaticus_major_right": 0.8})
     face.write_obj("smile.obj", smile)
 """

@@ -281,7 +281,7 @@ a library, gravity; the face `myoshell pose` and `myoshell fit` build.)doc")
            py::arg("head") = py::none(), py::arg("library") = defaultMuscleLibrary(), py::arg("muscles") = py::none(),
            py::arg("cache") = py::none(), py::arg("gravity") = true, R"doc(
 Builds the face on `head` (a Head from load_head(); default the built-in head).
-library: 'face' (the whole face's 39, the default), 'builtin' (the built-in ten: the thesis's eight
+library: 'face' (the whole face's 40, the default), 'builtin' (the built-in ten: the thesis's eight
 and the lips' two rings) or a library file.
 muscles: a list of the library's names to use (default all).
 cache: a basis cache folder (made if missing; the command line's is ~/.cache/myoshell): a build

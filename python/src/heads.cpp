@@ -178,7 +178,7 @@ units_inferred, eyes and mouth ('open' or 'closed'), warnings, seconds. InputErr
 is not a head.)doc");
 
   m.def("muscle_names", &muscleNames, py::arg("library") = defaultMuscleLibrary(), R"doc(
-The muscle names of a library, in its order: 'face' (the whole face's 39, docs/muscles.md; the
+The muscle names of a library, in its order: 'face' (the whole face's 40, docs/muscles.md; the
 default), 'builtin' (the built-in ten: the thesis's eight and the lips' two rings) or the path of a
 library file (JSON or YAML).)doc");
 }

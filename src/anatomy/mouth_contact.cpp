@@ -55,7 +55,32 @@ struct Mandible {
   RigidMotion motion;
   Vec3 toRest(const Vec3& p) const { return motion.R.transpose() * (p - motion.d); }
   Vec3 fromRest(const Vec3& p) const { return motion.apply(p); }
+  bool atRest() const { return motion.R == Mat3::Identity() && motion.d.isZero(); }
 };
+
+// With the jaw open the proxies part: the upper one's bottom (the occlusal plane) and the lower
+// one's top face the gap between the teeth, and the way out of a proxy is the nearer of its
+// radial depth and its height over that face. Measured radially alone, a vertex inside the arch
+// sliding through the face into the gap dropped its whole depth at once: no vertical force held it
+// and the penalty's energy jumped there (the lower lip's marginal band at 1, the jaw at 10°: its
+// Newton stalled; docs/mouth_contact.md, "The occlusal faces are a way out"). Where the proxies
+// meet — the mandible at rest, or where the lower proxy's top does not lie below the face — the face
+// is no way out and the depth is the radial one.
+constexpr double kGapTolerance = 1e-6;  // cm: the faces meet within this (the turn's round-off)
+
+// Whether the upper proxy's bottom is a way out at local point q's footprint (q in the head frame).
+bool upperFaceOpen(const MouthContact& m, const Mandible& jaw, const Vec3& q) {
+  if (jaw.atRest()) return false;
+  const Vec3 e = local(m.frame, jaw.toRest(global(m.frame, Vec3(q.x(), m.yOcclusal, q.z()))));
+  return e.y() > m.yOcclusal + kGapTolerance || archRadius(m, e) >= 1.0;  // above the lower's top, or beside it
+}
+
+// Whether the lower proxy's top is a way out at local point r's footprint (r in its rest frame).
+bool lowerFaceOpen(const MouthContact& m, const Mandible& jaw, const Vec3& r) {
+  if (jaw.atRest()) return false;
+  const Vec3 e = local(m.frame, jaw.fromRest(global(m.frame, Vec3(r.x(), m.yOcclusal, r.z()))));
+  return e.y() < m.yOcclusal - kGapTolerance || archRadius(m, e) >= 1.0;  // below the upper's face, or beside it
+}
 
 double lipViolation(const MouthContact& m, size_t k, const MatX3& P) {
   const auto [up, low] = m.lipPairs[k];
@@ -68,14 +93,22 @@ double teethDepth(const MouthContact& m, const Mandible& jaw, const Vec3& p, Vec
   const Vec3 q = local(m.frame, p);
   if (proxyAt(m, q) == Proxy::Upper) {
     Vec3 pushed;
-    const double d = archDepth(m, q, &pushed);
+    double d = archDepth(m, q, &pushed);
+    if (d > 0.0 && q.y() - m.yOcclusal < d && upperFaceOpen(m, jaw, q)) {  // out through the occlusal face
+      d = q.y() - m.yOcclusal;
+      pushed = Vec3(q.x(), m.yOcclusal, q.z());
+    }
     if (d > 0.0 && out) *out = global(m.frame, pushed);
     return d;
   }
   const Vec3 r = local(m.frame, jaw.toRest(p));  // the lower proxy's rest frame
   if (proxyAt(m, r) != Proxy::Lower) return 0.0;
   Vec3 pushed;
-  const double d = archDepth(m, r, &pushed);
+  double d = archDepth(m, r, &pushed);
+  if (d > 0.0 && m.yOcclusal - r.y() < d && lowerFaceOpen(m, jaw, r)) {
+    d = m.yOcclusal - r.y();
+    pushed = Vec3(r.x(), m.yOcclusal, r.z());
+  }
   if (d > 0.0 && out) *out = jaw.fromRest(global(m.frame, pushed));
   return d;
 }
@@ -195,12 +228,19 @@ double teethPenetration(const MouthContact& m, const RigidMotion& mandible, cons
   if (proxyAt(m, q) == Proxy::Upper) {
     const double d = archDepth(m, q, nullptr);
     if (d <= 0.0) return 0.0;
+    // Out through the occlusal face when it is open and nearer: the height t_o over it, ∇t_o = y.
+    const double tFace = q.y() - m.yOcclusal;
+    if (tFace < d && upperFaceOpen(m, jaw, q)) return faded(tFace, m.upperTop - q.y(), m.upperTop - m.yOcclusal, y, -y);
     return faded(d, m.upperTop - q.y(), m.upperTop - m.yOcclusal, m.frame.axes * grad(q), -y);
   }
   const Vec3 r = local(m.frame, jaw.toRest(p));
   if (proxyAt(m, r) != Proxy::Lower) return 0.0;
   const double d = archDepth(m, r, nullptr);
   if (d <= 0.0) return 0.0;
+  // Out through its top when it is open and nearer: t_o = y_occ − r_y, ∇t_o = −R y.
+  const double tFace = m.yOcclusal - r.y();
+  if (tFace < d && lowerFaceOpen(m, jaw, r))
+    return faded(tFace, r.y() - m.lowerBottom, m.yOcclusal - m.lowerBottom, Vec3(-(mandible.R * y)), mandible.R * y);
   return faded(d, r.y() - m.lowerBottom, m.yOcclusal - m.lowerBottom, mandible.R * (m.frame.axes * grad(r)),
                mandible.R * y);
 }

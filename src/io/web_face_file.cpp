@@ -13,7 +13,7 @@ namespace myo {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'Y', 'O', 'W', 'E', 'B', 'F', '1'};
-constexpr uint32_t kVersion = 6;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`; 5: `pushes`; 6: `continues_into`
+constexpr uint32_t kVersion = 7;  // 2: takes; 3: the FACS map; 4: a linear muscle's `thickens`, a ring's `lip_body`; 5: `pushes`; 6: `continues_into`; 7: a ring's `hoop`
 
 class Out {
  public:
@@ -163,6 +163,12 @@ std::string webFaceBytes(const std::vector<MuscleDef>& muscles, const BasisKey& 
     if (d.pushes) o.anchor(*d.pushes);
     o.pod(static_cast<uint8_t>(d.continuesInto ? 1 : 0));
     if (d.continuesInto) o.anchor(*d.continuesInto);
+    o.pod(static_cast<uint8_t>(d.ring.hoop ? 1 : 0));
+    if (d.ring.hoop) {
+      o.str(d.ring.hoop->landmark);
+      o.vec3(d.ring.hoop->offset);
+      o.pod(d.ring.hoop->radius);
+    }
   }
   o.pod(key.words[0]);
   o.pod(key.words[1]);
@@ -273,6 +279,13 @@ WebFace readWebFace(std::string_view bytes, const std::string& name) {
     d.ring.lipBody = in.flag("muscle '" + d.name + "' ring in the lip's body");
     if (in.flag("muscle '" + d.name + "' pushes")) d.pushes = in.anchor();
     if (in.flag("muscle '" + d.name + "' continues into")) d.continuesInto = in.anchor();
+    if (in.flag("muscle '" + d.name + "' ring hoop")) {
+      MuscleDef::Ring::Hoop hoop;
+      hoop.landmark = in.str();
+      hoop.offset = in.vec3();
+      hoop.radius = in.pod<double>();
+      d.ring.hoop = hoop;
+    }
     d.validate();
     w.muscles.push_back(std::move(d));
   }

@@ -232,6 +232,14 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
       c += (k == 0 ? 1.0 - def.ring.centre : def.ring.centre) * (p.point - frame.scale * a.depth * p.normal);
     }
     const bool symmetric = midlineMirrorRing(def);
+    if (def.ring.hoop) {  // the arch's centre of curvature: `radius` behind its front (inside the head)
+      const MuscleDef::Ring::Hoop& hoop = *def.ring.hoop;
+      if (!head.landmarks.has(hoop.landmark))
+        throw InputError("muscle '" + def.name + "': the head has no landmark '" + hoop.landmark + "'", head.landmarks.sourcePath);
+      const Vec3 front = Vec3(head.mesh.V.row(head.landmarks.vertex(hoop.landmark))) + frame.scale * frame.directionFromFrame(hoop.offset);
+      muscle.hoopCentre = front - frame.scale * hoop.radius * frame.directionFromFrame(Vec3::UnitZ());
+      if (symmetric) muscle.hoopCentre = 0.5 * (muscle.hoopCentre + mirrorPoint(frame, muscle.hoopCentre));
+    }
     if (symmetric) {
       symmetrizeStations(frame, centre, normal);
       c = 0.5 * (c + mirrorPoint(frame, c));  // the centre on the midplane

@@ -249,6 +249,25 @@ void ringShape(CoupledMuscle& cm, const DiscreteShell& shell, const FaceFrame& f
   const double linearSwell = 1.5 * ring.shortening;
   if (ring.lipBody) cm.releaseShape.resize(nm, 3);
   for (int v = 0; v < nm; ++v) {
+    if (ring.hoop) {
+      // A band held at both ends and pressed round the dental arch by its own tension (a string
+      // under a uniform load): its deflection towards the arch's centre of curvature h, in the
+      // face's x–z plane, runs as 4ξ(1 − ξ) along it, nothing at the held ends,
+      // σ of its distance at the middle. The lip it presses on the teeth keeps its volume: with
+      // `lip_body` it grows in height by 1/√(1 − ε) about its axis, ε = σ·4ξ(1 − ξ) the local
+      // squeeze (docs/muscles.md, "The marginal part rolls the lower lip in").
+      const double xi = static_cast<double>(mu.stationOf(v)) / static_cast<double>(stations - 1);
+      const double eps = ring.shortening * 4.0 * xi * (1.0 - xi);
+      const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.hoopCentre;
+      Vec3 u = -eps * (d.dot(x) * x + d.dot(z) * z);
+      if (ring.lipBody) {
+        const double h = (Vec3(mu.mesh.V.row(v)) - axisPoint[static_cast<size_t>(mu.stationOf(v))]).dot(y);
+        cm.releaseShape.row(v) = (u + 0.5 * eps * h * y).transpose();
+        u += (1.0 / std::sqrt(1.0 - eps) - 1.0) * h * y;
+      }
+      cm.fullShape.row(v) = u.transpose();
+      continue;
+    }
     const Vec3 d = Vec3(mu.mesh.V.row(v)) - mu.ringCentre;
     Vec3 inPlane = d.dot(x) * x + d.dot(y) * y;
     if (ring.alongSkin) {
@@ -445,6 +464,20 @@ CoupledMuscle coupleMuscle(const MuscleDef& def, const Head& head, const MuscleC
   }
   if (def.pushes) addPushSprings(cm, head, skinNormals, skinArea, profile);
   if (def.continuesInto) addContinuationSprings(cm, head, skinNormals, skinArea, profile);
+  if (def.isRing() && def.ring.hoop) {
+    // A hoop presses the lip onto the arch: its springs tie the skin along the pressing line only,
+    // towards the arch's centre of curvature in the face's x–z plane (K = k r̂r̂ᵀ, as a push's along
+    // its fibres). The lip's tissue is already tied to the mouth's ring that runs in it; the
+    // marginal band adds its press, not a second shear layer (docs/muscles.md, "The marginal part
+    // rolls the lower lip in": tied in full, the relaxed band held the lip and the corners in every
+    // other shape, the funnel −0.025, the smile −0.022).
+    const Vec3 ax = head.frame().axes.col(0), az = head.frame().axes.col(2);
+    for (auto& spring : cm.springs) {
+      const Vec3 d = Vec3(S.row(spring.skin)) - mu.hoopCentre;
+      const Vec3 r = d.dot(ax) * ax + d.dot(az) * az;
+      if (r.norm() > 0.0) spring.along = -r.normalized();
+    }
+  }
   return cm;
 }
 

@@ -27,6 +27,12 @@ void MuscleDef::validate() const {
     if (!(ring.shortening > 0.0 && ring.shortening < 1.0)) bad("ring shortening must lie in (0, 1)");
     if (!(ring.protrusion >= 0.0) || !std::isfinite(ring.protrusion)) bad("ring protrusion must be ≥ 0");
     if (!(ring.centre >= 0.0 && ring.centre <= 1.0)) bad("ring centre must lie in [0, 1]");
+    if (ring.hoop) {
+      if (ring.closed) bad("a hoop is for an open ring (a band held at its two ends)");
+      if (ring.hoop->landmark.empty()) bad("the hoop has no landmark");
+      if (!ring.hoop->offset.allFinite()) bad("the hoop's offset is not finite");
+      if (!(ring.hoop->radius > 0.0) || !std::isfinite(ring.hoop->radius)) bad("the hoop's radius must be > 0");
+    }
   }
   if (pushes && (isRing() || imported())) bad("pushes is for generated linear muscles");
   std::vector<const MuscleAnchor*> anchors = {&origin, &insertion};

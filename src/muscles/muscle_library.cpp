@@ -118,6 +118,17 @@ MuscleDef readMuscleDef(DocReader& r) {
     if (!(d.ring.centre >= 0.0 && d.ring.centre <= 1.0)) ring.fail("centre", "must lie in [0, 1]");
     d.ring.alongSkin = ring.boolean("along_skin", d.ring.alongSkin);
     d.ring.lipBody = ring.boolean("lip_body", d.ring.lipBody);
+    if (ring.has("hoop")) {
+      DocReader h = ring.child("hoop");
+      MuscleDef::Ring::Hoop hoop;
+      hoop.landmark = h.requiredString("landmark");
+      hoop.offset = h.vec3("offset", hoop.offset);
+      hoop.radius = h.number("radius", hoop.radius);
+      h.requireAbove("radius", hoop.radius, 0.0);
+      h.finish();
+      if (d.ring.closed) ring.fail("hoop", "is for an open ring (a band held at its two ends)");
+      d.ring.hoop = hoop;
+    }
     ring.finish();
     if (r.has("origin") || r.has("insertion"))
       r.fail(r.has("origin") ? "origin" : "insertion", "a ring muscle has a path and anchors, not an origin and an insertion");

@@ -67,7 +67,7 @@ TEST(CliOptions, SharedOptionsReadTheSameInEveryCommand) {
     }
     // --library: the same words and one default, the whole face, in every command.
     if (const std::string line = helpLine(h, "--library"); !line.empty())
-      EXPECT_THAT(line, HasSubstr("Muscles: face (the whole face's 39, docs/muscles.md), builtin (the built-in ten: the "
+      EXPECT_THAT(line, HasSubstr("Muscles: face (the whole face's 40, docs/muscles.md), builtin (the built-in ten: the "
                                   "thesis's eight, placed anatomically, and the lips' two rings) or a library file; "
                                   "default: face"))
           << c;

@@ -208,7 +208,7 @@ TEST(DefaultHeadEyes, TheThesisHeadIsTheClosedEyedHeadBitForBit) {
 // The anatomical model's built-in head (eyes open).
 Head anatomicalDefaultHead() { return loadDefaultHead(defaultHeadOptions(FaceModelKind::Anatomical)); }
 
-// The whole face (39 muscles) on the built-in head without gravity, one model for the suite.
+// The whole face (40 muscles) on the built-in head without gravity, one model for the suite.
 class EyelidsDefaultHead : public test::WholeFaceSuite<anatomicalDefaultHead> {
  protected:
   void SetUp() override { build(); }

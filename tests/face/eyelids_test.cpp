@@ -37,7 +37,7 @@ using test::ictRig;
 // The deepest an orbit vertex lies inside its eyeball proxy's contact sphere (cm; ≤ 0 outside).
 double deepestInside(const LidRig& rig, const MatX3& P) { return test::deepestInsideEyeball(rig, P); }
 
-// The whole face (39 muscles) on ICT without gravity, one model for every test of the suite.
+// The whole face (40 muscles) on ICT without gravity, one model for every test of the suite.
 class EyelidsIct : public test::WholeFaceSuite<test::ictHead> {
  protected:
   void SetUp() override {

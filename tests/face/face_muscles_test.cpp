@@ -55,9 +55,9 @@ void expectMirrored(const MuscleAnchor& a, const MuscleAnchor& b, const std::str
   EXPECT_EQ(a.depth, b.depth) << what;
 }
 
-TEST(FaceMuscles, TheLibraryHoldsThirtyNineMusclesInMirroredPairsAndTheThesisEight) {
+TEST(FaceMuscles, TheLibraryHoldsFortyMusclesInMirroredPairsAndTheThesisEight) {
   const std::vector<MuscleDef>& defs = faceMuscleDefs();
-  EXPECT_EQ(defs.size(), 39u);
+  EXPECT_EQ(defs.size(), 40u);
   std::map<std::string, const MuscleDef*> byName;
   for (const MuscleDef& d : defs) byName[d.name] = &d;
   int rings = 0;
@@ -86,7 +86,7 @@ TEST(FaceMuscles, TheLibraryHoldsThirtyNineMusclesInMirroredPairsAndTheThesisEig
       if (d.continuesInto) expectMirrored(*d.continuesInto, *m.continuesInto, d.name + " continues into");
     }
   }
-  EXPECT_EQ(rings, 6);  // orbicularis oculi orbital and palpebral (both sides), orbicularis oris upper and lower
+  EXPECT_EQ(rings, 7);  // orbicularis oculi orbital and palpebral (both sides), orbicularis oris upper, lower and the lower marginal part
   for (const MuscleDef& t : thesisMuscleDefs()) {  // kept as they are: maps and scenes transfer
     ASSERT_TRUE(byName.count(t.name)) << t.name;
     EXPECT_EQ(byName[t.name]->insertion.offset, t.insertion.offset);
@@ -443,6 +443,24 @@ TEST_F(FaceMusclesDefaultHead, TheMentalisRaisesTheChinAndPushesTheLowerLipUpToT
   EXPECT_GT(at(u, "chin_menton").z(), 0.1);        // and forward
   EXPECT_LT(gap, 0.5 * gapRest);                   // the lower lip goes up to the upper
   EXPECT_GT(gap, 0.0);                             // and not through it
+}
+
+// The lower lip's marginal part is a band over the lower teeth pressed round the incisors' arch by
+// its own tension (docs/muscles.md, "The marginal part rolls the lower lip in"): it draws the lip's
+// margin straight back, farther than the lip's lower border (the lip turning in, not moving as one).
+// Built-in head, a = 1, gravity off: margin 8.3 mm back, border 4.2 mm (the corners 7.5 mm: the
+// lip's skin carries them though the band's own deflection vanishes at its ends).
+TEST_F(FaceMusclesDefaultHead, TheLowerLipsMarginalPartDrawsTheMarginBackFartherThanTheLipsBorder) {
+  const MatX3 u = settle({{"orbicularis_oris_marginal_lower", 1.0}});
+  const Vec3 margin = at(u, "lower_lip_inner"), border = at(u, "lower_lip_bottom");
+  const Vec3 left = at(u, "mouth_corner_left"), right = at(u, "mouth_corner_right");
+  RecordProperty("margin_back_mm", std::to_string(-10 * margin.z()));
+  RecordProperty("margin_up_mm", std::to_string(10 * margin.y()));
+  RecordProperty("border_back_mm", std::to_string(-10 * border.z()));
+  RecordProperty("corner_mm", std::to_string(10 * std::max(left.norm(), right.norm())));
+  EXPECT_LT(margin.z(), -0.4);                          // the margin at least 4 mm back
+  EXPECT_LT(margin.z(), 1.5 * border.z());              // half as far again as the lip's lower border
+  EXPECT_LT(std::abs(margin.x()), 0.05 * -margin.z());  // on the midline, straight back
 }
 
 // AU6 is the orbital part's lower and lateral arc, fixed to bone only at the medial palpebral

@@ -157,6 +157,55 @@ TEST(MouthContactOnIct, TheTeethDepthIsContinuousAtTheProxiesCapsAndItsGradientI
   }
 }
 
+// With the jaw open the proxies part, and a vertex inside the arch leaves the upper proxy through
+// its bottom (the occlusal plane) or the lower one through its top: the depth is the nearer of the
+// radial depth and the height over that face, so it goes to 0 at the face instead of dropping the
+// whole radial depth there, and its gradient (along the frame's y near the face) is exact. With
+// the jaw at rest the proxies meet at the face: the depth is the radial one up to it. Measured
+// radially alone, the lower lip's marginal band at 1 with the jaw at 10° stalled the penalty's
+// Newton on the jump (docs/mouth_contact.md).
+TEST(MouthContactOnIct, WithTheJawOpenTheTeethDepthIsContinuousThroughTheOcclusalFaces) {
+  MYO_REQUIRE_SHARED_DATA();
+  const auto [head, jaw, m] = mouthOf(ictHead());
+  const FaceFrame& f = m.frame;
+  auto at = [&](const RigidMotion& mandible, double s, double theta, double y, bool lower) {
+    const Vec3 p = f.origin + f.axes * Vec3(s * m.a * std::sin(theta), y, m.zCentre + s * m.b * std::cos(theta));
+    return lower ? mandible.apply(p) : p;
+  };
+  JawPose open;
+  open.openDeg = 10.0;
+  const RigidMotion turned = jawMotion(jaw, open, 1.0), atRest = jawMotion(jaw, JawPose{}, 1.0);
+  const double h = m.upperTop - m.yOcclusal;
+  for (bool lower : {false, true}) {
+    const std::string which = lower ? "lower" : "upper";
+    const double inward = lower ? -1.0 : 1.0;  // from the occlusal face into the proxy
+    // Radially 0.8 of the arch's radius (about 2 mm deep at the front): just inside the face the
+    // depth is nearly 0 with the jaw open, the radial depth with it at rest.
+    const double radial = teethPenetration(m, turned, at(turned, 0.8, 0.3, m.yOcclusal + inward * 0.5 * h, lower), nullptr);
+    ASSERT_GT(radial, 0.05) << which;
+    const double justInside = teethPenetration(m, turned, at(turned, 0.8, 0.3, m.yOcclusal + inward * 1e-7 * h, lower), nullptr);
+    EXPECT_LT(justInside, 1e-6) << which;
+    EXPECT_GT(justInside, 0.0) << which;
+    const double closed = teethPenetration(m, atRest, at(atRest, 0.8, 0.3, m.yOcclusal + inward * 1e-7 * h, lower), nullptr);
+    EXPECT_NEAR(closed, radial, 1e-9) << which;
+    // The gradient near the face (through the face) and farther in (radial), by central differences.
+    for (double t : {0.01, 0.5}) {
+      const Vec3 p = at(turned, 0.8, 0.3, m.yOcclusal + inward * t * h, lower);
+      Vec3 g;
+      const double d = teethPenetration(m, turned, p, &g);
+      ASSERT_GT(d, 0.0) << which << " t " << t;
+      if (t < 0.1) EXPECT_LT(d, 0.5 * radial) << which;
+      for (int k = 0; k < 3; ++k) {
+        const double e = 1e-6;
+        Vec3 dp = Vec3::Zero();
+        dp(k) = e;
+        const double fd = (teethPenetration(m, turned, p + dp, nullptr) - teethPenetration(m, turned, p - dp, nullptr)) / (2 * e);
+        EXPECT_NEAR(g(k), fd, 1e-6 * std::max(1.0, g.norm())) << which << " t " << t << " k " << k;
+      }
+    }
+  }
+}
+
 // The lips pushed 3 mm straight back into the mouth, with the jaw at 12°.
 MatX3 lipsPushedBack(const Head& head, const JawRig& jaw, const MouthContact& mouth, const JawPose& pose) {
   MatX3 u = MatX3::Zero(head.mesh.V.rows(), 3);

@@ -19,7 +19,7 @@ def cache_dir(tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def face(cache_dir):
-    """The anatomical face on the built-in head with the whole face's 39 muscles (the default library)."""
+    """The anatomical face on the built-in head with the whole face's 40 muscles (the default library)."""
     return myoshell.Face(cache=str(cache_dir))
 
 

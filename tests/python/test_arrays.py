@@ -50,7 +50,7 @@ def test_simulator_moves_and_resets(face):
 
 def test_muscle_libraries():
     whole = myoshell.muscle_names()  # the default: the whole face
-    assert whole == myoshell.muscle_names("face") and len(whole) == 39 and "frontalis_medial_left" in whole
+    assert whole == myoshell.muscle_names("face") and len(whole) == 40 and "frontalis_medial_left" in whole
     builtin = myoshell.muscle_names("builtin")
     assert len(builtin) == 10 and "zygomaticus_major_left" in builtin and builtin[-1] == "orbicularis_oris_lower"
     assert set(builtin) <= set(whole)

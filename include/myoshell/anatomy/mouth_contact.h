@@ -72,9 +72,10 @@ ContactReport applyMouthContact(const MouthContact& mouth, const JawRig& jaw, co
                                 bool project = true);
 
 // The depth (cm, ≥ 0) of position p inside the teeth proxies, the lower one moved by `mandible`
-// (jawMotion at weight 1), as the projection measures it (along the ray from the arch's axis) but faded
-// to 0 over the last tenth of a proxy's height before its outer cap, so the penalty is continuous; and,
-// when inside and `gradient` is given, ∂depth/∂p (head space; about unit length over the front).
+// (jawMotion at weight 1), as the projection measures it (along the ray from the arch's axis, or with
+// the jaw open the height over the occlusal face where that is nearer) but faded to 0 over the last
+// tenth of a proxy's height before its outer cap, so the penalty is continuous; and, when inside and
+// `gradient` is given, ∂depth/∂p (head space; about unit length over the front).
 double teethPenetration(const MouthContact& mouth, const RigidMotion& mandible, const Vec3& p, Vec3* gradient);
 // Lip pair k's violation in `positions`: its least allowed separation along the frame's y minus the
 // separation (cm; > 0 when the lips cross). Its gradient is −y at the upper vertex, +y at the lower.

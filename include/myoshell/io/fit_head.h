@@ -16,7 +16,7 @@ struct FitHeadOptions {
   std::string head = "default";
   std::string landmarks;
   std::string units = "cm";
-  std::string library = defaultMuscleLibrary();  // --library: "face" (the whole face's 39), "builtin" (the built-in ten) or a file
+  std::string library = defaultMuscleLibrary();  // --library: "face" (the whole face's 40), "builtin" (the built-in ten) or a file
   bool headGiven = false;   // --head on the command line
   bool unitsGiven = false;  // --units on the command line
 };

@@ -29,6 +29,7 @@ struct Muscle {
   Vec3 ringCentre = Vec3::Zero();      // a ring muscle's centre (its anchors' midpoint under the skin), cm
   Vec3 pushPoint = Vec3::Zero();       // def.pushes's point on the skin, cm (MuscleDef::pushes)
   Vec3 continuePoint = Vec3::Zero();   // def.continuesInto's point under the skin, cm (MuscleDef::continuesInto)
+  Vec3 hoopCentre = Vec3::Zero();      // a hoop ring's arch centre of curvature, cm (MuscleDef::Ring::hoop)
   // The station (ring of the tube) of a generated muscle's node: node s·ringNodes + k.
   int stationOf(int node) const { return node / def.ringNodes; }
   int insertionCentre(int k = 0) const;  // a vertex of the insertion ring (k in [0, ringNodes))

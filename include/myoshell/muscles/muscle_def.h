@@ -107,6 +107,20 @@ struct MuscleDef {
     // fibres, the lip grows in height about its own axis instead of being squeezed across
     // (docs/muscles.md, "The lip's body"; the mouth's parts).
     bool lipBody = false;
+    // The band presses the lip onto the dental arch (key `hoop`: the lower lip's marginal part,
+    // docs/muscles.md, "The marginal part rolls the lower lip in"): instead of drawing in about the
+    // anchors' centre in the face's plane, the band is a string held at its two ends and loaded by
+    // its tension round the arch, deflected towards the arch's centre of curvature in the face's
+    // x–z plane by σ of its distance there, times 4ξ(1 − ξ) (ξ its place along the ring, 0 and 1
+    // the ends): nothing at the ends, all at the middle. The arch's front is `front` (a landmark's
+    // vertex plus a face-frame offset, not projected: it lies inside the head), its radius of
+    // curvature there `radius` (face-frame units); the centre lies `radius` behind the front.
+    struct Hoop {
+      std::string landmark;
+      Vec3 offset = Vec3::Zero();
+      double radius = 0.0;
+    };
+    std::optional<Hoop> hoop;
   };
   Ring ring;
   bool isRing() const { return kind == MuscleKind::Ring; }
