@@ -39,7 +39,8 @@ inline BasisKey webFaceSeedKey() {
 }
 
 // One seed per feature of the whole face's muscles the format carries (a thickening muscle, a
-// ring with the lip's body, a pushing muscle, a continuing one), a take, a FACS map, all together.
+// ring with the lip's body, a pushing muscle, a continuing one, a ring
+// with a hoop), a take, a FACS map, all together.
 inline std::vector<WebFaceSeed> webFaceSeeds() {
   const std::vector<MuscleDef>& face = faceMuscleDefs();
   const auto first = [&](const std::function<bool(const MuscleDef&)>& has) {
@@ -51,6 +52,7 @@ inline std::vector<WebFaceSeed> webFaceSeeds() {
   const MuscleDef lipBody = first([](const MuscleDef& m) { return m.ring.lipBody; });
   const MuscleDef pushes = first([](const MuscleDef& m) { return m.pushes.has_value(); });
   const MuscleDef continues = first([](const MuscleDef& m) { return m.continuesInto.has_value(); });
+  const MuscleDef hoop = first([](const MuscleDef& m) { return m.ring.hoop.has_value(); });
   SceneDesc take;
   take.name = "smile";
   take.duration = 1.5;
@@ -65,9 +67,10 @@ inline std::vector<WebFaceSeed> webFaceSeeds() {
       {"lip_body", {lipBody}, {}, {}},
       {"pushes", {pushes}, {}, {}},
       {"continues_into", {continues}, {}, {}},
+      {"hoop", {hoop}, {}, {}},
       {"take", {thickens}, {take}, {}},
       {"facs", {thickens}, {}, facs},
-      {"all", {thickens, lipBody, pushes, continues}, {take}, facs},
+      {"all", {thickens, lipBody, pushes, continues, hoop}, {take}, facs},
   };
 }
 
