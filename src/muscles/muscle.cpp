@@ -56,13 +56,18 @@ std::vector<char> rimVertices(const TriMesh& mesh) {
 // in front meets skin there; a mask's outer edge beyond which nothing lies keeps the rim point.
 // A ring's path points keep their closest points (rimTakesFront false): the palpebral ring's
 // upper arc, moved into the lid, left the contact settle unconverged (docs/muscles.md).
+// A landmark's vertex moved by a face-frame offset (not projected onto the skin); InputError naming
+// the muscle when the head has no such landmark.
+Vec3 landmarkMoved(const std::string& landmark, const Vec3& offset, const Head& head, const FaceFrame& frame,
+                   const std::string& muscle) {
+  if (!head.landmarks.has(landmark))
+    throw InputError("muscle '" + muscle + "': the head has no landmark '" + landmark + "'", head.landmarks.sourcePath);
+  return Vec3(head.mesh.V.row(head.landmarks.vertex(landmark))) + frame.scale * frame.directionFromFrame(offset);
+}
+
 SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const FaceFrame& frame,
                           const SkinQuery& onSkin, const std::string& muscle, bool rimTakesFront = true) {
-  if (!head.landmarks.has(anchor.landmark))
-    throw InputError("muscle '" + muscle + "': the head has no landmark '" + anchor.landmark + "'",
-                     head.landmarks.sourcePath);
-  const Vec3 landmark = head.mesh.V.row(head.landmarks.vertex(anchor.landmark));
-  const Vec3 moved = landmark + frame.scale * frame.directionFromFrame(anchor.offset);
+  const Vec3 moved = landmarkMoved(anchor.landmark, anchor.offset, head, frame, muscle);
   const SurfacePoint closest = onSkin(moved);
   if (!rimTakesFront || !onSkin.onRim(closest)) return closest;
   const Vec3 out = frame.directionFromFrame(Vec3::UnitZ());
@@ -234,9 +239,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
     const bool symmetric = midlineMirrorRing(def);
     if (def.ring.hoop) {  // the arch's centre of curvature: `radius` behind its front (inside the head)
       const MuscleDef::Ring::Hoop& hoop = *def.ring.hoop;
-      if (!head.landmarks.has(hoop.landmark))
-        throw InputError("muscle '" + def.name + "': the head has no landmark '" + hoop.landmark + "'", head.landmarks.sourcePath);
-      const Vec3 front = Vec3(head.mesh.V.row(head.landmarks.vertex(hoop.landmark))) + frame.scale * frame.directionFromFrame(hoop.offset);
+      const Vec3 front = landmarkMoved(hoop.landmark, hoop.offset, head, frame, def.name);
       muscle.hoopCentre = front - frame.scale * hoop.radius * frame.directionFromFrame(Vec3::UnitZ());
       if (symmetric) muscle.hoopCentre = 0.5 * (muscle.hoopCentre + mirrorPoint(frame, muscle.hoopCentre));
     }
