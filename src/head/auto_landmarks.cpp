@@ -456,7 +456,7 @@ std::optional<Vec3> frontmostAlong(const Target& tg, const Vec3& a, const Vec3& 
 // kJawAngleShare) or at equal arc length. False (the fit's points kept) when too little outline is
 // found.
 bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool symmetricAxis, bool onRim,
-                    const std::optional<std::pair<Vec3, Vec3>>& eyeOpeningCentres) {
+                    const std::optional<std::pair<Vec3, Vec3>>& eyeOpeningCentres, bool onSilhouette) {
   const auto at = [&](int v) { return Vec3(tg.V.row(v).transpose()); };
   EyeFrame fr = eyeFrame(at(lm68[36]), at(lm68[45]), at(lm68[48]), at(lm68[54]));
   if (symmetricAxis) {
@@ -585,6 +585,45 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool
     }
     raw.push_back(last);
   }
+  // A jaw point's vertex (search version 7): the vertex nearest its outline point q is kept only
+  // where no vertex on the outline lies about as near. Among the skin vertices within twice the
+  // nearest one's distance from q (at most 0.1 eye widths, the outline's depth band), those on the
+  // mesh's outline seen along the spoke's view — on its silhouette (with triangles facing the view
+  // and triangles facing away) or on its open boundary (a mask's rim) — and not behind q, the one
+  // nearest q. On a coarse mesh the vertex nearest an outline point can lie inside the outline
+  // (decimated ICT's point 6: 4.4 mm from q, 2.7 mm inside it, while the silhouette vertex 5.4 mm
+  // away is ICT's given one). "Not behind": the silhouette of a surface seen edge-on also runs
+  // along its far side, deeper than the visible outline (decimated ICT's 0, 13 and 16 would go to
+  // such vertices, 0 and 16 to 14-15 mm from ICT's points).
+  auto jawVertex = [&](const Vec3& q, int spoke) {
+    const int v0 = labelVertex(tg, o + s * (q.x() * ex + q.y() * ey + q.z() * ez));
+    if (!onSilhouette) return v0;
+    const double radius = std::min(0.1, 2.0 * (Vec3(Q.row(v0).transpose()) - q).norm());
+    const double r2 = radius * radius;
+    const double th = (150 + spoke) * std::numbers::pi / 180.0;  // spoke i is the one at 150° + i
+    const double tiltHere = tilt * std::max(0.0, -std::sin(th));
+    const Vec3 view(0.0, std::sin(tiltHere), std::cos(tiltHere));
+    std::vector<char> front(static_cast<size_t>(n), 0), back(static_cast<size_t>(n), 0);
+    for (int t = 0; t < tg.F.rows(); ++t) {
+      const Vec3 a = Q.row(tg.F(t, 0)).transpose(), b = Q.row(tg.F(t, 1)).transpose(), c = Q.row(tg.F(t, 2)).transpose();
+      if ((a - q).squaredNorm() > r2 && (b - q).squaredNorm() > r2 && (c - q).squaredNorm() > r2) continue;
+      const bool faces = (b - a).cross(c - a).dot(view) > 0.0;
+      for (int k = 0; k < 3; ++k) (faces ? front : back)[static_cast<size_t>(tg.F(t, k))] = 1;
+    }
+    int best = v0;
+    double bestD = 1e300;
+    for (int v : tg.skinIds) {
+      const auto vi = static_cast<size_t>(v);
+      const bool onOutline = (front[vi] && back[vi]) || (front[vi] && tg.boundary[vi]);
+      if (!onOutline || Q(v, 2) < q.z()) continue;
+      const double d = (Vec3(Q.row(v).transpose()) - q).squaredNorm();
+      if (d <= r2 && d < bestD) {
+        bestD = d;
+        best = v;
+      }
+    }
+    return best;
+  };
   const int m = static_cast<int>(raw.size()), sm = 10;
   std::vector<Vec3> smooth(raw.size());
   for (int i = 0; i < m; ++i) {
@@ -613,9 +652,7 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool
       const double want = L.back() * k / 8.0;
       int i = 0;
       while (i + 1 < static_cast<int>(L.size()) && L[static_cast<size_t>(i + 1)] <= want + 1e-12) ++i;
-      const Vec3 q = raw[static_cast<size_t>(a + i)];
-      const Vec3 p = o + s * (q.x() * ex + q.y() * ey + q.z() * ez);
-      lm68[static_cast<size_t>(k0 + dk * k)] = labelVertex(tg, p);
+      lm68[static_cast<size_t>(k0 + dk * k)] = jawVertex(raw[static_cast<size_t>(a + i)], a + i);
     }
   };
   if (!byAngle) {
@@ -628,7 +665,7 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool
   auto put = [&](int k, double spoke) {
     const int i = std::clamp(static_cast<int>(std::lround(spoke)), 0, m - 1);
     const Vec3 q = raw[static_cast<size_t>(i)];
-    lm68[static_cast<size_t>(k)] = labelVertex(tg, o + s * (q.x() * ex + q.y() * ey + q.z() * ez));
+    lm68[static_cast<size_t>(k)] = jawVertex(q, i);
   };
   for (int k = 0; k <= 8; ++k) {
     const double f = kJawAngleShare[static_cast<size_t>(k)];
@@ -869,7 +906,7 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
     if (right && left && right != left) eyeCentres = std::pair{loopCentre(*right, V), loopCentre(*left, V)};
   }
   const bool jawOnOutline = options.jawOnOutline && frontalJawLine(tg, lm68, options.jawByAngle, options.jawFrameFromMirrorPairs,
-                                                                   options.jawOnRim, eyeCentres);
+                                                                   options.jawOnRim, eyeCentres, options.jawVertexOnSilhouette);
 
   // The brows (17-26) seen from the front: across, at the mean 68-point face's positions in the eye
   // frame (kMeanFaceBrowX); up, at the template's; in depth, on the skin a frontal view sees there

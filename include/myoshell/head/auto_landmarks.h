@@ -65,6 +65,12 @@ struct AutoLandmarkOptions {
   // front-facing surface with the boundary within 0.1 eye widths, the point goes onto the boundary:
   // the visible outline of a mask is its rim (search version 5).
   bool jawOnRim = true;
+  // A jaw point's vertex: of the skin vertices within twice the nearest one's distance from its
+  // outline point (at most 0.1 eye widths), the nearest on the mesh's outline seen from the front
+  // (its silhouette along the spoke's view, or its open boundary) and not behind the point; else
+  // the nearest. Off: the nearest vertex (decimated ICT's jaw point 6, 2.7 mm inside the outline:
+  // 8.7 mm from ICT's point; on, 0.0 mm). Search version 7; docs/heads.md, "Method", step 9.
+  bool jawVertexOnSilhouette = true;
   // Along that outline, the points at the mean 68-point face's angles (seen from the eye corners'
   // midpoint) rather than at equal arc length.
   bool jawByAngle = true;
