@@ -75,47 +75,45 @@ test: build-test
 test-fast: build-test
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
 
-# The sanitized build, one for the fuzzers and the sanitized tests: clang-14 in build-san/, every
-# layer under AddressSanitizer and UndefinedBehaviorSanitizer with libFuzzer's coverage (MYO_FUZZ),
-# -O1 with line tables (stack traces keep file:line), assertions on. The layers compile once for
-# both (docs/RELIABILITY.md, "Status").
-SAN_CMAKE = cmake -S . -B build-san -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DMYO_FUZZ=ON -DMYO_BUILD_BENCH=OFF > /dev/null
+# Every test under AddressSanitizer and UndefinedBehaviorSanitizer, in its own build folder, but
+# the GL and viewer tests (ctest labels gl, viewer): Mesa's llvmpipe/EGL and GLFW leak inside the
+# driver (docs/RELIABILITY.md). CLI tests that render may still reach Mesa through the shared
+# painter: leaks whose stack passes through the driver libraries are suppressed (.ci/lsan.supp).
 ASAN_ENV = ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/lsan.supp \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-
-# Every test under the sanitizers but the GL and viewer tests (ctest labels gl, viewer): Mesa's
-# llvmpipe/EGL and GLFW leak inside the driver (docs/RELIABILITY.md). CLI tests that render may
-# still reach Mesa through the shared painter: leaks whose stack passes through the driver
-# libraries are suppressed (.ci/lsan.supp).
 ASAN_EXCLUDE = -LE '^(gl|viewer)$$'
+# -O1 -g1 (line tables: stack traces keep file:line): the shell's Eigen code under ASan takes 3x as
+# long to compile at -O2 -g (docs/RELIABILITY.md, "Status").
+ASAN_CMAKE = cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DMYO_SANITIZE=ON -DMYO_BUILD_BENCH=OFF > /dev/null
 asan-build: setup-test
-	@$(SAN_CMAKE)
-	@cmake --build build-san -j $(JOBS)
+	@$(ASAN_CMAKE)
+	@cmake --build build-asan -j $(JOBS)
 
 test-asan: asan-build
-	@cd build-san && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) $(ASAN_EXCLUDE)
+	@cd build-asan && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) $(ASAN_EXCLUDE)
 
 # The part of test-asan that CI runs (.ci/run): the parser and I/O layers and the CLI's bad-input
-# catalogue. Builds only what those tests need (the catalogue is its own program, test_bad_inputs).
-# Two of those tests are whole-face physics with a file at the end (the CLI's whole-face rig read
-# by the glTF validator, 114 s under the sanitizers; the attachment's settle, 30 s): `make test`
-# runs them, and the same writers and readers run sanitized here on smaller jobs.
+# catalogue, in one ctest run. Builds only what those tests need (the catalogue is its own program,
+# test_bad_inputs). Two of those tests are whole-face physics with a file at the end (the CLI's
+# whole-face rig read by the glTF validator, 114 s under the sanitizers; the attachment's settle,
+# 30 s): `make test` runs them, and the same writers and readers run sanitized here on smaller jobs.
 ASAN_CI_TARGETS = test_core test_mesh test_anim test_io test_bad_inputs
 ASAN_CI_SKIP = -E '^(GltfValidator\.CliRigGlbHasNoErrors|SceneAttachment\.AStifferAttachmentHoldsTheNamedVerticesCloserToRest)$$'
 test-asan-ci: setup-test
-	@$(SAN_CMAKE)
-	@cmake --build build-san -j $(JOBS) --target $(ASAN_CI_TARGETS)
-	@cd build-san && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) -L '^(core|mesh|anim|io|bad_inputs)$$' $(ASAN_CI_SKIP)
+	@$(ASAN_CMAKE)
+	@cmake --build build-asan -j $(JOBS) --target $(ASAN_CI_TARGETS)
+	@cd build-asan && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) -L '^(core|mesh|anim|io|bad_inputs)$$' $(ASAN_CI_SKIP)
 
-# libFuzzer targets for the readers (fuzz/), in the sanitized build: only the layers they parse
-# with. `make fuzz` runs each for FUZZ_SECONDS; `make fuzz-replay` replays the seed corpus
-# (fuzz/corpus/) once. Findings land in fuzz/findings/ (docs/RELIABILITY.md).
+# libFuzzer targets for the readers (fuzz/), built with clang-14 in build-fuzz: only the layers
+# they parse with. `make fuzz` runs each for FUZZ_SECONDS; `make fuzz-replay` replays the seed
+# corpus (fuzz/corpus/) once. Findings land in fuzz/findings/ (docs/RELIABILITY.md).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face
 fuzz-build: setup-test
-	@$(SAN_CMAKE)
-	@cmake --build build-san -j $(JOBS) --target $(FUZZ_TARGETS)
+	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" -DMYO_FUZZ=ON -DMYO_BUILD_TESTS=OFF -DMYO_BUILD_BENCH=OFF > /dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target $(FUZZ_TARGETS)
 
 fuzz: fuzz-build
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash fuzz/run.sh

@@ -5,13 +5,13 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 targets=${FUZZ_TARGETS:-fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face}
-mkdir -p build-san/logs
+mkdir -p build-fuzz/logs
 for t in $targets; do
-  log=build-san/logs/$t.replay.log
+  log=build-fuzz/logs/$t.replay.log
   mapfile -t files < <(find "fuzz/corpus/$t" -type f | sort)
   start=$(date +%s%N)
   if ! UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1 \
-      "build-san/bin/$t" -timeout=10 -rss_limit_mb=2048 "${files[@]}" >"$log" 2>&1; then
+      "build-fuzz/bin/$t" -timeout=10 -rss_limit_mb=2048 "${files[@]}" >"$log" 2>&1; then
     echo "$t: FAILED replaying fuzz/corpus/$t (log: $log)"
     grep -E "ERROR|Running:|FUZZ property|runtime error|terminate" "$log" | tail -20
     exit 1

@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # make fuzz: runs each libFuzzer target for FUZZ_SECONDS (default 60) on its seed corpus
 # (fuzz/corpus/TARGET, read only) and a work corpus that grows across runs
-# (build-san/corpus/TARGET), then prints executions and findings per target. A finding (crash,
+# (build-fuzz/corpus/TARGET), then prints executions and findings per target. A finding (crash,
 # undefined behaviour, CheckError, unexpected exception, timeout > 10 s, > 2 GB memory, leak)
 # stops that target and lands in fuzz/findings/TARGET-{crash,timeout,oom,leak}-SHA1; replay one
-# with `build-san/bin/TARGET FILE`. Exit status 1 when anything was found.
+# with `build-fuzz/bin/TARGET FILE`. Exit status 1 when anything was found.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
 targets=${FUZZ_TARGETS:-fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face}
-bin=build-san/bin
-mkdir -p fuzz/findings build-san/logs
+bin=build-fuzz/bin
+mkdir -p fuzz/findings build-fuzz/logs
 
 maxLen() {  # longest input per target: a few times the largest seed
   case $1 in
@@ -24,8 +24,8 @@ maxLen() {  # longest input per target: a few times the largest seed
 found=0
 printf '%-16s %8s %12s %9s %8s %9s  %s\n' target seconds executions exec/s corpus findings log
 for t in $targets; do
-  work=build-san/corpus/$t
-  log=build-san/logs/$t.log
+  work=build-fuzz/corpus/$t
+  log=build-fuzz/logs/$t.log
   mkdir -p "$work"
   before=$(find fuzz/findings -name "$t-*" -type f | wc -l)
   start=$(date +%s)
