@@ -423,6 +423,11 @@ Vec3 loopCentre(const std::vector<int>& loop, const MatX3& V) {
 // 195.5°, 209.3°, 221.4°, 232.3°, 242.7°, 252.4°, 261.3°, 270° from the subject's right). Not even
 // steps: annotators space the points closer towards the chin than along the sides.
 constexpr std::array<double, 9> kJawAngleShare = {0.000, 0.167, 0.322, 0.457, 0.579, 0.695, 0.803, 0.903, 1.000};
+// The share of the frontal arc length (in the image plane) from the jaw line's end to the chin at
+// which each jaw point lies on the same mean face, both halves averaged: nearly even steps. The
+// rule jawByAngle = false spaces the points by it; measured worse on ICT's remeshed copies
+// (docs/heads.md, "One jaw spacing for both heads", 2026-12-07).
+constexpr std::array<double, 9> kJawArcShare = {0.000, 0.126, 0.253, 0.380, 0.506, 0.632, 0.758, 0.882, 1.000};
 
 // The brows' distances from the eye corners' midpoint across the face, in eye widths (17-21 on
 // the subject's right, negated; 26-22 mirror them): the mean 68-point face's (OpenFace's template,
@@ -453,8 +458,8 @@ std::optional<Vec3> frontmostAlong(const Target& tg, const Vec3& a, const Vec3& 
 // chin, 0° at the sides) or its depth drops by more than 0.1 (an ear or the neck behind it). The
 // outline, smoothed over ±10 spokes, runs from its point at 0.1 eye widths above the eye corners on
 // each side to the midline; 9 points per half go on it, by angle (byAngle: the mean face's shares,
-// kJawAngleShare) or at equal arc length. False (the fit's points kept) when too little outline is
-// found.
+// kJawAngleShare) or by frontal arc length (the mean face's, kJawArcShare). False (the fit's points
+// kept) when too little outline is found.
 bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool symmetricAxis, bool onRim,
                     const std::optional<std::pair<Vec3, Vec3>>& eyeOpeningCentres, bool onSilhouette) {
   const auto at = [&](int v) { return Vec3(tg.V.row(v).transpose()); };
@@ -644,33 +649,30 @@ bool frontalJawLine(const Target& tg, std::vector<int>& lm68, bool byAngle, bool
   for (int i = m - 1; i > mid && lastI < 0; --i)
     if (smooth[static_cast<size_t>(i)].y() <= yEnd) lastI = i;
   if (mid < 0 || first < 0 || lastI < 0 || mid - first < 20 || lastI - mid < 20) return false;
-  auto place = [&](int a, int b, int k0, int dk) {
-    std::vector<double> L(1, 0.0);
-    for (int i = a + 1; i <= b; ++i)
-      L.push_back(L.back() + (smooth[static_cast<size_t>(i)] - smooth[static_cast<size_t>(i - 1)]).norm());
-    for (int k = 0; k <= 8; ++k) {
-      const double want = L.back() * k / 8.0;
-      int i = 0;
-      while (i + 1 < static_cast<int>(L.size()) && L[static_cast<size_t>(i + 1)] <= want + 1e-12) ++i;
-      lm68[static_cast<size_t>(k0 + dk * k)] = jawVertex(raw[static_cast<size_t>(a + i)], a + i);
-    }
-  };
-  if (!byAngle) {
-    place(first, mid, 0, 1);       // 0 … 8
-    place(mid, lastI, 8, 1);       // 8 … 16
-    return true;
-  }
-  // By angle: point k on the spoke at the share f_k of the angle from the outline's end to the
-  // midline that the mean 68-point face gives it (kJawAngleShare).
+  // Point k on the spoke (fractional index, rounded) at the mean face's share of the angle
+  // (kJawAngleShare) or of the frontal arc length (kJawArcShare) from the outline's end to the
+  // midline.
   auto put = [&](int k, double spoke) {
     const int i = std::clamp(static_cast<int>(std::lround(spoke)), 0, m - 1);
     const Vec3 q = raw[static_cast<size_t>(i)];
     lm68[static_cast<size_t>(k)] = jawVertex(q, i);
   };
+  // The spoke at the share g of the smoothed outline's frontal (x, y) arc length from spoke a to b.
+  auto spokeAtArc = [&](int a, int b, double g) {
+    const int d = b > a ? 1 : -1;
+    std::vector<double> L(1, 0.0);
+    for (int i = a + d; i != b + d; i += d)
+      L.push_back(L.back() + (smooth[static_cast<size_t>(i)] - smooth[static_cast<size_t>(i - d)]).head<2>().norm());
+    const double want = g * L.back();
+    size_t j = 0;
+    while (j + 2 < L.size() && L[j + 1] <= want) ++j;
+    const double t = L[j + 1] > L[j] ? std::clamp((want - L[j]) / (L[j + 1] - L[j]), 0.0, 1.0) : 0.0;
+    return a + d * (static_cast<double>(j) + t);
+  };
   for (int k = 0; k <= 8; ++k) {
-    const double f = kJawAngleShare[static_cast<size_t>(k)];
-    put(k, first + f * (mid - first));
-    put(16 - k, lastI - f * (lastI - mid));
+    const double f = kJawAngleShare[static_cast<size_t>(k)], g = kJawArcShare[static_cast<size_t>(k)];
+    put(k, byAngle ? first + f * (mid - first) : spokeAtArc(first, mid, g));
+    put(16 - k, byAngle ? lastI - f * (lastI - mid) : spokeAtArc(lastI, mid, g));
   }
   return true;
 }

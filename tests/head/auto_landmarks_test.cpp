@@ -220,6 +220,41 @@ TEST(AutoLandmarks, LoopSubdividedWithEyeballsAndAToothArch) {
   EXPECT_TRUE(a.mouthOpen);
 }
 
+// The jaw line's spacing along the frontal outline, checked against ICT's artist labels: the mean
+// 68-point face's angles (the search's rule) against its shares of the frontal arc length (nearly
+// even steps, jawByAngle = false), between the same found ends (0, 16) and chin (8). On ICT itself
+// the two come out alike (jaw 4.30 / 6.95 against 4.35 / 6.95 mm); after one Loop step the arc
+// rule puts points 4-7 and 9-12 0.4-3.4 mm further off, 1-2 and 14-15 1-2 mm nearer (decimated to
+// half, outside the tests, 5, 6 and 11 10.1-11.4 mm). Measured (2026-12-07): jaw mean 5.03 mm by
+// angle, 5.44 by arc; of the spaced points (1-7, 9-15) the farthest 7.6 mm by angle, 8.0 by arc
+// (both rules' ends 9.1 mm; docs/heads.md, "One jaw spacing for both heads").
+TEST(AutoLandmarks, TheJawSpacedByTheMeanFacesAnglesMatchesIctAfterALoopStep) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head ict = test::ictHead();
+  const TriMesh m = loopSubdivide(ict.mesh);  // ICT's vertex ids kept, the vertices moved
+  auto jaw = [&](const AutoLandmarks& a, double& mean, double& spacedMax) {
+    mean = spacedMax = 0.0;
+    for (int k = 0; k <= 16; ++k) {
+      const double d = 10.0 * (Vec3(m.V.row(a.landmarks.multipie68[static_cast<size_t>(k)])) -
+                               Vec3(ict.mesh.V.row(ict.landmarks.multipie68[static_cast<size_t>(k)])))
+                                  .norm();
+      mean += d / 17.0;
+      if (k != 0 && k != 8 && k != 16) spacedMax = std::max(spacedMax, d);
+    }
+  };
+  AutoLandmarkOptions byArc;
+  byArc.jawByAngle = false;
+  double meanAngle, maxAngle, meanArc, maxArc;
+  jaw(findLandmarks(m), meanAngle, maxAngle);
+  jaw(findLandmarks(m, byArc), meanArc, maxArc);
+  std::printf("ICT after one Loop step: jaw mean %.2f mm, spaced points' max %.2f mm by the mean face's angles; "
+              "%.2f / %.2f mm by its arc length\n",
+              meanAngle, maxAngle, meanArc, maxArc);
+  EXPECT_LT(maxAngle, 7.8);
+  EXPECT_LT(meanAngle, 5.2);
+  EXPECT_LT(meanAngle, meanArc);
+}
+
 // A remeshing that drops an eye opening's outer-corner vertex (as decimating ICT to half does: its
 // left opening's end went, and the next vertex along the upper lid, 2.6 mm higher, became the
 // found corner 45). ICT with that one boundary vertex collapsed into its upper loop neighbour: the
@@ -443,7 +478,10 @@ TEST(AutoLandmarks, TheBuiltInHeadFoundWithARemeshedTemplate) {
               namedMean, namedMax);
   // Measured (search version 5, 2026-12-07): 17-67 mean 1.03, max 5.49 mm (the brows' ends, which
   // the frontal rule moves off the template's own points); named mean 1.14 mm; the jaw 10.86 mm
-  // from its file's arc-length points, on its rim (version 4: 12.47).
+  // from its file's arc-length points, on its rim (version 4: 12.47). Spaced by the mean face's
+  // frontal arc length instead (jawByAngle = false) 9.51 / 20.94 mm: the file's own spacing, by
+  // 3-D arc length along the rim, is neither rule's (docs/heads.md, "One jaw spacing for both
+  // heads"), and ICT's artist labels chose the angles.
   EXPECT_LT(e.faceMeanMm, 1.3);
   EXPECT_LT(e.faceMaxMm, 6.0) << "Multi-PIE point " << e.faceWorst;
   EXPECT_LT(namedMean, 1.5);
