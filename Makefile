@@ -106,8 +106,10 @@ test-asan-ci: setup-test
 	@cd build-asan && $(ASAN_ENV) ctest --output-on-failure -j $(JOBS) -L '^(core|mesh|anim|io|bad_inputs)$$' $(ASAN_CI_SKIP)
 
 # libFuzzer targets for the readers (fuzz/), built with clang-14 in build-fuzz: only the layers
-# they parse with. `make fuzz` runs each for FUZZ_SECONDS; `make fuzz-replay` replays the seed
-# corpus (fuzz/corpus/) once. Findings land in fuzz/findings/ (docs/RELIABILITY.md).
+# they parse with. `make fuzz` runs each for FUZZ_SECONDS; findings land in fuzz/findings/.
+# `make fuzz-replay` (CI) replays the seed corpus (fuzz/corpus/) once through the same targets built
+# in the sanitized GCC build, build-asan, with a replay main instead of libFuzzer: the layers are
+# compiled once for the replay and the sanitized tests (docs/RELIABILITY.md).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_obj fuzz_vertex_set fuzz_landmarks fuzz_scene fuzz_attachment fuzz_rig fuzz_markers fuzz_retarget_map fuzz_facs_map fuzz_performance fuzz_livelink_packet fuzz_vmc_packet fuzz_web_face
 fuzz-build: setup-test
@@ -118,8 +120,10 @@ fuzz-build: setup-test
 fuzz: fuzz-build
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash fuzz/run.sh
 
-fuzz-replay: fuzz-build
-	@bash fuzz/replay.sh
+fuzz-replay: setup-test
+	@$(ASAN_CMAKE)
+	@cmake --build build-asan -j $(JOBS) --target $(FUZZ_TARGETS)
+	@bash fuzz/replay.sh build-asan
 
 demo: build
 	@$(BUILD_DIR)/bin/myoshell demo --out out/demo
