@@ -6,6 +6,7 @@
 #include <array>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <set>
 
 #include "myoshell/core/errors.h"
@@ -39,6 +40,15 @@ Errors landmarkErrors(const MatX3& V, const Landmarks& given, const Landmarks& f
     }
   }
   return e;
+}
+
+// Distances (mm) of the 17 jaw points found on mesh m (a remeshed ICT that keeps ICT's vertex ids,
+// its vertices moved) from ICT's given ones on its own mesh.
+std::array<double, 17> jawDistancesMm(const TriMesh& m, const AutoLandmarks& a, const Head& ict) {
+  std::array<double, 17> d{};
+  for (size_t k = 0; k < 17; ++k)
+    d[k] = 10.0 * (Vec3(m.V.row(a.landmarks.multipie68[k])) - Vec3(ict.mesh.V.row(ict.landmarks.multipie68[k]))).norm();
+  return d;
 }
 
 TriMesh transformed(const TriMesh& m, const Mat3& R, double s, const Vec3& t) {
@@ -233,14 +243,11 @@ TEST(AutoLandmarks, TheJawSpacedByTheMeanFacesAnglesMatchesIctAfterALoopStep) {
   const Head ict = test::ictHead();
   const TriMesh m = loopSubdivide(ict.mesh);  // ICT's vertex ids kept, the vertices moved
   auto jaw = [&](const AutoLandmarks& a, double& mean, double& spacedMax) {
-    mean = spacedMax = 0.0;
-    for (int k = 0; k <= 16; ++k) {
-      const double d = 10.0 * (Vec3(m.V.row(a.landmarks.multipie68[static_cast<size_t>(k)])) -
-                               Vec3(ict.mesh.V.row(ict.landmarks.multipie68[static_cast<size_t>(k)])))
-                                  .norm();
-      mean += d / 17.0;
-      if (k != 0 && k != 8 && k != 16) spacedMax = std::max(spacedMax, d);
-    }
+    const std::array<double, 17> d = jawDistancesMm(m, a, ict);
+    mean = std::accumulate(d.begin(), d.end(), 0.0) / 17.0;
+    spacedMax = 0.0;
+    for (int k = 1; k < 16; ++k)
+      if (k != 8) spacedMax = std::max(spacedMax, d[static_cast<size_t>(k)]);
   };
   AutoLandmarkOptions byArc;
   byArc.jawByAngle = false;
@@ -300,14 +307,9 @@ TEST(AutoLandmarks, ADroppedEyeCornerVertexDoesNotTurnTheJawLine) {
   ASSERT_EQ(m.triangleCount(), ict.mesh.triangleCount() - 1);
 
   auto jaw = [&](const AutoLandmarks& a, double& mean, double& maxMm) {
-    mean = maxMm = 0.0;
-    for (int k = 0; k <= 16; ++k) {
-      const double d = 10.0 * (Vec3(m.V.row(a.landmarks.multipie68[static_cast<size_t>(k)])) -
-                               Vec3(ict.mesh.V.row(ict.landmarks.multipie68[static_cast<size_t>(k)])))
-                                  .norm();
-      mean += d / 17.0;
-      maxMm = std::max(maxMm, d);
-    }
+    const std::array<double, 17> d = jawDistancesMm(m, a, ict);
+    mean = std::accumulate(d.begin(), d.end(), 0.0) / 17.0;
+    maxMm = *std::max_element(d.begin(), d.end());
   };
   const AutoLandmarks a = findLandmarks(m);
   AutoLandmarkOptions throughCorners;
