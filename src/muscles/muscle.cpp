@@ -49,13 +49,6 @@ std::vector<char> rimVertices(const TriMesh& mesh) {
   return rim;
 }
 
-// The anchor's point on the skin: the landmark moved by the frame offset, then projected. Where
-// the closest skin is a hole's rim, the anchor lies behind skin that turns away from it (ICT's
-// upper lid over its eye opening: both levator palpebrae anchors fell on the opening's rim, a
-// 0.05 cm muscle), so it takes the skin in front of it along the face's depth axis, when a ray from
-// in front meets skin there; a mask's outer edge beyond which nothing lies keeps the rim point.
-// A ring's path points keep their closest points (rimTakesFront false): the palpebral ring's
-// upper arc, moved into the lid, left the contact settle unconverged (docs/muscles.md).
 // A landmark's vertex moved by a face-frame offset (not projected onto the skin); InputError naming
 // the muscle when the head has no such landmark.
 Vec3 landmarkMoved(const std::string& landmark, const Vec3& offset, const Head& head, const FaceFrame& frame,
@@ -65,6 +58,13 @@ Vec3 landmarkMoved(const std::string& landmark, const Vec3& offset, const Head& 
   return Vec3(head.mesh.V.row(head.landmarks.vertex(landmark))) + frame.scale * frame.directionFromFrame(offset);
 }
 
+// The anchor's point on the skin: the landmark moved by the frame offset, then projected. Where
+// the closest skin is a hole's rim, the anchor lies behind skin that turns away from it (ICT's
+// upper lid over its eye opening: both levator palpebrae anchors fell on the opening's rim, a
+// 0.05 cm muscle), so it takes the skin in front of it along the face's depth axis, when a ray from
+// in front meets skin there; a mask's outer edge beyond which nothing lies keeps the rim point.
+// A ring's path points keep their closest points (rimTakesFront false): the palpebral ring's
+// upper arc, moved into the lid, left the contact settle unconverged (docs/muscles.md).
 SurfacePoint anchorOnSkin(const MuscleAnchor& anchor, const Head& head, const FaceFrame& frame,
                           const SkinQuery& onSkin, const std::string& muscle, bool rimTakesFront = true) {
   const Vec3 moved = landmarkMoved(anchor.landmark, anchor.offset, head, frame, muscle);
