@@ -148,6 +148,16 @@ MatX3 thickeningOverBelly(const Muscle& mu, double strain, const std::vector<Sur
   return rise;
 }
 
+// The frontalis arises from the galea aponeurotica, not from bone, and the galea slides with the
+// scalp's first three layers over the loose areolar layer (docs/muscles.md, "The galea slides:
+// the forehead's line of convergence"). Shortening, the muscle draws the brow up and the galea
+// down; measured on the skin at maximal contraction (Cotofana et al. 2020, Plast Reconstr Surg
+// 145:1155, 27 volunteers), the two motions meet at a line 60.6 % (women; men 60.9 %) of the
+// forehead's height above the brows: the line of convergence. A band contracting about that line
+// moves its ends in the ratio of their distances from it: the galea's end down by 0.394/0.606 of
+// the brow's rise.
+constexpr double kConvergenceAboveBrow = 0.606;
+
 // A linear muscle's shape at a = 1: the static response of the pinned muscle to its activation load
 // (unit forces along the contraction direction on the central nodes): K_FF⁻¹P (METHOD.md §8's
 // static-shape variant), scaled so that the insertion ring moves shortening × length along the
@@ -208,7 +218,27 @@ void linearShape(CoupledMuscle& cm, const DiscreteShell& shell, const MuscleCoup
       scale *= checkedScale(along);
     }
   }
-  if (def.thickens) cm.fullShape += rise;
+  if (def.thickens) {
+    // The galea slides (above): the whole tube shifted along the muscle by the galea's share of the
+    // insertion's motion (the origin then moves −0.394 and the insertion 0.606 of it, the ends of a
+    // contraction about the line), slid over the bed again, and scaled so that the insertion still moves
+    // σ × length: the strength rule is the insertion's measured excursion (the brow's, 7.6–9.0 mm at
+    // maximal contraction, Cruz & Cruz 2004), and the galea's descent comes on top of it.
+    MatX3 shifted = scale * response;
+    Vec3 lift = Vec3::Zero();  // the pinned tube's insertion: the ring's mean motion
+    for (int v : mu.insertionNodes) lift += shifted.row(v).transpose();
+    lift /= static_cast<double>(mu.insertionNodes.size());
+    const Vec3 shift = (1.0 - kConvergenceAboveBrow) * lift;
+    for (Eigen::Index v = 0; v < shifted.rows(); ++v) shifted.row(v) -= shift.transpose();
+    double grow = 1.0;
+    for (int it = 0; it < 30; ++it) {
+      cm.fullShape = settings.slideOverBed ? slideOverBed(mu, grow * shifted, restFoot, onSkin) : MatX3(grow * shifted);
+      const double along = insertionShortening(mu, cm.fullShape, axis);
+      if (std::abs(along - target) <= 1e-9 * target) break;
+      grow *= checkedScale(along);
+    }
+    cm.fullShape += rise;
+  }
   {
     const VecX& mass = shell.lumpedMass();
     double mm2 = 0.0;

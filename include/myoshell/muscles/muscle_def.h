@@ -66,7 +66,9 @@ struct MuscleDef {
   // Anatomical model, linear muscles (key `thickens`): the muscle is bound to the dermis along its
   // belly, so the column of skin and muscle over its deep face keeps its volume as it shortens and
   // bunches out of the face (the frontalis, whose skin, dense connective layer and aponeurosis move
-  // as one over the loose areolar layer: docs/muscles.md, "The compressed forehead thickens").
+  // as one over the loose areolar layer: docs/muscles.md, "The compressed forehead thickens"). Its
+  // origin is the galea, which slides with them: it contracts about the forehead's line of
+  // convergence, not its origin (docs/muscles.md, "The galea slides").
   bool thickens = false;
   // Anatomical model, linear muscles (key `pushes`, an anchor): the soft tissue the muscle squeezes
   // flows past its origin, which holds only the muscle's deep end on the bone, and carries the skin
