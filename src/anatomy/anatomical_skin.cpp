@@ -86,6 +86,7 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   for (const CoupledMuscle& m : muscles_) names.push_back(m.muscle.def.name);
   placement_ = std::make_shared<const SkinPlacement>(head_, names, settings_.contact);
   contactLoads_ = contactLoadPatterns(*placement_, V, mass_);
+  buildModiolusPatterns();
   // The build sequence (the basis depends on it): muscle loads, gravity x, y, z, the extra columns
   // of the release, diagonalise; then per drag its x, y, z patterns and diagonalise (as addDrag).
   // Bump when the sequence changes.
@@ -121,6 +122,10 @@ AnatomicalSkin::AnatomicalSkin(const Head& head, const std::vector<MuscleDef>& d
   if (!contactLoads_.empty()) {  // absent (a head with nothing to touch): the key as before contact
     h.str("contact").pod(static_cast<int64_t>(contactLoads_.size()));
     for (const MatX3& f : contactLoads_) h.bytes(f.data(), sizeof(double) * static_cast<size_t>(f.size()));
+  }
+  if (!modiolusLoads_.empty()) {  // absent (no hoop band): the key as before
+    h.str("modioli").pod(static_cast<int64_t>(modiolusLoads_.size()));
+    for (const MatX3& f : modiolusLoads_) h.bytes(f.data(), sizeof(double) * static_cast<size_t>(f.size()));
   }
   key_ = h.key();
 
@@ -186,6 +191,7 @@ ModalBasis AnatomicalSkin::buildHeldBasis() const {
       loads.push_back(rows3(VecX(releaseColumns_.col(static_cast<Eigen::Index>(m)))));
   // The contact's normal loads (after everything else, so a head without contact builds as before).
   loads.insert(loads.end(), contactLoads_.begin(), contactLoads_.end());
+  loads.insert(loads.end(), modiolusLoads_.begin(), modiolusLoads_.end());  // the held band ends' reactions
   builder_->addLoads(loads);
   builder_->diagonalize();
   for (const Drag& d : drags_) {
@@ -224,11 +230,73 @@ void AnatomicalSkin::setMuscleStrengths() {
     const auto mi = static_cast<Eigen::Index>(m);
     const double cKc = (P.col(mi).array().square() / B.lambda.array()).sum();
     if (!(cKc > 0)) continue;
+    if (modiolusFirst_[m] >= 0) {  // a hoop band held at the modioli
+      setHeldBandLoad(m, P.col(mi));
+      continue;
+    }
     const double alpha = settings_.strength == StrengthRule::SkinFollows ? shapeEnergy_(mi) / cKc
                                                                          : 1.0 / (1.0 + release_(mi) * cKc);
     muscleLoads_[m] = alpha * couplingLoads_[m];
     strength_(mi) = alpha;
   }
+}
+
+// The modioli's reaction patterns (docs/muscles.md, "The band's ends are held at the modioli"):
+// for each hoop ring, the skin within kModiolusRadius of each of its two anchors (the modioli, on
+// the skin), weighted (1 − (d/R)²)² and normalised to 1, along x, y and z: a pattern's dot product
+// with a displacement is the patch's weighted mean motion along that axis.
+void AnatomicalSkin::buildModiolusPatterns() {
+  constexpr double kModiolusRadius = 0.06;  // face-frame units (≈ 5 mm on ICT): the modiolus, ≈ 1 cm across
+  const MatX3& V = head_.mesh.V;
+  const int n = head_.mesh.vertexCount();
+  const double R = kModiolusRadius * head_.frame().scale;
+  modiolusFirst_.assign(muscles_.size(), -1);
+  for (size_t m = 0; m < muscles_.size(); ++m) {
+    const Muscle& mu = muscles_[m].muscle;
+    if (!mu.def.isRing() || !mu.def.ring.hoop) continue;
+    modiolusFirst_[m] = static_cast<int>(modiolusLoads_.size());
+    for (const Vec3& end : mu.hoopEnds) {
+      VecX w = VecX::Zero(n);
+      for (int i = 0; i < n; ++i) {
+        const double s = (Vec3(V.row(i)) - end).norm() / R;
+        if (s < 1.0) w(i) = (1.0 - s * s) * (1.0 - s * s);
+      }
+      if (!(w.sum() > 0.0))
+        throw InputError("muscle '" + mu.def.name + "': no skin lies within " + std::to_string(R) +
+                         " cm of its band's end (the modiolus) on this head");
+      w /= w.sum();
+      for (int a = 0; a < 3; ++a) {
+        MatX3 g = MatX3::Zero(n, 3);
+        g.col(a) = w;
+        modiolusLoads_.push_back(std::move(g));
+      }
+    }
+  }
+}
+
+// A hoop band's load with its ends held at the modioli: ℓ = c_m − G r, G the muscle's six modiolus
+// patterns, r = (GᵀK⁻¹G)⁻¹GᵀK⁻¹c_m the reaction the modioli give (the muscles that meet there hold
+// them), so that each patch's mean motion Gᵀu is zero; K⁻¹ of every pattern lies in the basis
+// (Woodbury), so this is exact there. The strength rule is kept on ℓ: α = s_m / c_mᵀK⁻¹ℓ (the skin
+// tied to the band follows it by σ), or 1/(1 + γ_m c_mᵀK⁻¹ℓ).
+void AnatomicalSkin::setHeldBandLoad(size_t m, const VecX& Pc) {
+  const ModalBasis& B = *basis_;
+  const auto mi = static_cast<Eigen::Index>(m);
+  const int n = head_.mesh.vertexCount();
+  MatX G(3 * n, 6);
+  for (int j = 0; j < 6; ++j) G.col(j) = flat(modiolusLoads_[static_cast<size_t>(modiolusFirst_[m] + j)]);
+  const MatX PG = B.Phi.transpose() * G;  // d × 6
+  const VecX inv = B.lambda.cwiseInverse();
+  const MatX GKG = PG.transpose() * inv.asDiagonal() * PG;
+  const VecX r = GKG.ldlt().solve(PG.transpose() * inv.asDiagonal() * Pc);
+  const VecX Pl = Pc - PG * r;
+  const double cKl = (Pc.array() * Pl.array() * inv.array()).sum();
+  if (!(cKl > 0)) throw NumericalError("muscle '" + muscles_[m].muscle.def.name + "': held at the modioli, its band moves nothing");
+  const double alpha = settings_.strength == StrengthRule::SkinFollows ? shapeEnergy_(mi) / cKl
+                                                                       : 1.0 / (1.0 + release_(mi) * cKl);
+  VecX load = flat(couplingLoads_[m]) - G * r;
+  muscleLoads_[m] = alpha * rows3(load);
+  strength_(mi) = alpha;
 }
 
 MatX3 AnatomicalSkin::gravityPattern(int axis) const {
@@ -262,18 +330,20 @@ SparseMat AnatomicalSkin::loadPatternColumns() const {
 
 SparseMat AnatomicalSkin::cutBackPatternColumns() const {
   SparseMat S = loadPatternColumns();
-  if (contactLoads_.empty()) return S;
+  if (contactLoads_.empty() && modiolusLoads_.empty()) return S;
+  std::vector<MatX3> extra = contactLoads_;
+  extra.insert(extra.end(), modiolusLoads_.begin(), modiolusLoads_.end());
   std::vector<Triplet> trip;
   for (Eigen::Index c = 0; c < S.outerSize(); ++c)
     for (SparseMat::InnerIterator it(S, c); it; ++it) trip.emplace_back(it.row(), it.col(), it.value());
   const Eigen::Index first = S.cols();
-  for (size_t k = 0; k < contactLoads_.size(); ++k) {
-    const MatX3& f = contactLoads_[k];
+  for (size_t k = 0; k < extra.size(); ++k) {
+    const MatX3& f = extra[k];
     for (Eigen::Index i = 0; i < f.rows(); ++i)
       for (int a = 0; a < 3; ++a)
         if (f(i, a) != 0.0) trip.emplace_back(static_cast<int>(3 * i + a), static_cast<int>(first + static_cast<Eigen::Index>(k)), f(i, a));
   }
-  SparseMat out(S.rows(), first + static_cast<Eigen::Index>(contactLoads_.size()));
+  SparseMat out(S.rows(), first + static_cast<Eigen::Index>(extra.size()));
   out.setFromTriplets(trip.begin(), trip.end());
   return out;
 }
@@ -287,6 +357,8 @@ void AnatomicalSkin::makeContactPenalty() {
 MatX AnatomicalSkin::modalLoadPatterns(const ModalBasis& basis) const {
   MatX P = (loadPatternColumns().transpose() * basis.Phi).transpose();
   for (Eigen::Index m = 0; m < strength_.size(); ++m) P.col(m) *= strength_(m);  // F_m = α_m c_m
+  for (size_t m = 0; m < modiolusFirst_.size(); ++m)  // a held band: F_m = α_m (c_m − G r)
+    if (modiolusFirst_[m] >= 0) P.col(static_cast<Eigen::Index>(m)) = basis.Phi.transpose() * flat(muscleLoads_[m]);
   return P;
 }
 

@@ -235,6 +235,7 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
       const MuscleAnchor& a = def.ring.anchors[static_cast<size_t>(k)];
       const SurfacePoint p = anchorOnSkin(a, head, frame, onSkin, def.name, false);
       c += (k == 0 ? 1.0 - def.ring.centre : def.ring.centre) * (p.point - frame.scale * a.depth * p.normal);
+      muscle.hoopEnds[static_cast<size_t>(k)] = p.point;
     }
     const bool symmetric = midlineMirrorRing(def);
     if (def.ring.hoop) {  // the arch's centre of curvature: `radius` behind its front (inside the head)
@@ -246,6 +247,8 @@ Muscle buildMuscle(const MuscleDef& def, const Head& head, TubeOrientation orien
     if (symmetric) {
       symmetrizeStations(frame, centre, normal);
       c = 0.5 * (c + mirrorPoint(frame, c));  // the centre on the midplane
+      const Vec3 end = 0.5 * (muscle.hoopEnds[0] + mirrorPoint(frame, muscle.hoopEnds[1]));
+      muscle.hoopEnds = {end, mirrorPoint(frame, end)};
     }
     muscle.ringCentre = c;
   } else {

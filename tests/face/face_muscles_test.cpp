@@ -463,6 +463,20 @@ TEST_F(FaceMusclesDefaultHead, TheLowerLipsMarginalPartDrawsTheMarginBackFarther
   EXPECT_LT(std::abs(margin.x()), 0.05 * -margin.z());  // on the midline, straight back
 }
 
+// The marginal band's fibres end in the modioli, which the muscles that meet there hold (docs/muscles.md,
+// "The band's ends are held at the modioli"): alone at a = 1 it draws the lip's margin back and
+// leaves the mouth's corners. Before, its press dragged the corners back with the lip (built-in
+// head: margin 8.3 mm back, corners 7.5 mm).
+TEST_F(FaceMusclesDefaultHead, TheLowerLipsMarginalBandLeavesTheMouthsCornersWhereItsEndsAreHeld) {
+  const MatX3 u = settle({{"orbicularis_oris_marginal_lower", 1.0}});
+  const Vec3 margin = at(u, "lower_lip_inner");
+  const double corner = std::max(at(u, "mouth_corner_left").norm(), at(u, "mouth_corner_right").norm());
+  RecordProperty("margin_back_mm", std::to_string(-10 * margin.z()));
+  RecordProperty("corner_mm", std::to_string(10 * corner));
+  EXPECT_LT(margin.z(), -0.4);                 // the margin still at least 4 mm back
+  EXPECT_LT(corner, 0.35 * -margin.z());       // the corners move about a third as far, or less
+}
+
 // AU6 is the orbital part's lower and lateral arc, fixed to bone only at the medial palpebral
 // ligament (docs/muscles.md, "The cheek raiser"): it draws the cheek under the eye up and towards the
 // nose, and leaves the brow (the upper arc's work is the brow depressors').

@@ -166,6 +166,8 @@ class AnatomicalSkin {
   void buildReleaseColumns();
   // The muscle loads α_m c_m from basis_ (AnatomicalSettings::strength).
   void setMuscleStrengths();
+  void buildModiolusPatterns();                       // modiolusLoads_, modiolusFirst_
+  void setHeldBandLoad(size_t m, const VecX& Pc);     // a hoop band's α_m (c_m − G r), Pc = Φᵀc_m
   void makeContactPenalty();  // penalty_ for basis_
   bool fitsSkin(const ModalBasis& b) const;  // a cached basis's sizes and masses fit this skin
   ModalBasis buildHeldBasis() const;          // from scratch (sets builder_)
@@ -226,6 +228,12 @@ class AnatomicalSkin {
   bool fromCache_ = false;
   std::shared_ptr<const SkinPlacement> placement_;
   std::vector<MatX3> contactLoads_;    // contactLoadPatterns (empty: nothing to touch)
+  // A hoop band's ends held at the modioli (docs/muscles.md, "The band's ends are held at the
+  // modioli"): per hoop muscle, six reaction patterns (each end's modiolus patch, ê_x, ê_y, ê_z,
+  // spread by weight); their static responses join the basis, and the band's load carries the
+  // reaction that keeps each patch's mean motion at zero.
+  std::vector<MatX3> modiolusLoads_;
+  std::vector<int> modiolusFirst_;     // per muscle: its first pattern in modiolusLoads_, −1 for none
   std::shared_ptr<const ContactPenalty> penalty_;
 };
 

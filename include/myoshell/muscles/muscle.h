@@ -3,6 +3,7 @@
 // tangential force on its central nodes (Figure 12).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "myoshell/head/head.h"
@@ -30,6 +31,8 @@ struct Muscle {
   Vec3 pushPoint = Vec3::Zero();       // def.pushes's point on the skin, cm (MuscleDef::pushes)
   Vec3 continuePoint = Vec3::Zero();   // def.continuesInto's point under the skin, cm (MuscleDef::continuesInto)
   Vec3 hoopCentre = Vec3::Zero();      // a hoop ring's arch centre of curvature, cm (MuscleDef::Ring::hoop)
+  // A hoop ring's two anchors on the skin (the modioli its band's ends are held at), cm.
+  std::array<Vec3, 2> hoopEnds{Vec3::Zero(), Vec3::Zero()};
   // The station (ring of the tube) of a generated muscle's node: node s·ringNodes + k.
   int stationOf(int node) const { return node / def.ringNodes; }
   int insertionCentre(int k = 0) const;  // a vertex of the insertion ring (k in [0, ringNodes))
