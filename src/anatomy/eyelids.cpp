@@ -244,64 +244,81 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
   return rig;
 }
 
+EyeClosure measureClosure(const EyeLids& eye, const LidPose& pose, size_t e, const MatX3& positions,
+                          LidFissure& fissureNow) {
+  EyeClosure k;
+  k.close = pose.close[e];
+  k.raise = pose.raise[e];
+  k.gazePitch = pose.gaze.pitchDeg[e] * M_PI / 180.0;
+  k.gazeYaw = pose.gaze.yawDeg[e] * M_PI / 180.0;
+  k.gazing = k.gazePitch != 0.0 || k.gazeYaw != 0.0;
+  k.moves = k.close != 0.0 || k.raise != 0.0 || k.gazing;
+  if (!k.moves) return k;
+  // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
+  // margins meet whatever the physics did to them.
+  const EyeFrame f = eyeFrame(eye);
+  fissure(positions, eye, f, fissureNow);
+  // The nasal slide turns about the vertical axis through the centre, towards the inner canthus,
+  // fading with the fissure's height Δ(x)/Δmax to nothing at the canthi, which the canthal tendons
+  // hold (a full slide up to the canthi tore the skin there into a crack).
+  k.towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
+  for (const auto& [x, phi] : fissureNow.upper.elevation)
+    k.gapMax = std::max(k.gapMax, phi - interpolateLinear(fissureNow.lower.elevation, x));
+  return k;
+}
+
+Vec3 turnLidVertex(const EyeLids& eye, const EyeClosure& k, const LidFissure& now, size_t j, const Vec3& p, Mat3* turn) {
+  const double c = k.close, r = k.raise, gazePitch = k.gazePitch, gazeYaw = k.gazeYaw;
+  Vec3 d = p - eye.centre;
+  const double x = d.dot(eye.axis);
+  const double w = eye.lidWeights[j];  // + upper lid, − lower lid
+  double alpha = 0.0, kappa = 0.0;     // the turn (radians) and the change of ρ (cm) at c = 1
+  double slide = 0.0;                  // Δ(x)/Δmax: the share of the nasal slide and of the gaze's turn
+  const bool inside = x > now.xLow && x < now.xHigh;
+  double gap = 0.0;                    // Δ(x)
+  if ((c != 0.0 || k.gazing) && inside) {
+    gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+    if (k.gapMax > 0.0) slide = std::min(1.0, gap / k.gapMax);
+  }
+  if (c != 0.0 && inside) {
+    const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
+    const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
+    // The gaze turns the upper margin by κ_u·φ_g·s and the lower by κ_l·φ_g·s (below), so it
+    // leaves a fissure Δ + (κ_u − κ_l)·φ_g·s: the closure closes that one, and at c = 1 the
+    // margins meet wherever the eye looks (closing the rest fissure, they crossed in down-gaze
+    // and stayed apart in up-gaze).
+    const double narrowing = (eye.upperGazeFollow - eye.lowerGazeFollow) * gazePitch * slide;
+    const double closed = gazePitch != 0.0 ? std::max(0.0, gap + narrowing) : gap;
+    alpha = share * closed * w;
+    kappa = share * step * w;
+  }
+  // The lids follow the gaze: up-gaze raises them (θ + lowers a point).
+  const double follow = w > 0.0 ? eye.upperGazeFollow : eye.lowerGazeFollow;
+  const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[j] - follow * gazePitch * std::abs(w) * slide;
+  const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
+  const double rho = across.norm();
+  if (rho > 0.0) d += (c * kappa / rho) * across;
+  Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
+  // Turns about `up`: the nasal slide and the gaze's yaw (+ towards the subject's left, +x).
+  const double yaw = (c != 0.0 ? k.towardsNose * c * eye.nasalTurn : 0.0) + eye.sideGazeFollow * gazeYaw;
+  if (yaw != 0.0) R = Eigen::AngleAxisd(yaw * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
+  if (turn) *turn = R;
+  return eye.centre + R * d;
+}
+
 void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns,
               LidFissure* scratch) {
   LidFissure local;
   LidFissure& now = scratch ? *scratch : local;
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
-    const double c = pose.close[e], r = pose.raise[e];
-    const double gazePitch = pose.gaze.pitchDeg[e] * M_PI / 180.0, gazeYaw = pose.gaze.yawDeg[e] * M_PI / 180.0;
-    const bool gazing = gazePitch != 0.0 || gazeYaw != 0.0;
     if (turns) (*turns)[e].assign(eye.lidVertices.size(), Mat3::Identity());
-    if (c == 0.0 && r == 0.0 && !gazing) continue;
-    // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
-    // margins meet whatever the physics did to them.
-    const EyeFrame f = eyeFrame(eye);
-    fissure(positions, eye, f, now);
-    // The nasal slide turns about the vertical axis through the centre, towards the inner canthus,
-    // fading with the fissure's height Δ(x)/Δmax to nothing at the canthi, which the canthal tendons
-    // hold (a full slide up to the canthi tore the skin there into a crack).
-    const double towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
-    double gapMax = 0.0;
-    for (const auto& [x, phi] : now.upper.elevation) gapMax = std::max(gapMax, phi - interpolateLinear(now.lower.elevation, x));
+    const EyeClosure closure = measureClosure(eye, pose, e, positions, now);
+    if (!closure.moves) continue;
     for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
       const int i = eye.lidVertices[k];
-      Vec3 d = positions.row(i).transpose() - eye.centre;
-      const double x = d.dot(eye.axis);
-      const double w = eye.lidWeights[k];  // + upper lid, − lower lid
-      double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
-      double slide = 0.0;               // Δ(x)/Δmax: the share of the nasal slide and of the gaze's turn
-      const bool inside = x > now.xLow && x < now.xHigh;
-      double gap = 0.0;                 // Δ(x)
-      if ((c != 0.0 || gazing) && inside) {
-        gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
-        if (gapMax > 0.0) slide = std::min(1.0, gap / gapMax);
-      }
-      if (c != 0.0 && inside) {
-        const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
-        const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
-        // The gaze turns the upper margin by κ_u·φ_g·s and the lower by κ_l·φ_g·s (below), so it
-        // leaves a fissure Δ + (κ_u − κ_l)·φ_g·s: the closure closes that one, and at c = 1 the
-        // margins meet wherever the eye looks (closing the rest fissure, they crossed in down-gaze
-        // and stayed apart in up-gaze).
-        const double narrowing = (eye.upperGazeFollow - eye.lowerGazeFollow) * gazePitch * slide;
-        const double closed = gazePitch != 0.0 ? std::max(0.0, gap + narrowing) : gap;
-        alpha = share * closed * w;
-        kappa = share * step * w;
-      }
-      // The lids follow the gaze: up-gaze raises them (θ + lowers a point).
-      const double follow = w > 0.0 ? eye.upperGazeFollow : eye.lowerGazeFollow;
-      const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k] - follow * gazePitch * std::abs(w) * slide;
-      const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
-      const double rho = across.norm();
-      if (rho > 0.0) d += (c * kappa / rho) * across;
-      Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
-      // Turns about `up`: the nasal slide and the gaze's yaw (+ towards the subject's left, +x).
-      const double yaw = (c != 0.0 ? towardsNose * c * eye.nasalTurn : 0.0) + eye.sideGazeFollow * gazeYaw;
-      if (yaw != 0.0) R = Eigen::AngleAxisd(yaw * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
-      positions.row(i) = (eye.centre + R * d).transpose();
-      if (turns) (*turns)[e][k] = R;
+      positions.row(i) = turnLidVertex(eye, closure, now, k, positions.row(i).transpose(),
+                                       turns ? &(*turns)[e][k] : nullptr).transpose();
     }
   }
 }
