@@ -235,7 +235,7 @@ double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose
     }
   }
   if (!ws.closureTerms.empty() && (force || stiffness)) {
-    closureChain(jaw, lids, ws, 1e-6 * std::max(q.cwiseAbs().maxCoeff(), 1e-6));
+    closureChain(jaw, lids, ws);
     for (size_t t = 0; t < ws.closureTerms.size(); ++t) {
       const ClosureTerm& c = ws.closureTerms[t];
       ws.a = ws.closureRows.row(static_cast<Eigen::Index>(t)).transpose();
@@ -265,38 +265,39 @@ Vec3 ContactPenalty::jawed(Eigen::Index r, const Vec3& u, const JawPose& jaw, Ma
   return m.apply(X) + m.R * u;
 }
 
-void ContactPenalty::closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws, double h) const {
+void ContactPenalty::closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws) const {
   const LidRig& lr = *placement_->lids();
   const Eigen::Index d = Phi_.cols();
   ws.closureRows.setZero(static_cast<Eigen::Index>(ws.closureTerms.size()), d);
-  // The rows the turn reads, the margins and the touching vertices, at their jawed place moved by
-  // `shift` along mode j.
+  // The rows the turn reads, the margins and the touching vertices, at their jawed place.
   Mat3 jawTurn;
-  auto place = [&](int i, double shift, Eigen::Index j) {
+  auto place = [&](int i) {
     const auto r = static_cast<Eigen::Index>(rowOf_[static_cast<size_t>(i)]);
-    const Vec3 u = ws.u.segment<3>(3 * r) + shift * Phi_.block<3, 1>(3 * r, j);
-    ws.jawed.row(i) = jawed(r, u, jaw, &jawTurn).transpose();
+    ws.jawed.row(i) = jawed(r, ws.u.segment<3>(3 * r), jaw, &jawTurn).transpose();
   };
   for (int e = 0; e < 2; ++e) {
     const EyeLids& eye = lr.eyes[static_cast<size_t>(e)];
     if (std::none_of(ws.closureTerms.begin(), ws.closureTerms.end(), [&](const ClosureTerm& t) { return t.eye == e; }))
       continue;
-    // a_t(j) = ∇δ_t · (x_i(q + h e_j) − x_i(q − h e_j)) / 2h.
-    for (Eigen::Index j = 0; j < d; ++j)
-      for (const double shift : {h, -h}) {
-        for (int i : eye.upperMargin) place(i, shift, j);
-        for (int i : eye.lowerMargin) place(i, shift, j);
-        for (const ClosureTerm& t : ws.closureTerms)
-          if (t.eye == e) place(rows_[static_cast<size_t>(t.row)], shift, j);
-        const EyeClosure closure = measureClosure(eye, lids, static_cast<size_t>(e), ws.jawed, ws.movedFissure);
-        for (size_t k = 0; k < ws.closureTerms.size(); ++k) {
-          const ClosureTerm& t = ws.closureTerms[k];
-          if (t.eye != e) continue;
-          const int i = rows_[static_cast<size_t>(t.row)];
-          const Vec3 x = turnLidVertex(eye, closure, ws.movedFissure, static_cast<size_t>(t.slot), ws.jawed.row(i).transpose());
-          ws.closureRows(static_cast<Eigen::Index>(k), j) += t.grad.dot(x) * (shift > 0.0 ? 0.5 : -0.5) / h;
-        }
+    for (int i : eye.upperMargin) place(i);
+    for (int i : eye.lowerMargin) place(i);
+    for (const ClosureTerm& t : ws.closureTerms)
+      if (t.eye == e) place(rows_[static_cast<size_t>(t.row)]);
+    const EyeClosure closure = measureClosure(eye, lids, static_cast<size_t>(e), ws.jawed, ws.movedFissure);
+    // a_t = Σ_v Φ_vᵀ R_jaw,vᵀ ∂(∇δ_t · x_i)/∂p_v over the rows the turn reads.
+    for (size_t k = 0; k < ws.closureTerms.size(); ++k) {
+      const ClosureTerm& t = ws.closureTerms[k];
+      if (t.eye != e) continue;
+      const int i = rows_[static_cast<size_t>(t.row)];
+      turnLidVertexGradient(eye, closure, ws.movedFissure, static_cast<size_t>(t.slot), ws.jawed.row(i).transpose(), t.grad,
+                            ws.closureReads);
+      for (const auto& [v, byP] : ws.closureReads) {
+        const auto r = static_cast<Eigen::Index>(rowOf_[static_cast<size_t>(v)]);
+        jawed(r, ws.u.segment<3>(3 * r), jaw, &jawTurn);
+        ws.closureRows.row(static_cast<Eigen::Index>(k)).noalias() +=
+            (jawTurn.transpose() * byP).transpose() * Phi_.middleRows(3 * r, 3);
       }
+    }
   }
 }
 

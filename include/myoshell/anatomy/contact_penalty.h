@@ -12,13 +12,14 @@
 //   E_t = ½ k_t δ_t²,     k_t = κ m_t (dyn/cm),
 // κ the penalty stiffness per unit mass (1/s², AnatomicalSettings::contactStiffness) and m_t the
 // vertex mass (a lip pair: half the lighter one's). The reduced force is −∂E/∂q = −Σ_t k_t δ_t a_t,
-// a_t = Σ_i (∂x_i/∂q)ᵀ ∇δ_t. For a vertex the lids do not turn ∂x_i/∂q = J_i Φ_i, J_i = R_jaw,i the
-// rotation the jaw turned the residual by. A vertex a lid turns (closing, or following the gaze) is
-// placed by the fissure its margins have now, and by its own distance along the eye's axis
-// (eyelids.h), so its ∂x_i/∂q also holds the turn's dependence on those rows: there it is taken by
-// central differences of the lid's turn alone (the margins' and the vertex's rows moved along each
-// mode: 2d fissures, no whole evaluation). Without that chain the force was not a gradient where a
-// lid closed onto the eyeball, and the step circled the settle's equilibrium instead of resting
+// a_t = Σ_i (∂x_i/∂q)ᵀ ∇δ_t. Where a vertex's turn is fixed, ∂x_i/∂q = J_i Φ_i, J_i = R_lid,i R_jaw,i
+// the rotations the lid (only raised) and the jaw turned the residual by. A vertex a lid turns while
+// closing, or following the gaze, is placed by the fissure its margins have now and by its own
+// distance along the eye's axis (eyelids.h), so its ∂x_i/∂q also holds the turn's dependence on those
+// rows: there a_t is summed over the few rows the turn reads at the vertex (turnLidVertexGradient:
+// the margin entries about its x and Δmax's, and its own). Without that chain the force was not a
+// gradient where a lid closed onto the eyeball, and the step circled the settle's equilibrium instead
+// of resting
 // there (docs/mouth_contact.md, "A closed lid keeps the step from resting"). Only the candidates'
 // rows are read, and only the violated ones' rows are projected. With no violation the force is
 // exactly zero (the unloaded results stay bit for bit). Bound: Σ_t k_t (Φᵀ Jᵀ∇δ_t)(…)ᵀ ≤ κ Φᵀ M Φ = κ I for
@@ -73,6 +74,7 @@ class ContactPenalty {
     LidFissure movedFissure;
     std::vector<ClosureTerm> closureTerms;
     MatX closureRows;                              // terms × d: each such term's a_t
+    std::vector<std::pair<int, Vec3>> closureReads;  // one term's rows read and ∂(∇δ·x)/∂p
   };
   Workspace workspace() const;
 
@@ -95,7 +97,7 @@ class ContactPenalty {
   // A candidate's place before the lids' turn (the jaw's blended turn of rest + u), and that turn.
   Vec3 jawed(Eigen::Index r, const Vec3& u, const JawPose& jaw, Mat3* turn) const;
   // The eyeball terms on vertices a lid turns (ws.closureTerms) and their a_t (ws.closureRows).
-  void closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws, double step) const;
+  void closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws) const;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Phi_;  // 3k × d
   int n_ = 0;
   double kappa_ = 0.0;

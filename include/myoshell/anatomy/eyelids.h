@@ -172,6 +172,14 @@ struct EyeClosure {
 EyeClosure measureClosure(const EyeLids& eye, const LidPose& pose, size_t e, const MatX3& positions, LidFissure& fissure);
 Vec3 turnLidVertex(const EyeLids& eye, const EyeClosure& closure, const LidFissure& fissure, size_t k, const Vec3& p,
                    Mat3* turn = nullptr);
+// The gradient of g · turnLidVertex(…) with respect to the jawed positions of the rows it reads:
+// the vertex's own and the margins' the fissure's readings at its x and Δmax come from (entries of
+// `out`: vertex, ∂(g·x')/∂p_vertex). Analytic through the margin curves' linear interpolation and
+// the margins' (x, φ, ρ); the turn's own dependence on its readings and on p by central differences
+// (a few evaluations, no fissure measured). The canthi's x and the slide's sign only switch, so they
+// have none. For the contact penalty's chain (contact_penalty.h).
+void turnLidVertexGradient(const EyeLids& eye, const EyeClosure& closure, const LidFissure& fissure, size_t k, const Vec3& p,
+                           const Vec3& g, std::vector<std::pair<int, Vec3>>& out);
 
 // The lid gap of eye `eye` (0 right, 1 left) in `positions`: the mean distance of its two mid-lid
 // landmark pairs, cm.
