@@ -516,14 +516,14 @@ SettledSkin AnatomicalSkin::settle(const SkinLoads& loads, bool warped) const {
       if (H) H->diagonal() += B.lambda;
       return 0.5 * q.dot(B.lambda.cwiseProduct(q)) - f0.dot(q) + E;
     };
-    // The merit is the residual's norm, not Π: with a lid closing, J leaves out the closure's
-    // dependence on the margins, so the force is not exactly −∇E there.
+    // The merit is the residual's norm, not Π (the force is −∇E, also with a lid closing since it
+    // follows the turn's chain, but the residual is what `converged` asks of).
     VecX g, gt;
     MatX H = MatX::Zero(d, d);
     energy(out.q, &g, &H);
     // Where the Gauss–Newton direction gives no decrease (a lid closing on skin the contact pushes:
-    // the force's missing derivative matters), the residual's Jacobian by central differences, d
-    // residuals more, whose Newton direction −J⁻¹g always descends on ‖g‖.
+    // the constraints' curvature Gauss–Newton drops matters), the residual's Jacobian by central
+    // differences, d residuals more, whose Newton direction −J⁻¹g always descends on ‖g‖.
     auto differencedJacobian = [&](const VecX& q) {
       MatX J(d, d);
       VecX gp, gm;

@@ -98,6 +98,13 @@ ContactPenalty::ContactPenalty(const SkinPlacement& placement, const MatX3& rest
       rows_.push_back(i);
     }
   const auto k = static_cast<Eigen::Index>(rows_.size());
+  lidSlot_.assign(rows_.size(), {-1, -1});
+  if (const LidRig* lids = placement.lids())
+    for (int e = 0; e < 2; ++e) {
+      const EyeLids& eye = lids->eyes[static_cast<size_t>(e)];
+      for (size_t j = 0; j < eye.lidVertices.size(); ++j)
+        lidSlot_[static_cast<size_t>(rowOf_[static_cast<size_t>(eye.lidVertices[j])])] = {e, static_cast<int>(j)};
+    }
   const Eigen::Index d = basis.modeCount();
   rest_.resize(k, 3);
   mass_.resize(k);
@@ -119,14 +126,16 @@ ContactPenalty::Workspace ContactPenalty::workspace() const {
   ws.gradient = MatX3::Zero(k, 3);
   ws.active.reserve(rows_.size());
   ws.flagged.assign(rows_.size(), 0);
+  ws.closureTerms.reserve(rows_.size());
   ws.a = VecX::Zero(Phi_.cols());
   if (const LidRig* lids = placement_->lids()) {
+    ws.jawed = MatX3::Zero(n_, 3);
     size_t margin = 0;
     for (size_t e = 0; e < 2; ++e) {
       ws.lidTurns[e].reserve(lids->eyes[e].lidVertices.size());
       margin = std::max({margin, lids->eyes[e].upperMargin.size(), lids->eyes[e].lowerMargin.size()});
     }
-    for (LidMarginCurve* c : {&ws.fissure.upper, &ws.fissure.lower}) {
+    for (LidMarginCurve* c : {&ws.fissure.upper, &ws.fissure.lower, &ws.movedFissure.upper, &ws.movedFissure.lower}) {
       c->byX.reserve(margin);
       c->elevation.reserve(margin);
       c->distance.reserve(margin);
@@ -136,28 +145,16 @@ ContactPenalty::Workspace ContactPenalty::workspace() const {
 }
 
 double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose& lids, Workspace& ws, VecX* force,
-                                MatX* stiffness, double* maxDepth, MatX3* rowForce) const {
+                                MatX* stiffness, double* maxDepth) const {
   MYO_CHECK(q.size() == Phi_.cols(), "contact penalty: q has " << q.size() << " amplitudes, the basis " << Phi_.cols());
   const auto k = static_cast<Eigen::Index>(rows_.size());
   if (maxDepth) *maxDepth = 0.0;
   if (k == 0) return 0.0;
   ws.u.noalias() = Phi_ * q;
   // Place the candidates as SkinPlacement::place does: the jaw's blended turn, then the lids'.
-  const JawRig* jr = placement_->jaw();
-  for (Eigen::Index r = 0; r < k; ++r) {
-    const int i = rows_[static_cast<size_t>(r)];
-    const Vec3 u = ws.u.segment<3>(3 * r);
-    const Vec3 X = rest_.row(r).transpose();
-    const double w = jr && !jaw.isZero() ? jr->weights(i) : 0.0;
-    if (w == 0.0) {
-      ws.positions.row(i) = (X + u).transpose();
-      ws.J[static_cast<size_t>(r)].setIdentity();
-    } else {
-      const RigidMotion m = jawMotion(*jr, jaw, w);
-      ws.positions.row(i) = (m.apply(X) + m.R * u).transpose();
-      ws.J[static_cast<size_t>(r)] = m.R;
-    }
-  }
+  for (Eigen::Index r = 0; r < k; ++r)
+    ws.positions.row(rows_[static_cast<size_t>(r)]) =
+        jawed(r, ws.u.segment<3>(3 * r), jaw, &ws.J[static_cast<size_t>(r)]).transpose();
   const LidRig* lr = placement_->lids();
   if (lr && !lids.isZero()) {
     turnLids(*lr, lids, ws.positions, &ws.lidTurns, &ws.fissure);
@@ -192,15 +189,33 @@ double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose
     }
     if (stiffness) stiffness->selfadjointView<Eigen::Lower>().rankUpdate(a, kt);
   };
+  ws.closureTerms.clear();
   if (lr)
-    for (const EyeLids& eye : lr->eyes)
+    for (int e = 0; e < 2; ++e) {
+      const EyeLids& eye = lr->eyes[static_cast<size_t>(e)];
+      // Does this eye's turn depend on the skin's rows (a closure, or the gaze's share Δ(x)/Δmax)?
+      const bool chained = lids.close[static_cast<size_t>(e)] != 0.0 || lids.gaze.pitchDeg[static_cast<size_t>(e)] != 0.0 ||
+                           lids.gaze.yawDeg[static_cast<size_t>(e)] != 0.0;
       for (int i : eye.orbitVertices) {
         const Vec3 dv = ws.positions.row(i).transpose() - eye.centre;
         const double dist = dv.norm();
         if (dist >= eye.contactRadius || dist == 0.0) continue;
         const int r = rowOf_[static_cast<size_t>(i)];
-        term(eye.contactRadius - dist, kappa_ * mass_(r), {{r, Vec3(-dv / dist)}});
+        const double depth = eye.contactRadius - dist, kt = kappa_ * mass_(r);
+        if (!chained || lidSlot_[static_cast<size_t>(r)][0] != e) {
+          term(depth, kt, {{r, Vec3(-dv / dist)}});
+          continue;
+        }
+        // Its a_t comes from the turn's chain below (the row's gradient stays zero).
+        energy += 0.5 * kt * depth * depth;
+        deepest = std::max(deepest, depth);
+        if (!ws.flagged[static_cast<size_t>(r)]) {
+          ws.flagged[static_cast<size_t>(r)] = 1;
+          ws.active.push_back(r);
+        }
+        ws.closureTerms.push_back({r, e, lidSlot_[static_cast<size_t>(r)][1], kt, depth, Vec3(-dv / dist)});
       }
+    }
   if (const MouthContact* mouth = placement_->mouth()) {
     const Vec3 y = mouth->frame.axes.col(1);
     for (size_t p = 0; p < mouth->lipPairs.size(); ++p) {
@@ -219,15 +234,71 @@ double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose
       term(depth, kappa_ * mass_(r), {{r, g}});
     }
   }
+  if (!ws.closureTerms.empty() && (force || stiffness)) {
+    closureChain(jaw, lids, ws);
+    for (size_t t = 0; t < ws.closureTerms.size(); ++t) {
+      const ClosureTerm& c = ws.closureTerms[t];
+      ws.a = ws.closureRows.row(static_cast<Eigen::Index>(t)).transpose();
+      if (force) force->noalias() -= (c.k * c.depth) * ws.a;
+      if (stiffness) stiffness->selfadjointView<Eigen::Lower>().rankUpdate(ws.a, c.k);
+    }
+  }
   if (stiffness) stiffness->triangularView<Eigen::StrictlyUpper>() = stiffness->transpose();
   // −∂E/∂q = −Σ Φ_iᵀ J_iᵀ ∂E/∂x_i over the violated rows only.
-  for (int r : ws.active) {
-    const Vec3 gu = ws.J[static_cast<size_t>(r)].transpose() * ws.gradient.row(r).transpose();
-    if (force) force->noalias() -= Phi_.middleRows(3 * r, 3).transpose() * gu;
-    if (rowForce) rowForce->row(rows_[static_cast<size_t>(r)]) -= gu.transpose();
-  }
+  if (force)
+    for (int r : ws.active)
+      force->noalias() -= Phi_.middleRows(3 * r, 3).transpose() * (ws.J[static_cast<size_t>(r)].transpose() * ws.gradient.row(r).transpose());
   if (maxDepth) *maxDepth = deepest;
   return energy;
+}
+
+Vec3 ContactPenalty::jawed(Eigen::Index r, const Vec3& u, const JawPose& jaw, Mat3* turn) const {
+  const JawRig* jr = placement_->jaw();
+  const Vec3 X = rest_.row(r).transpose();
+  const double w = jr && !jaw.isZero() ? jr->weights(rows_[static_cast<size_t>(r)]) : 0.0;
+  if (w == 0.0) {
+    turn->setIdentity();
+    return X + u;
+  }
+  const RigidMotion m = jawMotion(*jr, jaw, w);
+  *turn = m.R;
+  return m.apply(X) + m.R * u;
+}
+
+void ContactPenalty::closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws) const {
+  const LidRig& lr = *placement_->lids();
+  const Eigen::Index d = Phi_.cols();
+  ws.closureRows.setZero(static_cast<Eigen::Index>(ws.closureTerms.size()), d);
+  // The rows the turn reads, the margins and the touching vertices, at their jawed place.
+  Mat3 jawTurn;
+  auto place = [&](int i) {
+    const auto r = static_cast<Eigen::Index>(rowOf_[static_cast<size_t>(i)]);
+    ws.jawed.row(i) = jawed(r, ws.u.segment<3>(3 * r), jaw, &jawTurn).transpose();
+  };
+  for (int e = 0; e < 2; ++e) {
+    const EyeLids& eye = lr.eyes[static_cast<size_t>(e)];
+    if (std::none_of(ws.closureTerms.begin(), ws.closureTerms.end(), [&](const ClosureTerm& t) { return t.eye == e; }))
+      continue;
+    for (int i : eye.upperMargin) place(i);
+    for (int i : eye.lowerMargin) place(i);
+    for (const ClosureTerm& t : ws.closureTerms)
+      if (t.eye == e) place(rows_[static_cast<size_t>(t.row)]);
+    const EyeClosure closure = measureClosure(eye, lids, static_cast<size_t>(e), ws.jawed, ws.movedFissure);
+    // a_t = Σ_v Φ_vᵀ R_jaw,vᵀ ∂(∇δ_t · x_i)/∂p_v over the rows the turn reads.
+    for (size_t k = 0; k < ws.closureTerms.size(); ++k) {
+      const ClosureTerm& t = ws.closureTerms[k];
+      if (t.eye != e) continue;
+      const int i = rows_[static_cast<size_t>(t.row)];
+      turnLidVertexGradient(eye, closure, ws.movedFissure, static_cast<size_t>(t.slot), ws.jawed.row(i).transpose(), t.grad,
+                            ws.closureReads);
+      for (const auto& [v, byP] : ws.closureReads) {
+        const auto r = static_cast<Eigen::Index>(rowOf_[static_cast<size_t>(v)]);
+        jawed(r, ws.u.segment<3>(3 * r), jaw, &jawTurn);
+        ws.closureRows.row(static_cast<Eigen::Index>(k)).noalias() +=
+            (jawTurn.transpose() * byP).transpose() * Phi_.middleRows(3 * r, 3);
+      }
+    }
+  }
 }
 
 }  // namespace myo

@@ -244,64 +244,221 @@ LidRig lidRig(const TriMesh& skin, const Landmarks& landmarks, const LidSettings
   return rig;
 }
 
+EyeClosure measureClosure(const EyeLids& eye, const LidPose& pose, size_t e, const MatX3& positions,
+                          LidFissure& fissureNow) {
+  EyeClosure k;
+  k.close = pose.close[e];
+  k.raise = pose.raise[e];
+  k.gazePitch = pose.gaze.pitchDeg[e] * M_PI / 180.0;
+  k.gazeYaw = pose.gaze.yawDeg[e] * M_PI / 180.0;
+  k.gazing = k.gazePitch != 0.0 || k.gazeYaw != 0.0;
+  k.moves = k.close != 0.0 || k.raise != 0.0 || k.gazing;
+  if (!k.moves) return k;
+  // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
+  // margins meet whatever the physics did to them.
+  const EyeFrame f = eyeFrame(eye);
+  fissure(positions, eye, f, fissureNow);
+  // The nasal slide turns about the vertical axis through the centre, towards the inner canthus,
+  // fading with the fissure's height Δ(x)/Δmax to nothing at the canthi, which the canthal tendons
+  // hold (a full slide up to the canthi tore the skin there into a crack).
+  k.towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
+  for (const auto& [x, phi] : fissureNow.upper.elevation)
+    k.gapMax = std::max(k.gapMax, phi - interpolateLinear(fissureNow.lower.elevation, x));
+  return k;
+}
+
+namespace {
+
+// turnLidVertex with the fissure's three readings given: Δ(x) (gap), the margins' ρ step at x and
+// Δmax, and whether x lies between the canthi.
+Vec3 turnByReadings(const EyeLids& eye, const EyeClosure& k, size_t j, const Vec3& p, bool inside, double gap, double step,
+                    double gapMax, Mat3* turn) {
+  const double c = k.close, r = k.raise, gazePitch = k.gazePitch, gazeYaw = k.gazeYaw;
+  Vec3 d = p - eye.centre;
+  const double x = d.dot(eye.axis);
+  const double w = eye.lidWeights[j];  // + upper lid, − lower lid
+  double alpha = 0.0, kappa = 0.0;     // the turn (radians) and the change of ρ (cm) at c = 1
+  double slide = 0.0;                  // Δ(x)/Δmax: the share of the nasal slide and of the gaze's turn
+  if ((c != 0.0 || k.gazing) && inside && gapMax > 0.0) slide = std::min(1.0, gap / gapMax);
+  if (c != 0.0 && inside) {
+    const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
+    // The gaze turns the upper margin by κ_u·φ_g·s and the lower by κ_l·φ_g·s (below), so it
+    // leaves a fissure Δ + (κ_u − κ_l)·φ_g·s: the closure closes that one, and at c = 1 the
+    // margins meet wherever the eye looks (closing the rest fissure, they crossed in down-gaze
+    // and stayed apart in up-gaze).
+    const double narrowing = (eye.upperGazeFollow - eye.lowerGazeFollow) * gazePitch * slide;
+    const double closed = gazePitch != 0.0 ? std::max(0.0, gap + narrowing) : gap;
+    alpha = share * closed * w;
+    kappa = share * step * w;
+  }
+  // The lids follow the gaze: up-gaze raises them (θ + lowers a point).
+  const double follow = w > 0.0 ? eye.upperGazeFollow : eye.lowerGazeFollow;
+  const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[j] - follow * gazePitch * std::abs(w) * slide;
+  const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
+  const double rho = across.norm();
+  if (rho > 0.0) d += (c * kappa / rho) * across;
+  Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
+  // Turns about `up`: the nasal slide and the gaze's yaw (+ towards the subject's left, +x).
+  const double yaw = (c != 0.0 ? k.towardsNose * c * eye.nasalTurn : 0.0) + eye.sideGazeFollow * gazeYaw;
+  if (yaw != 0.0) R = Eigen::AngleAxisd(yaw * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
+  if (turn) *turn = R;
+  return eye.centre + R * d;
+}
+
+// A reading of a margin curve (interpolateLinear) at x and its partial derivatives: by x, and by
+// its entries' x and value (entry indices i0, i1; one entry outside the curve's range).
+struct CurveReading {
+  double value = 0.0, byX = 0.0;
+  size_t i0 = 0, i1 = 0;
+  double byX0 = 0.0, byX1 = 0.0, byY0 = 0.0, byY1 = 0.0;
+};
+CurveReading readCurve(const std::vector<std::pair<double, double>>& xy, double x) {
+  CurveReading c;
+  if (x <= xy.front().first || x >= xy.back().first) {
+    c.i0 = c.i1 = x <= xy.front().first ? 0 : xy.size() - 1;
+    c.value = xy[c.i0].second;
+    c.byY0 = 1.0;
+    return c;
+  }
+  const auto upper = std::upper_bound(xy.begin(), xy.end(), x,
+                                      [](double value, const std::pair<double, double>& p) { return value < p.first; });
+  c.i1 = static_cast<size_t>(upper - xy.begin());
+  c.i0 = c.i1 - 1;
+  const auto& [x0, y0] = xy[c.i0];
+  const auto& [x1, y1] = xy[c.i1];
+  const double span = x1 - x0;
+  const double t = span > 0.0 ? (x - x0) / span : 0.0;
+  c.value = (1.0 - t) * y0 + t * y1;
+  c.byY0 = 1.0 - t;
+  c.byY1 = t;
+  if (span > 0.0) {
+    const double slope = (y1 - y0) / span;
+    c.byX = slope;
+    c.byX0 = slope * (x - x1) / span;
+    c.byX1 = -slope * (x - x0) / span;
+  }
+  return c;
+}
+
+}  // namespace
+
+Vec3 turnLidVertex(const EyeLids& eye, const EyeClosure& k, const LidFissure& now, size_t j, const Vec3& p, Mat3* turn) {
+  const double x = (p - eye.centre).dot(eye.axis);
+  const bool inside = x > now.xLow && x < now.xHigh;
+  double gap = 0.0, step = 0.0;
+  if ((k.close != 0.0 || k.gazing) && inside)
+    gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
+  if (k.close != 0.0 && inside) step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
+  return turnByReadings(eye, k, j, p, inside, gap, step, k.gapMax, turn);
+}
+
+void turnLidVertexGradient(const EyeLids& eye, const EyeClosure& k, const LidFissure& now, size_t j, const Vec3& p,
+                           const Vec3& g, std::vector<std::pair<int, Vec3>>& out) {
+  out.clear();
+  const EyeFrame f = eyeFrame(eye);
+  const double x = f.along(p);
+  const bool inside = x > now.xLow && x < now.xHigh;
+  const bool readsGap = (k.close != 0.0 || k.gazing) && inside, readsStep = k.close != 0.0 && inside;
+  // The readings and their partials (the canthi's x and the slide's sign only switch: no derivative).
+  CurveReading up, low, upRho, lowRho;
+  double gap = 0.0, step = 0.0;
+  if (readsGap) {
+    up = readCurve(now.upper.elevation, x);
+    low = readCurve(now.lower.elevation, x);
+    gap = std::max(0.0, up.value - low.value);
+  }
+  if (readsStep) {
+    upRho = readCurve(now.upper.distance, x);
+    lowRho = readCurve(now.lower.distance, x);
+    step = lowRho.value - upRho.value;
+  }
+  // Δmax = max over the upper entries of φ_u,k − φ_l(x_k): its maximising entry.
+  size_t top = 0;
+  CurveReading lowAtTop;
+  {
+    double best = -std::numeric_limits<double>::infinity();
+    for (size_t e = 0; e < now.upper.elevation.size(); ++e) {
+      const auto& [xe, phi] = now.upper.elevation[e];
+      const double v = phi - interpolateLinear(now.lower.elevation, xe);
+      if (v > best) best = v, top = e;
+    }
+    lowAtTop = readCurve(now.lower.elevation, now.upper.elevation[top].first);
+  }
+  // ∂(g·x')/∂(p, Δ, step, Δmax) by central differences of the turn with those readings given.
+  auto turned = [&](const Vec3& pp, double dGap, double dStep, double dMax) {
+    return g.dot(turnByReadings(eye, k, j, pp, inside, gap + dGap, step + dStep, k.gapMax + dMax, nullptr));
+  };
+  const double h = 1e-7 * std::max(1.0, (p - eye.centre).norm());
+  Vec3 byP;
+  for (int a = 0; a < 3; ++a) {
+    Vec3 e = Vec3::Zero();
+    e(a) = h;
+    byP(a) = (turned(p + e, 0, 0, 0) - turned(p - e, 0, 0, 0)) / (2 * h);
+  }
+  const double hs = 1e-7;
+  const double byGap = gap > 0.0 ? (turned(p, hs, 0, 0) - turned(p, -hs, 0, 0)) / (2 * hs) : 0.0;
+  const double byStep = readsStep ? (turned(p, 0, hs, 0) - turned(p, 0, -hs, 0)) / (2 * hs) : 0.0;
+  const double byMax = readsGap && k.gapMax > 0.0 ? (turned(p, 0, 0, hs) - turned(p, 0, 0, -hs)) / (2 * hs) : 0.0;
+  // The entries' partials by their vertex's place: x = a·d, φ = atan2(d·y, d·z), ρ = |(d·y, d·z)|.
+  auto add = [&](int v, const Vec3& grad) {
+    if (grad.squaredNorm() == 0.0) return;
+    for (auto& [u, sum] : out)
+      if (u == v) {
+        sum += grad;
+        return;
+      }
+    out.emplace_back(v, grad);
+  };
+  // Entry e of a margin curve read through its vertex: with y = ρ sin φ, z = ρ cos φ,
+  // ∂x/∂p = a, ∂φ/∂p = (cos φ · y − sin φ · z)/ρ and ∂ρ/∂p = sin φ · y + cos φ · z (the frame's axes).
+  auto entry = [&](const LidMarginCurve& curve, size_t e, double byXe, double byPhi, double byRho) {
+    const double phi = curve.elevation[e].second, rho = curve.distance[e].second;
+    const double sn = std::sin(phi), cs = std::cos(phi);
+    Vec3 grad = byXe * f.x;
+    if (byPhi != 0.0 && rho > 0.0) grad += (byPhi / rho) * (cs * f.y - sn * f.z);
+    if (byRho != 0.0) grad += byRho * (sn * f.y + cs * f.z);
+    add(curve.byX[e], grad);
+  };
+  // Δ = φ_u(x) − φ_l(x) and step = ρ_l(x) − ρ_u(x) through their entries and the vertex's own x.
+  double ownX = 0.0;
+  if (gap > 0.0) {
+    ownX += byGap * (up.byX - low.byX);
+    entry(now.upper, up.i0, byGap * up.byX0, byGap * up.byY0, 0.0);
+    entry(now.upper, up.i1, byGap * up.byX1, byGap * up.byY1, 0.0);
+    entry(now.lower, low.i0, -byGap * low.byX0, -byGap * low.byY0, 0.0);
+    entry(now.lower, low.i1, -byGap * low.byX1, -byGap * low.byY1, 0.0);
+  }
+  if (byStep != 0.0) {
+    ownX += byStep * (lowRho.byX - upRho.byX);
+    entry(now.lower, lowRho.i0, byStep * lowRho.byX0, 0.0, byStep * lowRho.byY0);
+    entry(now.lower, lowRho.i1, byStep * lowRho.byX1, 0.0, byStep * lowRho.byY1);
+    entry(now.upper, upRho.i0, -byStep * upRho.byX0, 0.0, -byStep * upRho.byY0);
+    entry(now.upper, upRho.i1, -byStep * upRho.byX1, 0.0, -byStep * upRho.byY1);
+  }
+  // Δmax = φ_u,top − φ_l(x_top).
+  if (byMax != 0.0) {
+    entry(now.upper, top, -byMax * lowAtTop.byX, byMax, 0.0);
+    entry(now.lower, lowAtTop.i0, -byMax * lowAtTop.byX0, -byMax * lowAtTop.byY0, 0.0);
+    entry(now.lower, lowAtTop.i1, -byMax * lowAtTop.byX1, -byMax * lowAtTop.byY1, 0.0);
+  }
+  // The vertex's own row last: its direct turn and its x's reading of the curves (a vertex can also
+  // be a margin entry above; add() sums).
+  add(eye.lidVertices[j], byP + ownX * f.x);
+}
+
 void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns,
               LidFissure* scratch) {
   LidFissure local;
   LidFissure& now = scratch ? *scratch : local;
   for (size_t e = 0; e < 2; ++e) {
     const EyeLids& eye = rig.eyes[e];
-    const double c = pose.close[e], r = pose.raise[e];
-    const double gazePitch = pose.gaze.pitchDeg[e] * M_PI / 180.0, gazeYaw = pose.gaze.yawDeg[e] * M_PI / 180.0;
-    const bool gazing = gazePitch != 0.0 || gazeYaw != 0.0;
     if (turns) (*turns)[e].assign(eye.lidVertices.size(), Mat3::Identity());
-    if (c == 0.0 && r == 0.0 && !gazing) continue;
-    // The fissure closed is the one the skin has now (the residual included), so at c = 1 the
-    // margins meet whatever the physics did to them.
-    const EyeFrame f = eyeFrame(eye);
-    fissure(positions, eye, f, now);
-    // The nasal slide turns about the vertical axis through the centre, towards the inner canthus,
-    // fading with the fissure's height Δ(x)/Δmax to nothing at the canthi, which the canthal tendons
-    // hold (a full slide up to the canthi tore the skin there into a crack).
-    const double towardsNose = f.along(positions.row(eye.upperMargin.front()).transpose()) < 0.0 ? -1.0 : 1.0;
-    double gapMax = 0.0;
-    for (const auto& [x, phi] : now.upper.elevation) gapMax = std::max(gapMax, phi - interpolateLinear(now.lower.elevation, x));
+    const EyeClosure closure = measureClosure(eye, pose, e, positions, now);
+    if (!closure.moves) continue;
     for (size_t k = 0; k < eye.lidVertices.size(); ++k) {
       const int i = eye.lidVertices[k];
-      Vec3 d = positions.row(i).transpose() - eye.centre;
-      const double x = d.dot(eye.axis);
-      const double w = eye.lidWeights[k];  // + upper lid, − lower lid
-      double alpha = 0.0, kappa = 0.0;  // the turn (radians) and the change of ρ (cm) at c = 1
-      double slide = 0.0;               // Δ(x)/Δmax: the share of the nasal slide and of the gaze's turn
-      const bool inside = x > now.xLow && x < now.xHigh;
-      double gap = 0.0;                 // Δ(x)
-      if ((c != 0.0 || gazing) && inside) {
-        gap = std::max(0.0, interpolateLinear(now.upper.elevation, x) - interpolateLinear(now.lower.elevation, x));
-        if (gapMax > 0.0) slide = std::min(1.0, gap / gapMax);
-      }
-      if (c != 0.0 && inside) {
-        const double step = interpolateLinear(now.lower.distance, x) - interpolateLinear(now.upper.distance, x);
-        const double share = w > 0.0 ? 1.0 - eye.lowerShare : eye.lowerShare;
-        // The gaze turns the upper margin by κ_u·φ_g·s and the lower by κ_l·φ_g·s (below), so it
-        // leaves a fissure Δ + (κ_u − κ_l)·φ_g·s: the closure closes that one, and at c = 1 the
-        // margins meet wherever the eye looks (closing the rest fissure, they crossed in down-gaze
-        // and stayed apart in up-gaze).
-        const double narrowing = (eye.upperGazeFollow - eye.lowerGazeFollow) * gazePitch * slide;
-        const double closed = gazePitch != 0.0 ? std::max(0.0, gap + narrowing) : gap;
-        alpha = share * closed * w;
-        kappa = share * step * w;
-      }
-      // The lids follow the gaze: up-gaze raises them (θ + lowers a point).
-      const double follow = w > 0.0 ? eye.upperGazeFollow : eye.lowerGazeFollow;
-      const double theta = c * alpha + r * (1.0 - c) * eye.raiseAngle[k] - follow * gazePitch * std::abs(w) * slide;
-      const Vec3 across = d - x * eye.axis;  // the part the distance ρ from the axis measures
-      const double rho = across.norm();
-      if (rho > 0.0) d += (c * kappa / rho) * across;
-      Mat3 R = Eigen::AngleAxisd(theta, eye.axis).toRotationMatrix();
-      // Turns about `up`: the nasal slide and the gaze's yaw (+ towards the subject's left, +x).
-      const double yaw = (c != 0.0 ? towardsNose * c * eye.nasalTurn : 0.0) + eye.sideGazeFollow * gazeYaw;
-      if (yaw != 0.0) R = Eigen::AngleAxisd(yaw * std::abs(w) * slide, eye.up).toRotationMatrix() * R;
-      positions.row(i) = (eye.centre + R * d).transpose();
-      if (turns) (*turns)[e][k] = R;
+      positions.row(i) = turnLidVertex(eye, closure, now, k, positions.row(i).transpose(),
+                                       turns ? &(*turns)[e][k] : nullptr).transpose();
     }
   }
 }

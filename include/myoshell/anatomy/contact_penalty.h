@@ -11,12 +11,18 @@
 // ray from the arch's axis; a lip pair crossing: its violation along the frame's y) adds
 //   E_t = ½ k_t δ_t²,     k_t = κ m_t (dyn/cm),
 // κ the penalty stiffness per unit mass (1/s², AnatomicalSettings::contactStiffness) and m_t the
-// vertex mass (a lip pair: half the lighter one's). The reduced force is −∂E/∂q = −Σ_i Φ_iᵀ J_iᵀ ∂E/∂x_i
-// with J_i = R_lid,i R_jaw,i, the rotations the lid and the jaw turned the residual by (the change of
-// the distance from the eye's axis a closure adds, and the closure's dependence on the margins' own
-// residual, are left out of J: exact with the lids open or only raised). Only the candidates' rows
-// are read, and only the violated ones' rows are projected. With no violation the force is exactly
-// zero (the unloaded results stay bit for bit). Bound: Σ_t k_t (Φᵀ Jᵀ∇δ_t)(…)ᵀ ≤ κ Φᵀ M Φ = κ I for
+// vertex mass (a lip pair: half the lighter one's). The reduced force is −∂E/∂q = −Σ_t k_t δ_t a_t,
+// a_t = Σ_i (∂x_i/∂q)ᵀ ∇δ_t. Where a vertex's turn is fixed, ∂x_i/∂q = J_i Φ_i, J_i = R_lid,i R_jaw,i
+// the rotations the lid (only raised) and the jaw turned the residual by. A vertex a lid turns while
+// closing, or following the gaze, is placed by the fissure its margins have now and by its own
+// distance along the eye's axis (eyelids.h), so its ∂x_i/∂q also holds the turn's dependence on those
+// rows: there a_t is summed over the few rows the turn reads at the vertex (turnLidVertexGradient:
+// the margin entries about its x and Δmax's, and its own). Without that chain the force was not a
+// gradient where a lid closed onto the eyeball, and the step circled the settle's equilibrium instead
+// of resting
+// there (docs/mouth_contact.md, "A closed lid keeps the step from resting"). Only the candidates'
+// rows are read, and only the violated ones' rows are projected. With no violation the force is
+// exactly zero (the unloaded results stay bit for bit). Bound: Σ_t k_t (Φᵀ Jᵀ∇δ_t)(…)ᵀ ≤ κ Φᵀ M Φ = κ I for
 // unit ∇δ and one term per vertex, so the penalty's reduced stiffness is at most about κ.
 #pragma once
 
@@ -45,6 +51,13 @@ class ContactPenalty {
   ContactPenalty(const SkinPlacement& placement, const MatX3& rest, const VecX& vertexMass, const ModalBasis& basis,
                  double stiffnessPerMass);
 
+  // An eyeball term on a vertex a lid turns: its candidate row, its lid slot (eye, index in
+  // lidVertices), k_t, δ_t and ∇δ_t (the turn's chain, evaluate).
+  struct ClosureTerm {
+    int row = 0, eye = 0, slot = 0;
+    double k = 0.0, depth = 0.0;
+    Vec3 grad = Vec3::Zero();
+  };
   // Scratch for evaluate (one per thread; made once, reused without allocating).
   struct Workspace {
     MatX3 positions;                               // n×3: only the candidates' rows are kept up to date
@@ -56,15 +69,20 @@ class ContactPenalty {
     std::vector<int> active;                       // candidate indices in a violated constraint
     std::vector<char> flagged;                     // k: whether a candidate is in `active`
     VecX a;                                        // d: one term's a_t
+    // The turn's chain: the jawed rows before the lids' turn, moved ±h along a mode.
+    MatX3 jawed;                                   // n×3: the margins' and the touching lid vertices' rows
+    LidFissure movedFissure;
+    std::vector<ClosureTerm> closureTerms;
+    MatX closureRows;                              // terms × d: each such term's a_t
+    std::vector<std::pair<int, Vec3>> closureReads;  // one term's rows read and ∂(∇δ·x)/∂p
   };
   Workspace workspace() const;
 
   // The penalty at q: returns E (erg). Adds −∂E/∂q to *force (d) and the Gauss–Newton stiffness
-  // Σ_t k_t a_t a_tᵀ (a_t = Σ_i Φ_iᵀ J_iᵀ ∇δ_t) to *stiffness (d×d) when given; *maxDepth receives
-  // the deepest violation (cm); *stiffness must be symmetric (it stays so). `rowForce`, when given (n×3, head space, the residual's frame),
-  // receives −J_iᵀ ∂E/∂x_i added at each violated vertex (the warped step's world force).
+  // Σ_t k_t a_t a_tᵀ to *stiffness (d×d) when given; *maxDepth receives the deepest violation (cm);
+  // *stiffness must be symmetric (it stays so).
   double evaluate(const VecX& q, const JawPose& jaw, const LidPose& lids, Workspace& ws, VecX* force,
-                  MatX* stiffness = nullptr, double* maxDepth = nullptr, MatX3* rowForce = nullptr) const;
+                  MatX* stiffness = nullptr, double* maxDepth = nullptr) const;
 
   double stiffnessPerMass() const { return kappa_; }
   const std::vector<int>& candidates() const { return rows_; }
@@ -75,6 +93,11 @@ class ContactPenalty {
   VecX mass_;                       // k
   std::vector<int> rows_;           // candidate vertices, ascending
   std::vector<int> rowOf_;          // n: the candidate index of a vertex, −1 for none
+  std::vector<std::array<int, 2>> lidSlot_;  // k: (eye, index in its lidVertices) of a lid vertex, {−1, −1} else
+  // A candidate's place before the lids' turn (the jaw's blended turn of rest + u), and that turn.
+  Vec3 jawed(Eigen::Index r, const Vec3& u, const JawPose& jaw, Mat3* turn) const;
+  // The eyeball terms on vertices a lid turns (ws.closureTerms) and their a_t (ws.closureRows).
+  void closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws) const;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Phi_;  // 3k × d
   int n_ = 0;
   double kappa_ = 0.0;

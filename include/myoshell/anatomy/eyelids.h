@@ -158,6 +158,29 @@ struct LidFissure {
 void turnLids(const LidRig& rig, const LidPose& pose, MatX3& positions, std::array<std::vector<Mat3>, 2>* turns = nullptr,
               LidFissure* scratch = nullptr);
 
+// turnLids's two parts, for one eye (e: 0 right, 1 left), so that the step's contact stiffness can
+// differentiate a lid vertex's place through the margins it depends on (contact_penalty.h):
+// measureClosure reads the margins' rows of `positions` into `fissure` and returns what turns the
+// lids; turnLidVertex places lid vertex k (lidVertices' order) from its jawed position p, *turn
+// receiving the rotation. An eye at rest (`moves` false) turns nothing.
+struct EyeClosure {
+  bool moves = false, gazing = false;
+  double close = 0.0, raise = 0.0;             // c and r
+  double gazePitch = 0.0, gazeYaw = 0.0;       // φ_g and ψ_g (radians)
+  double towardsNose = 1.0, gapMax = 0.0;      // the nasal slide's sign along x; Δmax (radians)
+};
+EyeClosure measureClosure(const EyeLids& eye, const LidPose& pose, size_t e, const MatX3& positions, LidFissure& fissure);
+Vec3 turnLidVertex(const EyeLids& eye, const EyeClosure& closure, const LidFissure& fissure, size_t k, const Vec3& p,
+                   Mat3* turn = nullptr);
+// The gradient of g · turnLidVertex(…) with respect to the jawed positions of the rows it reads:
+// the vertex's own and the margins' the fissure's readings at its x and Δmax come from (entries of
+// `out`: vertex, ∂(g·x')/∂p_vertex). Analytic through the margin curves' linear interpolation and
+// the margins' (x, φ, ρ); the turn's own dependence on its readings and on p by central differences
+// (a few evaluations, no fissure measured). The canthi's x and the slide's sign only switch, so they
+// have none. For the contact penalty's chain (contact_penalty.h).
+void turnLidVertexGradient(const EyeLids& eye, const EyeClosure& closure, const LidFissure& fissure, size_t k, const Vec3& p,
+                           const Vec3& g, std::vector<std::pair<int, Vec3>>& out);
+
 // The lid gap of eye `eye` (0 right, 1 left) in `positions`: the mean distance of its two mid-lid
 // landmark pairs, cm.
 double lidGap(const LidRig& rig, int eye, const MatX3& positions);
