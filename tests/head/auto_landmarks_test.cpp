@@ -456,8 +456,10 @@ TriMesh midpointSubdivide(const TriMesh& m) {
 // The built-in head (2 Loop levels, as shipped) found with a template other than itself: the
 // built-in head's unsubdivided mesh split once at its edges' midpoints (1,790 vertices, the same
 // count as the built-in template, but on the polyhedral surface: none of its vertices is one of
-// the searched head's, which Loop moved). Its own labels are the truth; its jaw labels are its
-// rim by arc length, the search's the outline by the mean face's angles (docs/heads.md).
+// the searched head's, which Loop moved). Its own labels are the truth; its jaw labels are the
+// MediaPipe rim vertices nearest the mean iBUG 300-W face's angle shares (since 2026-12-08; before,
+// by 3-D arc length, points 3-7 one to two rim vertices towards the ear: docs/heads.md, "The
+// default head's landmark file").
 TEST(AutoLandmarks, TheBuiltInHeadFoundWithARemeshedTemplate) {
   const Head searched = loadDefaultHead();
   DefaultHeadOptions o;
@@ -478,19 +480,31 @@ TEST(AutoLandmarks, TheBuiltInHeadFoundWithARemeshedTemplate) {
               "%.2f; named (%zu) mean %.2f max %.2f mm\n",
               e.meanMm, e.maxMm, e.faceMeanMm, e.faceMaxMm, e.faceWorst, e.jawMeanMm, searched.landmarks.named.size(),
               namedMean, namedMax);
-  // Measured (search version 5, 2026-12-07): 17-67 mean 1.03, max 5.49 mm (the brows' ends, which
-  // the frontal rule moves off the template's own points); named mean 1.14 mm; the jaw 10.86 mm
-  // from its file's arc-length points, on its rim (version 4: 12.47). Spaced by the mean face's
-  // frontal arc length instead (jawByAngle = false) 9.51 / 20.94 mm: the file's own spacing, by
-  // 3-D arc length along the rim, is neither rule's (docs/heads.md, "One jaw spacing for both
-  // heads"), and ICT's artist labels chose the angles.
+  // Measured (search version 7, the relabelled file, 2026-12-08): 68 mean 1.99, max 9.91 mm; 68 +
+  // 21 named 1.79 mm; 17-67 mean 1.03, max 5.49 mm (the brows' ends, which the frontal rule moves
+  // off the template's own points); named mean 1.14 mm; the jaw 4.87 mm (the file before 10.86,
+  // max 24.48). The issue's 8 mm is not met by the jaw's 3, 4, 12 and 13 (9.5-9.9 mm): the file's
+  // points are MediaPipe vertices (the label file serves every subdivision level and the
+  // closed-eyed head), 17-20 mm apart along the rim there, and the search's points lie midway
+  // between two of them (3 and 13 within 0.5 mm, 4 and 12 4.9 mm of where the annotation's
+  // spacing puts the point on the rim) (docs/heads.md, "The default head's landmark file").
+  const double allMean = (68.0 * e.meanMm + static_cast<double>(searched.landmarks.named.size()) * namedMean) /
+                         (68.0 + static_cast<double>(searched.landmarks.named.size()));
+  std::printf("68 + named mean %.2f mm\n", allMean);
+  EXPECT_LT(allMean, 3.0);  // the issue's mean over the 68 and the named points
   EXPECT_LT(e.faceMeanMm, 1.3);
   EXPECT_LT(e.faceMaxMm, 6.0) << "Multi-PIE point " << e.faceWorst;
   EXPECT_LT(namedMean, 1.5);
-  EXPECT_LT(e.jawMeanMm, 11.5);
-  // The jaw's ends and its side points next to them lie on the rim, where its file puts them.
-  for (int k : {1, 15}) EXPECT_LT(10.0 * (searched.mesh.V.row(searched.landmarks.multipie68[k]) -
-                                          searched.mesh.V.row(a.landmarks.multipie68[k])).norm(), 1.0) << k;
+  EXPECT_LT(e.jawMeanMm, 5.5);
+  EXPECT_LT(e.maxMm, 10.5);
+  // Where the annotation's spacing falls on one of the file's MediaPipe rim vertices (1 and 15: 234,
+  // 454; 5 and 11: 136, 365; the chin 152) the search finds that vertex (the file before put its 5
+  // and 11 18.5 mm towards the ear).
+  for (int k : {1, 5, 8, 11, 15})
+    EXPECT_LT(10.0 * (searched.mesh.V.row(searched.landmarks.multipie68[k]) -
+                      searched.mesh.V.row(a.landmarks.multipie68[k])).norm(),
+              1.0)
+        << k;
 }
 
 TEST(AutoLandmarks, GivenFileChecksCatchTheCommonMistakes) {
