@@ -230,6 +230,78 @@ TEST(AutoLandmarks, LoopSubdividedWithEyeballsAndAToothArch) {
   EXPECT_TRUE(a.mouthOpen);
 }
 
+// A game-style head with a neck: ICT's neck opening (its lowest boundary loop) extruded 12 cm
+// straight down in 4 rings, widening to `flare` times its size about the loop's centre (a neck
+// running into shoulders), ICT's vertex ids and positions kept. The skin's most forward point is
+// then on the flare, not the nose.
+TriMesh ictWithANeck(const TriMesh& head, double flare) {
+  const auto loops = boundaryLoops(head.F, head.vertexCount());
+  const auto meanY = [&](const std::vector<int>& l) {
+    double y = 0.0;
+    for (int v : l) y += head.V(v, 1) / static_cast<double>(l.size());
+    return y;
+  };
+  const std::vector<int> neck = *std::min_element(
+      loops.begin(), loops.end(), [&](const auto& a, const auto& b) { return meanY(a) < meanY(b); });
+  Vec3 c = Vec3::Zero();
+  for (int v : neck) c += Vec3(head.V.row(v)) / static_cast<double>(neck.size());
+  const int m = static_cast<int>(neck.size()), rings = 4;
+  TriMesh out = head;
+  out.V.conservativeResize(head.vertexCount() + rings * m, 3);
+  out.F.conservativeResize(head.triangleCount() + 2 * rings * m, 3);
+  std::vector<int> prev = neck;
+  for (int r = 1; r <= rings; ++r) {
+    const double t = static_cast<double>(r) / rings, s = 1.0 + (flare - 1.0) * t * t;
+    std::vector<int> cur(static_cast<size_t>(m));
+    for (int i = 0; i < m; ++i) {
+      cur[static_cast<size_t>(i)] = head.vertexCount() + (r - 1) * m + i;
+      const Vec3 p = Vec3(head.V.row(neck[static_cast<size_t>(i)]));
+      const Vec3 q(c.x() + s * (p.x() - c.x()), p.y() - 12.0 * t, c.z() + s * (p.z() - c.z()));
+      out.V.row(cur[static_cast<size_t>(i)]) = q.transpose();
+    }
+    for (int i = 0; i < m; ++i) {  // the loop runs the way its triangles do: the new ones turn back
+      const int a = prev[static_cast<size_t>(i)], b = prev[static_cast<size_t>((i + 1) % m)];
+      const int cc = cur[static_cast<size_t>(i)], d = cur[static_cast<size_t>((i + 1) % m)];
+      const int f = head.triangleCount() + 2 * ((r - 1) * m + i);
+      out.F.row(f) << b, a, cc;
+      out.F.row(f + 1) << b, cc, d;
+    }
+    prev = cur;
+  }
+  return out;
+}
+
+// ICT with a 12 cm neck widening 2.5 times (its lowest ring's front 2.1 cm before the nose tip): found as
+// ICT itself is. Before the nose seed near the top (noseSeedNearTheTop = false) the template's nose
+// started on the flare's front and the placement settled on a wrong face (68 mean 139 mm); a
+// straight neck (flare 1) never moved it. Measured (search version 8, 2026-12-08): flare 2.5 and
+// 1, both: 68 mean 2.27, max 6.95 mm, ICT's own figures. The bound for a head we do not
+// have is 5 / 15 mm; ICT's own bounds are asserted.
+TEST(AutoLandmarks, AHeadWithANeckRunningIntoShoulders) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head ict = test::ictHead();
+  for (double flare : {2.5, 1.0}) {
+    const TriMesh m = ictWithANeck(ict.mesh, flare);
+    ASSERT_EQ(boundaryLoops(m.F, m.vertexCount()).size(), 4u);  // the neck's opening moved down, no new one
+    const AutoLandmarks a = findLandmarks(m);
+    EXPECT_EQ(a.unit, LengthUnit::cm);
+    const Errors e = landmarkErrors(m.V, ict.landmarks, a.landmarks);
+    std::printf("ICT with a neck, flare %.1f: 68 mean %.2f max %.2f mm; 17-67 mean %.2f mm; jaw mean %.2f mm\n", flare,
+                e.meanMm, e.maxMm, e.faceMeanMm, e.jawMeanMm);
+    EXPECT_LT(e.meanMm, 2.8) << flare;
+    EXPECT_LT(e.maxMm, 8.0) << flare;
+    EXPECT_LT(e.faceMeanMm, 2.1) << flare;
+    EXPECT_TRUE(a.eyesOpen) << flare;
+    EXPECT_TRUE(a.mouthOpen) << flare;
+  }
+  // The same head searched over the whole skin for the nose's start: a wrong face.
+  AutoLandmarkOptions wholeSkin;
+  wholeSkin.noseSeedNearTheTop = false;
+  const TriMesh m = ictWithANeck(ict.mesh, 2.5);
+  const AutoLandmarks a = findLandmarks(m, wholeSkin);
+  EXPECT_GT(landmarkErrors(m.V, ict.landmarks, a.landmarks).meanMm, 20.0);
+}
+
 // The jaw line's spacing along the frontal outline, checked against ICT's artist labels: the mean
 // 68-point face's angles (the search's rule) against its shares of the frontal arc length (nearly
 // even steps, jawByAngle = false), between the same found ends (0, 16) and chin (8). On ICT itself
