@@ -787,11 +787,28 @@ AutoLandmarks findLandmarks(const TriMesh& mesh, const AutoLandmarkOptions& opti
   }
   std::vector<std::pair<double, int>> ranked;
   std::vector<Similarity> placed(candidates.size());
+  // How far below the top the nose may lie: 2.5 times the template's nose-to-top height (ICT's crown
+  // lies 1.6 times the built-in mask's above its nose), so that a neck, shoulders or a chest below
+  // the face cannot hold the most forward point.
+  const double noseBelowTopMax = 2.5 * (tp.V.col(1).maxCoeff() - noseT.y());
   for (size_t c = 0; c < candidates.size(); ++c) {
     const Mat3& R = candidates[c];
-    // Nose tip on the mesh's most forward point along the candidate's facing direction.
+    // Nose tip on the mesh's most forward point along the candidate's facing direction, among the
+    // points near enough the top along its up direction.
     Eigen::Index imax = 0;
-    (Pcm * R.col(2)).maxCoeff(&imax);
+    const VecX forward = Pcm * R.col(2);
+    if (options.noseSeedNearTheTop) {
+      const VecX up = Pcm * R.col(1);
+      const double top = up.maxCoeff();
+      double best = -1e300;
+      for (Eigen::Index i = 0; i < forward.size(); ++i)
+        if (up(i) >= top - noseBelowTopMax && forward(i) > best) {
+          best = forward(i);
+          imax = i;
+        }
+    } else {
+      forward.maxCoeff(&imax);
+    }
     placed[c].R = R;
     placed[c].t = Pcm.row(imax).transpose() - R * noseT;
     ranked.emplace_back(similarityIcp(tg, Xs, Ns, placed[c], 6, 0.8, cap, 0.6, 1.6), static_cast<int>(c));

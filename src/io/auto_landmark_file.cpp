@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bump when findLandmarks changes what it finds: kept files of older searches are then not reused.
-constexpr int kSearchVersion = 7;  // 7: a jaw point on the outline's vertex (silhouette or open boundary, not behind) within twice the nearest vertex's distance; 6: the jaw outline's frame across the eye openings' centres; 5: a mask's jaw line on its rim; 2: the jaw line on the frontal outline; 3: outer eye corners on the openings, lids and brows from the eye frame, the jaw by angle; 4: the outline seen frontally at the sides, the nose bridge at thirds, labels to the nearest skin vertex
+constexpr int kSearchVersion = 8;  // 8: the nose seed near the top (a neck or shoulders below the face cannot hold the most forward point); 7: a jaw point on the outline's vertex (silhouette or open boundary, not behind) within twice the nearest vertex's distance; 6: the jaw outline's frame across the eye openings' centres; 5: a mask's jaw line on its rim; 2: the jaw line on the frontal outline; 3: outer eye corners on the openings, lids and brows from the eye frame, the jaw by angle; 4: the outline seen frontally at the sides, the nose bridge at thirds, labels to the nearest skin vertex
 
 // A kept search: its landmarks and the "automatic" object.
 struct KeptSearch {

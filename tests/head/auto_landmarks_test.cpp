@@ -230,6 +230,78 @@ TEST(AutoLandmarks, LoopSubdividedWithEyeballsAndAToothArch) {
   EXPECT_TRUE(a.mouthOpen);
 }
 
+// A game-style head with a neck: ICT's neck opening (its lowest boundary loop) extruded 12 cm
+// straight down in 4 rings, widening to `flare` times its size about the loop's centre (a neck
+// running into shoulders), ICT's vertex ids and positions kept. The skin's most forward point is
+// then on the flare, not the nose.
+TriMesh ictWithANeck(const TriMesh& head, double flare) {
+  const auto loops = boundaryLoops(head.F, head.vertexCount());
+  const auto meanY = [&](const std::vector<int>& l) {
+    double y = 0.0;
+    for (int v : l) y += head.V(v, 1) / static_cast<double>(l.size());
+    return y;
+  };
+  const std::vector<int> neck = *std::min_element(
+      loops.begin(), loops.end(), [&](const auto& a, const auto& b) { return meanY(a) < meanY(b); });
+  Vec3 c = Vec3::Zero();
+  for (int v : neck) c += Vec3(head.V.row(v)) / static_cast<double>(neck.size());
+  const int m = static_cast<int>(neck.size()), rings = 4;
+  TriMesh out = head;
+  out.V.conservativeResize(head.vertexCount() + rings * m, 3);
+  out.F.conservativeResize(head.triangleCount() + 2 * rings * m, 3);
+  std::vector<int> prev = neck;
+  for (int r = 1; r <= rings; ++r) {
+    const double t = static_cast<double>(r) / rings, s = 1.0 + (flare - 1.0) * t * t;
+    std::vector<int> cur(static_cast<size_t>(m));
+    for (int i = 0; i < m; ++i) {
+      cur[static_cast<size_t>(i)] = head.vertexCount() + (r - 1) * m + i;
+      const Vec3 p = Vec3(head.V.row(neck[static_cast<size_t>(i)]));
+      const Vec3 q(c.x() + s * (p.x() - c.x()), p.y() - 12.0 * t, c.z() + s * (p.z() - c.z()));
+      out.V.row(cur[static_cast<size_t>(i)]) = q.transpose();
+    }
+    for (int i = 0; i < m; ++i) {  // the loop runs the way its triangles do: the new ones turn back
+      const int a = prev[static_cast<size_t>(i)], b = prev[static_cast<size_t>((i + 1) % m)];
+      const int cc = cur[static_cast<size_t>(i)], d = cur[static_cast<size_t>((i + 1) % m)];
+      const int f = head.triangleCount() + 2 * ((r - 1) * m + i);
+      out.F.row(f) << b, a, cc;
+      out.F.row(f + 1) << b, cc, d;
+    }
+    prev = cur;
+  }
+  return out;
+}
+
+// ICT with a 12 cm neck widening 2.5 times (its lowest ring's front 2.1 cm before the nose tip): found as
+// ICT itself is. Before the nose seed near the top (noseSeedNearTheTop = false) the template's nose
+// started on the flare's front and the placement settled on a wrong face (68 mean 139 mm); a
+// straight neck (flare 1) never moved it. Measured (search version 8, 2026-12-08): flare 2.5 and
+// 1, both: 68 mean 2.27, max 6.95 mm, ICT's own figures. The issue's bound for a head we do not
+// have is 5 / 15 mm; ICT's own bounds are asserted.
+TEST(AutoLandmarks, AHeadWithANeckRunningIntoShoulders) {
+  MYO_REQUIRE_SHARED_DATA();
+  const Head ict = test::ictHead();
+  for (double flare : {2.5, 1.0}) {
+    const TriMesh m = ictWithANeck(ict.mesh, flare);
+    ASSERT_EQ(boundaryLoops(m.F, m.vertexCount()).size(), 4u);  // the neck's opening moved down, no new one
+    const AutoLandmarks a = findLandmarks(m);
+    EXPECT_EQ(a.unit, LengthUnit::cm);
+    const Errors e = landmarkErrors(m.V, ict.landmarks, a.landmarks);
+    std::printf("ICT with a neck, flare %.1f: 68 mean %.2f max %.2f mm; 17-67 mean %.2f mm; jaw mean %.2f mm\n", flare,
+                e.meanMm, e.maxMm, e.faceMeanMm, e.jawMeanMm);
+    EXPECT_LT(e.meanMm, 2.8) << flare;
+    EXPECT_LT(e.maxMm, 8.0) << flare;
+    EXPECT_LT(e.faceMeanMm, 2.1) << flare;
+    EXPECT_TRUE(a.eyesOpen) << flare;
+    EXPECT_TRUE(a.mouthOpen) << flare;
+  }
+  // The same head searched over the whole skin for the nose's start: a wrong face.
+  AutoLandmarkOptions wholeSkin;
+  wholeSkin.noseSeedNearTheTop = false;
+  const TriMesh m = ictWithANeck(ict.mesh, 2.5);
+  const AutoLandmarks a = findLandmarks(m, wholeSkin);
+  EXPECT_GT(landmarkErrors(m.V, ict.landmarks, a.landmarks).meanMm, 20.0);
+}
+
 // The jaw line's spacing along the frontal outline, checked against ICT's artist labels: the mean
 // 68-point face's angles (the search's rule) against its shares of the frontal arc length (nearly
 // even steps, jawByAngle = false), between the same found ends (0, 16) and chin (8). On ICT itself
@@ -456,8 +528,10 @@ TriMesh midpointSubdivide(const TriMesh& m) {
 // The built-in head (2 Loop levels, as shipped) found with a template other than itself: the
 // built-in head's unsubdivided mesh split once at its edges' midpoints (1,790 vertices, the same
 // count as the built-in template, but on the polyhedral surface: none of its vertices is one of
-// the searched head's, which Loop moved). Its own labels are the truth; its jaw labels are its
-// rim by arc length, the search's the outline by the mean face's angles (docs/heads.md).
+// the searched head's, which Loop moved). Its own labels are the truth; its jaw labels are the
+// MediaPipe rim vertices nearest the mean iBUG 300-W face's angle shares (since 2026-12-08; before,
+// by 3-D arc length, points 3-7 one to two rim vertices towards the ear: docs/heads.md, "The
+// default head's landmark file").
 TEST(AutoLandmarks, TheBuiltInHeadFoundWithARemeshedTemplate) {
   const Head searched = loadDefaultHead();
   DefaultHeadOptions o;
@@ -478,19 +552,31 @@ TEST(AutoLandmarks, TheBuiltInHeadFoundWithARemeshedTemplate) {
               "%.2f; named (%zu) mean %.2f max %.2f mm\n",
               e.meanMm, e.maxMm, e.faceMeanMm, e.faceMaxMm, e.faceWorst, e.jawMeanMm, searched.landmarks.named.size(),
               namedMean, namedMax);
-  // Measured (search version 5, 2026-12-07): 17-67 mean 1.03, max 5.49 mm (the brows' ends, which
-  // the frontal rule moves off the template's own points); named mean 1.14 mm; the jaw 10.86 mm
-  // from its file's arc-length points, on its rim (version 4: 12.47). Spaced by the mean face's
-  // frontal arc length instead (jawByAngle = false) 9.51 / 20.94 mm: the file's own spacing, by
-  // 3-D arc length along the rim, is neither rule's (docs/heads.md, "One jaw spacing for both
-  // heads"), and ICT's artist labels chose the angles.
+  // Measured (search version 7, the relabelled file, 2026-12-08): 68 mean 1.99, max 9.91 mm; 68 +
+  // 21 named 1.79 mm; 17-67 mean 1.03, max 5.49 mm (the brows' ends, which the frontal rule moves
+  // off the template's own points); named mean 1.14 mm; the jaw 4.87 mm (the file before 10.86,
+  // max 24.48). The issue's 8 mm is not met by the jaw's 3, 4, 12 and 13 (9.5-9.9 mm): the file's
+  // points are MediaPipe vertices (the label file serves every subdivision level and the
+  // closed-eyed head), 17-20 mm apart along the rim there, and the search's points lie midway
+  // between two of them (3 and 13 within 0.5 mm, 4 and 12 4.9 mm of where the annotation's
+  // spacing puts the point on the rim) (docs/heads.md, "The default head's landmark file").
+  const double allMean = (68.0 * e.meanMm + static_cast<double>(searched.landmarks.named.size()) * namedMean) /
+                         (68.0 + static_cast<double>(searched.landmarks.named.size()));
+  std::printf("68 + named mean %.2f mm\n", allMean);
+  EXPECT_LT(allMean, 3.0);  // the issue's mean over the 68 and the named points
   EXPECT_LT(e.faceMeanMm, 1.3);
   EXPECT_LT(e.faceMaxMm, 6.0) << "Multi-PIE point " << e.faceWorst;
   EXPECT_LT(namedMean, 1.5);
-  EXPECT_LT(e.jawMeanMm, 11.5);
-  // The jaw's ends and its side points next to them lie on the rim, where its file puts them.
-  for (int k : {1, 15}) EXPECT_LT(10.0 * (searched.mesh.V.row(searched.landmarks.multipie68[k]) -
-                                          searched.mesh.V.row(a.landmarks.multipie68[k])).norm(), 1.0) << k;
+  EXPECT_LT(e.jawMeanMm, 5.5);
+  EXPECT_LT(e.maxMm, 10.5);
+  // Where the annotation's spacing falls on one of the file's MediaPipe rim vertices (1 and 15: 234,
+  // 454; 5 and 11: 136, 365; the chin 152) the search finds that vertex (the file before put its 5
+  // and 11 18.5 mm towards the ear).
+  for (int k : {1, 5, 8, 11, 15})
+    EXPECT_LT(10.0 * (searched.mesh.V.row(searched.landmarks.multipie68[k]) -
+                      searched.mesh.V.row(a.landmarks.multipie68[k])).norm(),
+              1.0)
+        << k;
 }
 
 TEST(AutoLandmarks, GivenFileChecksCatchTheCommonMistakes) {

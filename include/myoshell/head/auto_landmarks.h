@@ -28,6 +28,14 @@ struct AutoLandmarkOptions {
   // Loop levels of the built-in head used as the template (1: 1,790 vertices). Level 2 (6,990)
   // gave the same landmarks on ICT within 0.3 mm at 4× the time.
   int templateLevels = 1;
+  // Each candidate orientation's start puts the template's nose tip on the skin's most forward
+  // vertex along the candidate's facing direction among those within 2.5 times the template's
+  // nose-to-top height of the skin's top along its up direction (a head's nose lies 1.6 times the
+  // built-in mask's below the crown on ICT), not over the whole skin. Off: the whole skin, where a
+  // head with shoulders or a flared neck has its most forward point on the chest and the placement
+  // settles on a wrong face (ICT with its neck flared 2.5 times over 12 cm: 139 mm mean error;
+  // on, 2.27 mm, ICT's own). Search version 8; docs/heads.md, "Method", step 4.
+  bool noseSeedNearTheTop = true;
   // Another labelled head as the template instead of the built-in one (templateLevels then
   // unused): in cm, +y up, facing +z like the built-in head, one piece, at least 468 vertices,
   // every name the built-in file has. For measuring (the built-in head found with a remeshed copy
