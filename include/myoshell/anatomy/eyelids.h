@@ -168,6 +168,7 @@ struct EyeClosure {
   double close = 0.0, raise = 0.0;             // c and r
   double gazePitch = 0.0, gazeYaw = 0.0;       // φ_g and ψ_g (radians)
   double towardsNose = 1.0, gapMax = 0.0;      // the nasal slide's sign along x; Δmax (radians)
+  size_t gapTop = 0;                           // the upper margin's entry (by x) Δmax is read at
 };
 EyeClosure measureClosure(const EyeLids& eye, const LidPose& pose, size_t e, const MatX3& positions, LidFissure& fissure);
 Vec3 turnLidVertex(const EyeLids& eye, const EyeClosure& closure, const LidFissure& fissure, size_t k, const Vec3& p,
@@ -175,7 +176,7 @@ Vec3 turnLidVertex(const EyeLids& eye, const EyeClosure& closure, const LidFissu
 // The gradient of g · turnLidVertex(…) with respect to the jawed positions of the rows it reads:
 // the vertex's own and the margins' the fissure's readings at its x and Δmax come from (entries of
 // `out`: vertex, ∂(g·x')/∂p_vertex). Analytic through the margin curves' linear interpolation and
-// the margins' (x, φ, ρ); the turn's own dependence on its readings and on p by central differences
+// the margins' (x, φ, ρ); the turn's own dependence on its readings and on p by forward differences
 // (a few evaluations, no fissure measured). The canthi's x and the slide's sign only switch, so they
 // have none. For the contact penalty's chain (contact_penalty.h).
 void turnLidVertexGradient(const EyeLids& eye, const EyeClosure& closure, const LidFissure& fissure, size_t k, const Vec3& p,
