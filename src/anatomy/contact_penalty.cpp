@@ -127,6 +127,7 @@ ContactPenalty::Workspace ContactPenalty::workspace() const {
   ws.active.reserve(rows_.size());
   ws.flagged.assign(rows_.size(), 0);
   ws.closureTerms.reserve(rows_.size());
+  ws.closureReads.reserve(32);  // a term reads its own row and up to nine margin entries
   ws.a = VecX::Zero(Phi_.cols());
   if (const LidRig* lids = placement_->lids()) {
     ws.jawed = MatX3::Zero(n_, 3);
@@ -234,15 +235,7 @@ double ContactPenalty::evaluate(const VecX& q, const JawPose& jaw, const LidPose
       term(depth, kappa_ * mass_(r), {{r, g}});
     }
   }
-  if (!ws.closureTerms.empty() && (force || stiffness)) {
-    closureChain(jaw, lids, ws);
-    for (size_t t = 0; t < ws.closureTerms.size(); ++t) {
-      const ClosureTerm& c = ws.closureTerms[t];
-      ws.a = ws.closureRows.row(static_cast<Eigen::Index>(t)).transpose();
-      if (force) force->noalias() -= (c.k * c.depth) * ws.a;
-      if (stiffness) stiffness->selfadjointView<Eigen::Lower>().rankUpdate(ws.a, c.k);
-    }
-  }
+  if (!ws.closureTerms.empty() && (force || stiffness)) closureChain(jaw, lids, ws, force, stiffness);
   if (stiffness) stiffness->triangularView<Eigen::StrictlyUpper>() = stiffness->transpose();
   // −∂E/∂q = −Σ Φ_iᵀ J_iᵀ ∂E/∂x_i over the violated rows only.
   if (force)
@@ -265,10 +258,8 @@ Vec3 ContactPenalty::jawed(Eigen::Index r, const Vec3& u, const JawPose& jaw, Ma
   return m.apply(X) + m.R * u;
 }
 
-void ContactPenalty::closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws) const {
+void ContactPenalty::closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws, VecX* force, MatX* stiffness) const {
   const LidRig& lr = *placement_->lids();
-  const Eigen::Index d = Phi_.cols();
-  ws.closureRows.setZero(static_cast<Eigen::Index>(ws.closureTerms.size()), d);
   // The rows the turn reads, the margins and the touching vertices, at their jawed place.
   Mat3 jawTurn;
   auto place = [&](int i) {
@@ -284,19 +275,21 @@ void ContactPenalty::closureChain(const JawPose& jaw, const LidPose& lids, Works
     for (const ClosureTerm& t : ws.closureTerms)
       if (t.eye == e) place(rows_[static_cast<size_t>(t.row)]);
     const EyeClosure closure = measureClosure(eye, lids, static_cast<size_t>(e), ws.jawed, ws.movedFissure);
-    // a_t = Σ_v Φ_vᵀ R_jaw,vᵀ ∂(∇δ_t · x_i)/∂p_v over the rows the turn reads.
-    for (size_t k = 0; k < ws.closureTerms.size(); ++k) {
-      const ClosureTerm& t = ws.closureTerms[k];
+    // a_t = Σ_v Φ_vᵀ R_jaw,vᵀ ∂(∇δ_t · x_i)/∂p_v over the rows the turn reads; then −k_t δ_t a_t to
+    // the force and k_t a_t a_tᵀ to the stiffness's lower triangle (evaluate mirrors it).
+    for (const ClosureTerm& t : ws.closureTerms) {
       if (t.eye != e) continue;
       const int i = rows_[static_cast<size_t>(t.row)];
       turnLidVertexGradient(eye, closure, ws.movedFissure, static_cast<size_t>(t.slot), ws.jawed.row(i).transpose(), t.grad,
                             ws.closureReads);
+      ws.a.setZero();
       for (const auto& [v, byP] : ws.closureReads) {
         const auto r = static_cast<Eigen::Index>(rowOf_[static_cast<size_t>(v)]);
         jawed(r, ws.u.segment<3>(3 * r), jaw, &jawTurn);
-        ws.closureRows.row(static_cast<Eigen::Index>(k)).noalias() +=
-            (jawTurn.transpose() * byP).transpose() * Phi_.middleRows(3 * r, 3);
+        ws.a.noalias() += Phi_.middleRows(3 * r, 3).transpose() * (jawTurn.transpose() * byP);
       }
+      if (force) force->noalias() -= (t.k * t.depth) * ws.a;
+      if (stiffness) stiffness->selfadjointView<Eigen::Lower>().rankUpdate(ws.a, t.k);
     }
   }
 }

@@ -73,7 +73,6 @@ class ContactPenalty {
     MatX3 jawed;                                   // n×3: the margins' and the touching lid vertices' rows
     LidFissure movedFissure;
     std::vector<ClosureTerm> closureTerms;
-    MatX closureRows;                              // terms × d: each such term's a_t
     std::vector<std::pair<int, Vec3>> closureReads;  // one term's rows read and ∂(∇δ·x)/∂p
   };
   Workspace workspace() const;
@@ -96,8 +95,9 @@ class ContactPenalty {
   std::vector<std::array<int, 2>> lidSlot_;  // k: (eye, index in its lidVertices) of a lid vertex, {−1, −1} else
   // A candidate's place before the lids' turn (the jaw's blended turn of rest + u), and that turn.
   Vec3 jawed(Eigen::Index r, const Vec3& u, const JawPose& jaw, Mat3* turn) const;
-  // The eyeball terms on vertices a lid turns (ws.closureTerms) and their a_t (ws.closureRows).
-  void closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws) const;
+  // The eyeball terms on vertices a lid turns (ws.closureTerms): their a_t through the turn's chain,
+  // added to the force and the stiffness as evaluate adds the other terms'.
+  void closureChain(const JawPose& jaw, const LidPose& lids, Workspace& ws, VecX* force, MatX* stiffness) const;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Phi_;  // 3k × d
   int n_ = 0;
   double kappa_ = 0.0;
